@@ -1,0 +1,18 @@
+# Every dependency comes from Debian 12's packages (see README.md).
+find_package(embree 3 REQUIRED)
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(OpenImageIO 2.4 REQUIRED)
+# OpenImageIO's exported target names /usr/include/opencv4, which exists only with
+# OpenCV's dev package installed; drop it so the generate step does not fail.
+get_target_property(_oiio_inc OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
+if(_oiio_inc)
+  list(FILTER _oiio_inc EXCLUDE REGEX "opencv4")
+  set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_oiio_inc}")
+endif()
+find_package(glm REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 2 REQUIRED)
+find_package(TBB REQUIRED)
+if(RELIGHT_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()

@@ -1,0 +1,19 @@
+# Warning flags for the project's own targets, in an INTERFACE target.
+add_library(relight_warnings INTERFACE)
+add_library(relight::warnings ALIAS relight_warnings)
+target_compile_options(relight_warnings INTERFACE
+  -Wall                 # the usual set
+  -Wextra               # unused parameters, sign/enum comparisons, ...
+  -Wpedantic            # ISO C++ only
+  -Wshadow              # a local hiding another name is a classic radiosity-loop bug
+  -Wdouble-promotion    # float silently widened to double in hot loops
+  -Wnon-virtual-dtor    # polymorphic base without virtual destructor
+  -Wold-style-cast      # casts must say what they do
+  $<$<BOOL:${RELIGHT_WERROR}>:-Werror>)
+
+add_library(relight_sanitize INTERFACE)
+add_library(relight::sanitize ALIAS relight_sanitize)
+if(RELIGHT_SANITIZE)
+  target_compile_options(relight_sanitize INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer)
+  target_link_options(relight_sanitize INTERFACE -fsanitize=address,undefined)
+endif()

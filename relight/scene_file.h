@@ -1,0 +1,72 @@
+// Scene package loading: scene.json + OBJ geometry + lights, exactly as specified in
+// ../shared/spec/scene-format.md ("relight-scene/1").
+//
+// Every problem with the input is reported as an InputError whose message names the file
+// and the line (OBJ) or the JSON key path (scene.json), e.g.
+//   "data/room/room.obj:12: face references vertex 40, but only 36 are defined".
+// Documented repairs, each reported as a warning (SceneFile::warnings):
+//   - a non-planar quad is split into two triangles along its shorter diagonal;
+//   - a non-convex planar quad is split into two triangles along the diagonal that
+//     keeps both halves convex;
+//   - a convex planar face with more than 4 vertices is split into a fan of triangles;
+//   - a degenerate face (zero area, repeated vertices) is dropped.
+// Non-finite coordinates, faces with fewer than 3 vertices, bad indices, zero-area or
+// non-planar lights, negative radiance, unknown JSON keys and missing files are errors.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "radiosity/scene.h"
+#include "relight/camera.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+
+/// An error in the user's input; what() names the file and line or key.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct PhotoSpec {
+    std::filesystem::path file;        ///< absolute or relative to the working directory
+    enum class Encoding { linear, srgb } encoding = Encoding::linear;
+    std::vector<std::string> lightsOn; ///< names of the real lights on in this photo
+};
+
+struct ObjectSettings {
+    std::optional<Rgb> reflectance;  ///< used where the photo does not see the object
+    bool removable = false;
+};
+
+struct SceneFile {
+    std::filesystem::path dir;       ///< the scene folder
+    radiosity::Scene scene;          ///< geometry + emitting faces of the lights
+    Camera camera;
+    std::vector<PhotoSpec> photos;   ///< may be empty
+    std::map<std::string, ObjectSettings> objectSettings;  ///< from "objects"
+    std::optional<double> averageReflectance;               ///< the user's guess, in [0, 1)
+    /// Per light (same index as scene.lights): radiance given in scene.json
+    /// (photo units); zero where it is "estimate".
+    std::vector<Rgb> nominalRadiance;
+    /// Per light: true when scene.json says "radiance": "estimate".
+    std::vector<bool> estimateRadiance;
+    std::vector<std::string> warnings;  ///< documented repairs, with file and line
+
+    /// Lights' on/off state in the first photo: scene.lights[i].radiance is
+    /// nominalRadiance[i] when the light is in photos[0].lightsOn (or when there is no
+    /// photo), zero otherwise. loadScene() leaves the scene in this state.
+    void setPhotoLightState();
+};
+
+/// Loads <dir>/scene.json and the files it names. Reflectance of each polygon: the
+/// object's "reflectance" when given, else average_reflectance (grey), else 0.5; emitting
+/// faces have reflectance 0. Throws InputError.
+SceneFile loadScene(const std::filesystem::path& dir);
+
+}  // namespace relight
