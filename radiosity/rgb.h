@@ -19,15 +19,32 @@ struct Rgb {
     constexpr double operator[](int i) const { return i == 0 ? r : (i == 1 ? g : b); }
     constexpr double& operator[](int i) { return i == 0 ? r : (i == 1 ? g : b); }
 
-    constexpr Rgb& operator+=(const Rgb& o) { r += o.r; g += o.g; b += o.b; return *this; }
-    constexpr Rgb& operator-=(const Rgb& o) { r -= o.r; g -= o.g; b -= o.b; return *this; }
-    constexpr Rgb& operator*=(double s) { r *= s; g *= s; b *= s; return *this; }
+    constexpr Rgb& operator+=(const Rgb& o) {
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        return *this;
+    }
+    constexpr Rgb& operator-=(const Rgb& o) {
+        r -= o.r;
+        g -= o.g;
+        b -= o.b;
+        return *this;
+    }
+    constexpr Rgb& operator*=(double s) {
+        r *= s;
+        g *= s;
+        b *= s;
+        return *this;
+    }
     friend constexpr Rgb operator+(Rgb a, const Rgb& o) { return a += o; }
     friend constexpr Rgb operator-(Rgb a, const Rgb& o) { return a -= o; }
     friend constexpr Rgb operator*(Rgb a, double s) { return a *= s; }
     friend constexpr Rgb operator*(double s, Rgb a) { return a *= s; }
     /// Component-wise product (reflectance times irradiance).
-    friend constexpr Rgb operator*(const Rgb& a, const Rgb& o) { return {a.r * o.r, a.g * o.g, a.b * o.b}; }
+    friend constexpr Rgb operator*(const Rgb& a, const Rgb& o) {
+        return {a.r * o.r, a.g * o.g, a.b * o.b};
+    }
     friend constexpr bool operator==(const Rgb&, const Rgb&) = default;
 
     constexpr double maxComponent() const { return std::max(r, std::max(g, b)); }

@@ -24,7 +24,9 @@ Bounds3 Polygon::bounds() const {
     return b;
 }
 
-Rgb Light::emittance() const { return radiance * std::numbers::pi; }
+Rgb Light::emittance() const {
+    return radiance * std::numbers::pi;
+}
 
 Rgb Scene::emittance(int p) const {
     int l = polygons[p].light;

@@ -52,8 +52,8 @@ struct Scene {
     Rgb emittedPower() const;
     Bounds3 bounds() const;
     double totalArea() const;
-    int findLight(const std::string& name) const;    ///< -1 when absent
-    int findObject(const std::string& name) const;   ///< -1 when absent
+    int findLight(const std::string& name) const;   ///< -1 when absent
+    int findObject(const std::string& name) const;  ///< -1 when absent
 };
 
 /// Result of checking a candidate polygon.

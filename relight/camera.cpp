@@ -4,7 +4,9 @@
 
 namespace relight {
 
-Vec3 Camera::position() const { return -(glm::transpose(cameraFromWorldR) * cameraFromWorldT); }
+Vec3 Camera::position() const {
+    return -(glm::transpose(cameraFromWorldR) * cameraFromWorldT);
+}
 
 Vec3 Camera::rayDirection(double u, double v) const {
     // Invert the pinhole projection at depth Zc = 1, then rotate back to world: R^T Xc.

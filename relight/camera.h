@@ -14,9 +14,9 @@ namespace relight {
 using radiosity::Vec3;
 
 struct Camera {
-    int width = 0, height = 0;   ///< image size in pixels
-    double fx = 1, fy = 1;       ///< focal lengths in pixels
-    double cx = 0, cy = 0;       ///< principal point in pixels (OpenCV: centre of pixel (0,0) is 0,0)
+    int width = 0, height = 0;  ///< image size in pixels
+    double fx = 1, fy = 1;      ///< focal lengths in pixels
+    double cx = 0, cy = 0;  ///< principal point in pixels (OpenCV: centre of pixel (0,0) is 0,0)
     glm::dmat3 cameraFromWorldR{1.0};  ///< R of world_to_camera (rotation)
     Vec3 cameraFromWorldT{0, 0, 0};    ///< t of world_to_camera (metres)
 

@@ -34,9 +34,9 @@ struct InputError : std::runtime_error {
 };
 
 struct PhotoSpec {
-    std::filesystem::path file;        ///< absolute or relative to the working directory
+    std::filesystem::path file;  ///< absolute or relative to the working directory
     enum class Encoding { linear, srgb } encoding = Encoding::linear;
-    std::vector<std::string> lightsOn; ///< names of the real lights on in this photo
+    std::vector<std::string> lightsOn;  ///< names of the real lights on in this photo
 };
 
 struct ObjectSettings {
@@ -45,12 +45,12 @@ struct ObjectSettings {
 };
 
 struct SceneFile {
-    std::filesystem::path dir;       ///< the scene folder
-    radiosity::Scene scene;          ///< geometry + emitting faces of the lights
+    std::filesystem::path dir;  ///< the scene folder
+    radiosity::Scene scene;     ///< geometry + emitting faces of the lights
     Camera camera;
-    std::vector<PhotoSpec> photos;   ///< may be empty
+    std::vector<PhotoSpec> photos;                         ///< may be empty
     std::map<std::string, ObjectSettings> objectSettings;  ///< from "objects"
-    std::optional<double> averageReflectance;               ///< the user's guess, in [0, 1)
+    std::optional<double> averageReflectance;              ///< the user's guess, in [0, 1)
     /// Per light (same index as scene.lights): radiance given in scene.json
     /// (photo units); zero where it is "estimate".
     std::vector<Rgb> nominalRadiance;

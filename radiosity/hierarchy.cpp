@@ -1,0 +1,286 @@
+#include "radiosity/hierarchy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace radiosity {
+
+namespace {
+
+Vec3 elementCentroid(const Node& e) {
+    if (e.vertexCount == 3) return (e.v[0] + e.v[1] + e.v[2]) / 3.0;
+    // Area-weighted centroid of the two fan triangles (exact for any convex quad).
+    const double a1 = glm::length(glm::cross(e.v[1] - e.v[0], e.v[2] - e.v[0]));
+    const double a2 = glm::length(glm::cross(e.v[2] - e.v[0], e.v[3] - e.v[0]));
+    const double w = a1 + a2;
+    if (!(w > 0)) return 0.25 * (e.v[0] + e.v[1] + e.v[2] + e.v[3]);
+    return (a1 * (e.v[0] + e.v[1] + e.v[2]) + a2 * (e.v[0] + e.v[2] + e.v[3])) / (3.0 * w);
+}
+
+double elementArea(const Node& e) {
+    double a = 0.5 * glm::length(glm::cross(e.v[1] - e.v[0], e.v[2] - e.v[0]));
+    if (e.vertexCount == 4) a += 0.5 * glm::length(glm::cross(e.v[2] - e.v[0], e.v[3] - e.v[0]));
+    return a;
+}
+
+void finishGeometry(Node& e) {
+    e.bounds = Bounds3{};
+    for (int i = 0; i < e.vertexCount; ++i) e.bounds.extend(e.v[i]);
+    e.area = elementArea(e);
+    e.centre = elementCentroid(e);
+    e.radius = 0;
+    for (int i = 0; i < e.vertexCount; ++i)
+        e.radius = std::max(e.radius, glm::length(e.v[i] - e.centre));
+}
+
+}  // namespace
+
+Vec3 pointOnElement(const Node& e, double u, double v) {
+    if (e.vertexCount == 4) {
+        return (1 - u) * (1 - v) * e.v[0] + u * (1 - v) * e.v[1] + u * v * e.v[2] +
+               (1 - u) * v * e.v[3];
+    }
+    const double su = std::sqrt(u);
+    return (1 - su) * e.v[0] + su * (1 - v) * e.v[1] + su * v * e.v[2];
+}
+
+Vec3 pointOnPolygon(const Polygon& p, double u, double v) {
+    Node e;
+    e.v = p.v;
+    e.vertexCount = p.vertexCount;
+    return pointOnElement(e, u, v);
+}
+
+Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) : polygons_(scene.polygons) {
+    const int n = static_cast<int>(scene.polygons.size());
+    polygonOrder.resize(n);
+    std::iota(polygonOrder.begin(), polygonOrder.end(), 0);
+    std::vector<Vec3> centroids(n);
+    for (int i = 0; i < n; ++i) centroids[i] = scene.polygons[i].centroid();
+    polygonRoot.assign(n, -1);
+    nodes.reserve(4 * n + 16);
+    nodes.emplace_back();
+    nodes[0].kind = NodeKind::cluster;
+    clusterCount_ = 1;
+    buildCluster(kRoot, 0, n, std::max(1, maxPolygonsPerCluster), centroids);
+
+    areaPrefix.assign(n + 1, 0.0);
+    for (int i = 0; i < n; ++i)
+        areaPrefix[i + 1] = areaPrefix[i] + scene.polygons[polygonOrder[i]].area;
+    for (int i = 0; i < n; ++i) {
+        Node& e = nodes[polygonRoot[i]];
+        e.E = scene.emittance(i);
+        e.emitting = e.E.maxComponent() > 0;
+    }
+    pullAverages(kRoot);
+}
+
+void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
+                             const std::vector<Vec3>& centroids) {
+    nodes[node].polyBegin = begin;
+    nodes[node].polyEnd = end;
+    const int count = end - begin;
+    if (count <= maxPerCluster) {
+        // Leaf cluster: its children are the root elements of its polygons.
+        const int first = static_cast<int>(nodes.size());
+        nodes[node].firstChild = first;
+        nodes[node].childCount = count;
+        const int level = nodes[node].level + 1;
+        for (int i = begin; i < end; ++i) {
+            const int p = polygonOrder[i];
+            Node e;
+            initElement(e, polygons_[p], p);
+            e.parent = node;
+            e.level = level;
+            polygonRoot[p] = static_cast<int>(nodes.size());
+            nodes.push_back(e);
+        }
+    } else {
+        // Median split of the centroids along the longest axis of their bounds.
+        Bounds3 cb;
+        for (int i = begin; i < end; ++i) cb.extend(centroids[polygonOrder[i]]);
+        const int axis = cb.longestAxis();
+        const int mid = begin + count / 2;
+        std::nth_element(polygonOrder.begin() + begin, polygonOrder.begin() + mid,
+                         polygonOrder.begin() + end, [&](int a, int b) {
+                             if (centroids[a][axis] != centroids[b][axis])
+                                 return centroids[a][axis] < centroids[b][axis];
+                             return a < b;  // deterministic order for ties
+                         });
+        const int first = static_cast<int>(nodes.size());
+        nodes[node].firstChild = first;
+        nodes[node].childCount = 2;
+        for (int c = 0; c < 2; ++c) {
+            Node child;
+            child.kind = NodeKind::cluster;
+            child.parent = node;
+            child.level = nodes[node].level + 1;
+            nodes.push_back(child);
+            ++clusterCount_;
+        }
+        buildCluster(first, begin, mid, maxPerCluster, centroids);
+        buildCluster(first + 1, mid, end, maxPerCluster, centroids);
+    }
+    // Bounds, area and bounding sphere of the cluster from its children.
+    Node& c = nodes[node];
+    c.bounds = Bounds3{};
+    c.area = 0;
+    for (int k = 0; k < c.childCount; ++k) {
+        const Node& ch = nodes[c.firstChild + k];
+        c.bounds.extend(ch.bounds);
+        c.area += ch.area;
+    }
+    c.centre = c.bounds.empty() ? Vec3{0, 0, 0} : c.bounds.centre();
+    c.radius = c.bounds.empty() ? 0 : 0.5 * glm::length(c.bounds.diagonal());
+}
+
+void Hierarchy::initElement(Node& e, const Polygon& p, int polygonIndex) {
+    e.kind = NodeKind::element;
+    e.polygon = polygonIndex;
+    e.v = p.v;
+    e.vertexCount = p.vertexCount;
+    e.normal = p.normal;
+    e.rho = p.rho;
+    finishGeometry(e);
+}
+
+bool Hierarchy::subdivide(int node) {
+    if (nodes[node].isCluster() || !nodes[node].isLeaf()) return false;
+    const Node parent = nodes[node];  // copy: push_back below may reallocate
+    std::array<std::array<Vec3, 4>, 4> corners;
+    int vc = parent.vertexCount;
+    const auto& v = parent.v;
+    if (vc == 4) {
+        const Vec3 m01 = 0.5 * (v[0] + v[1]), m12 = 0.5 * (v[1] + v[2]);
+        const Vec3 m23 = 0.5 * (v[2] + v[3]), m30 = 0.5 * (v[3] + v[0]);
+        const Vec3 c = 0.25 * (v[0] + v[1] + v[2] + v[3]);
+        corners = {
+            {{v[0], m01, c, m30}, {m01, v[1], m12, c}, {c, m12, v[2], m23}, {m30, c, m23, v[3]}}};
+    } else {
+        const Vec3 m01 = 0.5 * (v[0] + v[1]), m12 = 0.5 * (v[1] + v[2]);
+        const Vec3 m20 = 0.5 * (v[2] + v[0]);
+        // The middle triangle (m12, m20, m01) keeps the parent's orientation.
+        corners = {{{v[0], m01, m20, {}},
+                    {m01, v[1], m12, {}},
+                    {m20, m12, v[2], {}},
+                    {m12, m20, m01, {}}}};
+    }
+    const int first = static_cast<int>(nodes.size());
+    for (int k = 0; k < 4; ++k) {
+        Node child;
+        child.kind = NodeKind::element;
+        child.parent = node;
+        child.level = parent.level + 1;
+        child.polygon = parent.polygon;
+        child.v = corners[k];
+        child.vertexCount = vc;
+        child.normal = parent.normal;
+        child.rho = parent.rho;
+        child.E = parent.E;
+        child.B = parent.B;
+        child.emitting = parent.emitting;
+        finishGeometry(child);
+        nodes.push_back(child);
+    }
+    nodes[node].firstChild = first;
+    nodes[node].childCount = 4;
+    return true;
+}
+
+void Hierarchy::updateEmittance(const Scene& scene) {
+    for (Node& n : nodes) {
+        if (n.isCluster()) continue;
+        n.E = scene.emittance(n.polygon);
+        n.emitting = n.E.maxComponent() > 0;
+    }
+    pullAverages(kRoot);
+}
+
+Vec3 Hierarchy::samplePoint(int node, double u, double v, double w, Vec3* normal) const {
+    const Node& n = nodes[node];
+    if (!n.isCluster()) {
+        if (normal) *normal = n.normal;
+        return pointOnElement(n, u, v);
+    }
+    // Choose a polygon of the cluster by area (binary search in the prefix sums).
+    const double a0 = areaPrefix[n.polyBegin], a1 = areaPrefix[n.polyEnd];
+    const double target = a0 + w * (a1 - a0);
+    auto it = std::upper_bound(areaPrefix.begin() + n.polyBegin + 1,
+                               areaPrefix.begin() + n.polyEnd + 1, target);
+    int idx = static_cast<int>(it - areaPrefix.begin()) - 1;
+    idx = std::clamp(idx, n.polyBegin, n.polyEnd - 1);
+    const Polygon& p = polygons_[polygonOrder[idx]];
+    if (normal) *normal = p.normal;
+    return pointOnPolygon(p, u, v);
+}
+
+namespace {
+bool elementContains(const Node& e, const Vec3& x, double tol) {
+    for (int i = 0; i < e.vertexCount; ++i) {
+        const Vec3& a = e.v[i];
+        const Vec3& b = e.v[(i + 1) % e.vertexCount];
+        if (glm::dot(glm::cross(b - a, x - a), e.normal) < -tol * glm::length(b - a)) return false;
+    }
+    return true;
+}
+}  // namespace
+
+int Hierarchy::locateLeaf(int polygon, const Vec3& x) const {
+    int node = polygonRoot[polygon];
+    while (!nodes[node].isLeaf()) {
+        const Node& n = nodes[node];
+        int best = -1;
+        double bestDist = 1e300;
+        for (int k = 0; k < n.childCount; ++k) {
+            const Node& c = nodes[n.firstChild + k];
+            if (elementContains(c, x, 1e-9)) {
+                best = n.firstChild + k;
+                break;
+            }
+            // Numerical fallback: the child whose centroid is nearest.
+            const double d = glm::length(c.centre - x);
+            if (d < bestDist) {
+                bestDist = d;
+                best = n.firstChild + k;
+            }
+        }
+        node = best;
+    }
+    return node;
+}
+
+void Hierarchy::pullAverages(int node) {
+    Node& n = nodes[node];
+    if (n.isLeaf()) return;
+    Rgb B, rho, E;
+    double area = 0;
+    bool emitting = false;
+    for (int k = 0; k < n.childCount; ++k) {
+        const int c = n.firstChild + k;
+        pullAverages(c);
+        const Node& ch = nodes[c];
+        B += ch.B * ch.area;
+        rho += ch.rho * ch.area;
+        E += ch.E * ch.area;
+        area += ch.area;
+        emitting = emitting || ch.emitting;
+    }
+    Node& m = nodes[node];  // re-fetch: recursion does not reallocate, but be explicit
+    const double inv = area > 0 ? 1.0 / area : 0.0;  // guard: a cluster of no area
+    m.B = B * inv;
+    if (m.isCluster()) {
+        m.rho = rho * inv;
+        m.E = E * inv;
+    }
+    m.emitting = emitting;
+}
+
+int Hierarchy::leafCount() const {
+    int count = 0;
+    for (const Node& n : nodes)
+        if (!n.isCluster() && n.isLeaf()) ++count;
+    return count;
+}
+
+}  // namespace radiosity

@@ -1,0 +1,102 @@
+// Hierarchy: the element quadtrees of the input polygons under a cluster hierarchy,
+// stored as one flat array of nodes indexed by node id.
+//
+// Hanrahan, Salzman & Aupperle 1991 (elements); Sillion 1995 and Smits, Arvo & Greenberg
+// 1994 (clusters). The root cluster (node 0) holds the whole scene. A cluster covers a
+// contiguous range of `polygonOrder`; its children are clusters, or, at the bottom, the
+// root elements of its polygons. An element is a triangle or a planar convex quad on one
+// input polygon; subdividing it makes 4 children (midpoint split of a quad on its
+// bilinear parameterisation; 4-way midpoint split of a triangle), all with the polygon's
+// orientation. Children of a node are contiguous in `nodes`.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "radiosity/rgb.h"
+#include "radiosity/scene.h"
+#include "radiosity/vec.h"
+
+namespace radiosity {
+
+enum class NodeKind : uint8_t { cluster, element };
+
+struct Node {
+    NodeKind kind = NodeKind::element;
+    int parent = -1;
+    int firstChild = -1;             ///< index of the first child; children are contiguous
+    int childCount = 0;              ///< 0 for a leaf element
+    int level = 0;                   ///< depth below the root cluster
+    int polygon = -1;                ///< element: its input polygon; cluster: -1
+    int polyBegin = 0, polyEnd = 0;  ///< cluster: its range of Hierarchy::polygonOrder
+
+    std::array<Vec3, 4> v{};  ///< element corners, counter-clockwise (metres)
+    int vertexCount = 0;      ///< element: 3 or 4; cluster: 0
+    Vec3 normal{0, 0, 1};     ///< element: unit front normal
+    Vec3 centre{0, 0, 0};     ///< element: centroid; cluster: box centre (metres)
+    double radius = 0;        ///< bounding-sphere radius about `centre` (metres)
+    Bounds3 bounds;
+    double area = 0;  ///< element: its area; cluster: total area of its polygons (m^2)
+
+    Rgb rho;  ///< reflectance (cluster: area-weighted mean)
+    Rgb E;    ///< emittance, radiosity units (cluster: area-weighted mean)
+    Rgb B;    ///< radiosity, radiosity units (cluster: area-weighted mean of its contents)
+    Rgb H;    ///< irradiance gathered through this node's own links in the last gather
+    bool emitting = false;  ///< an emitter with E > 0 lies in this node
+
+    bool isCluster() const { return kind == NodeKind::cluster; }
+    bool isLeaf() const { return childCount == 0; }
+};
+
+class Hierarchy {
+  public:
+    /// Builds the cluster hierarchy over `scene` (median splits along the longest axis of
+    /// the polygons' centroids, at most `maxPolygonsPerCluster` polygons per leaf cluster)
+    /// and one root element per polygon. Reflectance and emittance come from `scene`.
+    explicit Hierarchy(const Scene& scene, int maxPolygonsPerCluster = 4);
+
+    static constexpr int kRoot = 0;
+
+    std::vector<Node> nodes;
+    std::vector<int> polygonRoot;    ///< polygon index -> its root element node
+    std::vector<int> polygonOrder;   ///< polygons in cluster order
+    std::vector<double> areaPrefix;  ///< areaPrefix[i] = sum of areas of polygonOrder[0, i)
+
+    /// Splits a leaf element into 4 children (returns false for clusters and non-leaves).
+    bool subdivide(int node);
+
+    /// Re-reads emittance from `scene` (after a light edit) and updates `emitting` and the
+    /// clusters' mean E.
+    void updateEmittance(const Scene& scene);
+
+    /// A point on the node's surfaces for uniform random numbers (u, v, w) in [0, 1):
+    /// uniform by area on an element; for a cluster, a polygon is chosen with probability
+    /// proportional to its area (w), then a point on it (u, v).
+    Vec3 samplePoint(int node, double u, double v, double w, Vec3* normal = nullptr) const;
+
+    /// The leaf element of `polygon` that contains x (a point on the polygon).
+    int locateLeaf(int polygon, const Vec3& x) const;
+
+    /// Pull: recomputes cluster/parent B, rho, E, area-weighted from the leaves.
+    void pullAverages(int node);
+
+    int leafCount() const;
+    int clusterCount() const { return clusterCount_; }
+    int elementCount() const { return static_cast<int>(nodes.size()) - clusterCount_; }
+
+  private:
+    void buildCluster(int node, int begin, int end, int maxPerCluster,
+                      const std::vector<Vec3>& centroids);
+    void initElement(Node& e, const Polygon& p, int polygonIndex);
+    int clusterCount_ = 0;
+    std::vector<Polygon> polygons_;  // corners for point sampling in clusters
+};
+
+/// Point on element `e` for (u, v) in [0, 1]^2: bilinear on a quad; for a triangle the
+/// area-preserving square-to-triangle map (sqrt warp).
+Vec3 pointOnElement(const Node& e, double u, double v);
+/// Same for an input polygon.
+Vec3 pointOnPolygon(const Polygon& p, double u, double v);
+
+}  // namespace radiosity

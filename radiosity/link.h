@@ -1,0 +1,25 @@
+// Link: one light transfer between two nodes of the hierarchy (HSA91), gathered as
+//   H_receiver += F * V * B_source
+// where H is irradiance and B radiosity (both radiosity units), F the unoccluded transfer
+// coefficient (the form factor F_{receiver -> source} for two elements; the cluster
+// kernels of transfer.h otherwise) and V in [0, 1] the visibility attenuation.
+#pragma once
+
+#include <cstdint>
+
+namespace radiosity {
+
+/// Loscos et al. 2000, §2.3: a link is VISIBLE (V = 1), INVISIBLE (V = 0) or PARTIAL.
+enum class VisibilityType : uint8_t { visible, invisible, partial };
+
+struct Link {
+    int receiver = -1;  ///< node that gathers
+    int source = -1;    ///< node whose radiosity is gathered
+    double F = 0;       ///< unoccluded transfer coefficient, dimensionless
+    float V = 1;        ///< visibility attenuation in [0, 1]
+    VisibilityType type = VisibilityType::visible;
+    uint8_t rays = 0;         ///< visibility rays cast for this link (0: decided by its shaft)
+    bool shaftEmpty = false;  ///< no occluder in the shaft: VISIBLE without rays
+};
+
+}  // namespace radiosity

@@ -1,0 +1,402 @@
+#include "radiosity/solver.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace radiosity {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+}  // namespace
+
+HierarchicalSolver::HierarchicalSolver(Scene scene, SolverOptions options)
+    : scene_(std::move(scene)),
+      options_(std::move(options)),
+      h_(scene_, options_.maxPolygonsPerCluster) {
+    const auto t0 = Clock::now();
+    vis_ = std::make_unique<Visibility>(scene_);
+    transfer_ = std::make_unique<TransferEvaluator>(h_, *vis_, options_.transfer);
+    minArea_ = options_.minArea > 0 ? options_.minArea : 2e-5 * scene_.totalArea();
+    timing_.timeBuild = secondsSince(t0);
+}
+
+HierarchicalSolver::~HierarchicalSolver() = default;
+
+void HierarchicalSolver::report(const std::string& msg) const {
+    if (options_.progress) options_.progress(msg);
+}
+
+bool HierarchicalSolver::canSplit(int node) const {
+    const Node& n = h_.nodes[node];
+    if (!n.isLeaf()) return true;
+    return !n.isCluster() && n.area * 0.25 >= minArea_;
+}
+
+Link HierarchicalSolver::makeLink(int r, int s) const {
+    Link link;
+    link.receiver = r;
+    link.source = s;
+    link.F = transfer_->formFactor(r, s);
+    return link;
+}
+
+HierarchicalSolver::Decision HierarchicalSolver::oracle(const Link& link) const {
+    const int r = link.receiver, s = link.source;
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    // Skip what cannot carry light: a receiver that reflects nothing (emitting faces, black
+    // surfaces), a source element that neither emits nor reflects (a light that is off).
+    if (!R.isCluster() && R.rho.maxComponent() <= 0) return Decision::drop;
+    if (!S.isCluster() && S.rho.maxComponent() <= 0 && !S.emitting) return Decision::drop;
+    if (r == s) return R.isCluster() ? Decision::splitReceiver : Decision::drop;
+    // Links from lights go to elements, never to clusters (Loscos et al. 2000, §2.3 and
+    // §5.2): shadow boundaries need per-element visibility of each source.
+    if (S.isCluster() && S.emitting) return Decision::splitSource;
+    if (!S.isCluster() && S.emitting && R.isCluster()) return Decision::splitReceiver;
+
+    // BF criterion (HSA91), power form: rho_r B_s F A_r against epsilon times the emitted
+    // power. F is the oracle's bound (conservative for clusters).
+    const double F = transfer_->bound(r, s, link.F);
+    const double value = R.rho.maxComponent() * S.B.maxComponent() * F * R.area;
+    if (!(value > powerThreshold_)) return Decision::accept;
+
+    const bool splitR = canSplit(r), splitS = canSplit(s);
+    if (!splitR && !splitS) return Decision::accept;
+    if (R.isCluster() || S.isCluster()) {
+        // Open clusters first; of two clusters the larger one.
+        if (R.isCluster() && S.isCluster())
+            return R.radius >= S.radius ? Decision::splitReceiver : Decision::splitSource;
+        return R.isCluster() ? Decision::splitReceiver : Decision::splitSource;
+    }
+    if (!splitR) return Decision::splitSource;
+    if (!splitS) return Decision::splitReceiver;
+    // Of two elements, split the larger: it subtends the larger angle from the other
+    // (F_rs > F_sr <=> A_s > A_r by reciprocity).
+    return R.area >= S.area ? Decision::splitReceiver : Decision::splitSource;
+}
+
+void HierarchicalSolver::refineLink(const Link& linkIn, std::vector<Link>& out) {
+    Link link = linkIn;
+    const Decision d = oracle(link);
+    if (d == Decision::drop) return;
+    const bool evaluated = link.rays > 0 || link.shaftEmpty;
+    if (d == Decision::accept) {
+        if (!evaluated) transfer_->visibility(link);
+        out.push_back(link);
+        return;
+    }
+    const Node& R0 = h_.nodes[link.receiver];
+    const Node& S0 = h_.nodes[link.source];
+    const bool forced =
+        link.receiver == link.source || (S0.emitting && (S0.isCluster() || R0.isCluster()));
+    const bool bothElements = !R0.isCluster() && !S0.isCluster();
+    if (!forced && bothElements) {
+        // A link between two elements that is entirely blocked carries nothing: no need
+        // to refine it. That verdict must rest on all maxRays rays, not on the first few
+        // (4 blocked rays happen 1 time in 10 for a link that is 45 % visible). Cluster
+        // links are refined whatever their sampled visibility.
+        const bool sure = link.shaftEmpty || link.rays >= transfer_->options().maxRays;
+        if (!evaluated || (link.type == VisibilityType::invisible && !sure))
+            transfer_->visibility(link, /*thorough=*/true);
+        if (link.type == VisibilityType::invisible) {
+            out.push_back(link);
+            return;
+        }
+    }
+    changedInRefine_ = true;
+    passive_.push_back(link);  // Drettakis & Sillion 1997: keep it for dynamic updates
+
+    const int r = link.receiver, s = link.source;
+    if (d == Decision::splitReceiver && h_.nodes[r].isLeaf()) h_.subdivide(r);
+    if (d == Decision::splitSource && h_.nodes[s].isLeaf()) h_.subdivide(s);
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+
+    auto child = [&](int rc, int sc) {
+        if (!transfer_->facing(rc, sc)) return;
+        Link c = makeLink(rc, sc);
+        if (link.shaftEmpty) {
+            // The shaft of two sub-volumes lies in the convex hull of the parents'
+            // volumes, which held no occluder: the child is visible too.
+            c.shaftEmpty = true;
+            c.type = VisibilityType::visible;
+            c.V = 1;
+        }
+        refineLink(c, out);
+    };
+    if (r == s) {
+        // A cluster linked to itself: every ordered pair of its children.
+        for (int i = 0; i < R.childCount; ++i)
+            for (int j = 0; j < R.childCount; ++j) child(R.firstChild + i, R.firstChild + j);
+    } else if (d == Decision::splitReceiver) {
+        const int first = R.firstChild, count = R.childCount;
+        for (int i = 0; i < count; ++i) child(first + i, s);
+    } else {
+        const int first = S.firstChild, count = S.childCount;
+        for (int j = 0; j < count; ++j) child(r, first + j);
+    }
+}
+
+bool HierarchicalSolver::refineAll() {
+    changedInRefine_ = false;
+    std::vector<Link> old;
+    old.swap(links_);
+    links_.reserve(old.size() * 2);
+    for (const Link& l : old) refineLink(l, links_);
+    return changedInRefine_;
+}
+
+void HierarchicalSolver::pushLightLinksToLeaves() {
+    std::vector<Link> old;
+    old.swap(links_);
+    links_.reserve(old.size() * 2);
+    std::vector<Link> stack;
+    for (const Link& l : old) {
+        stack.push_back(l);
+        while (!stack.empty()) {
+            Link link = stack.back();
+            stack.pop_back();
+            const Node& S = h_.nodes[link.source];
+            const Node& R = h_.nodes[link.receiver];
+            if (!(S.emitting && !S.isCluster()) || R.isLeaf()) {
+                if (link.rays == 0 && !link.shaftEmpty) transfer_->visibility(link);
+                links_.push_back(link);
+                continue;
+            }
+            passive_.push_back(link);
+            for (int k = R.childCount - 1; k >= 0; --k) {
+                const int rc = R.firstChild + k;
+                if (!transfer_->facing(rc, link.source)) continue;
+                Link c = makeLink(rc, link.source);
+                if (link.shaftEmpty) {
+                    c.shaftEmpty = true;
+                    c.type = VisibilityType::visible;
+                    c.V = 1;
+                }
+                stack.push_back(c);
+            }
+        }
+    }
+}
+
+void HierarchicalSolver::buildReceiverIndex() {
+    std::stable_sort(links_.begin(), links_.end(),
+                     [](const Link& a, const Link& b) { return a.receiver < b.receiver; });
+    receivers_.clear();
+    receiverStart_.clear();
+    for (size_t i = 0; i < links_.size(); ++i) {
+        if (i == 0 || links_[i].receiver != links_[i - 1].receiver) {
+            receivers_.push_back(links_[i].receiver);
+            receiverStart_.push_back(static_cast<int>(i));
+        }
+    }
+    receiverStart_.push_back(static_cast<int>(links_.size()));
+}
+
+double HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
+    Node& n = h_.nodes[node];
+    const Rgb H = Hdown + n.H;
+    if (n.isLeaf()) {
+        if (!n.isCluster()) n.B = n.E + n.rho * H;
+        return 0;
+    }
+    // Push: children inherit the irradiance gathered above them (an isotropic cluster
+    // hands it to its contents unchanged). Pull: B is the area-weighted mean.
+    Rgb B;
+    double area = 0;
+    const int first = n.firstChild, count = n.childCount;
+    for (int k = 0; k < count; ++k) {
+        pushPull(first + k, H);
+        const Node& c = h_.nodes[first + k];
+        B += c.B * c.area;
+        area += c.area;
+    }
+    h_.nodes[node].B = area > 0 ? B * (1.0 / area) : Rgb{};  // guard: no area below
+    return 0;
+}
+
+double HierarchicalSolver::sweep() {
+    auto t0 = Clock::now();
+    for (Node& n : h_.nodes) n.H = Rgb{};
+    // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
+    // result does not depend on the thread count.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t i = range.begin(); i != range.end(); ++i) {
+                              Rgb H;
+                              for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
+                                  const Link& l = links_[k];
+                                  H += h_.nodes[l.source].B * (l.F * static_cast<double>(l.V));
+                              }
+                              h_.nodes[receivers_[i]].H = H;
+                          }
+                      });
+    timing_.timeGather += secondsSince(t0);
+    t0 = Clock::now();
+    pushPull(Hierarchy::kRoot, Rgb{});
+    timing_.timePushPull += secondsSince(t0);
+    ++timing_.sweeps;
+    const Node& root = h_.nodes[Hierarchy::kRoot];
+    return root.B.maxComponent() * root.area;
+}
+
+int HierarchicalSolver::gatherPushPull() {
+    // Jacobi sweeps converge geometrically, P_k -> P with ratio q (about the mean
+    // reflectance). Stopping when the last change is small is not enough for rho -> 1:
+    // the error left is about delta q / (1 - q). That estimate, with q measured from two
+    // successive changes, is what must fall below `tolerance` (relative).
+    double previous = -1, previousDelta = -1;
+    int count = 0;
+    while (count < options_.maxSweeps) {
+        const double power = sweep();
+        ++count;
+        if (previous >= 0) {
+            const double delta = std::abs(power - previous);
+            double q = previousDelta > 0 ? delta / previousDelta : 0.5;
+            q = std::min(q, 0.999);  // guard: a stalled or growing change gives a huge bound
+            const double remaining = delta * q / (1.0 - q);
+            if (delta <= options_.tolerance * std::abs(power) &&
+                remaining <= options_.tolerance * std::abs(power))
+                break;
+            previousDelta = delta;
+        }
+        previous = power;
+    }
+    return count;
+}
+
+void HierarchicalSolver::solve() {
+    const double emitted = scene_.emittedPower().maxComponent();
+    if (powerThreshold_ <= 0) powerThreshold_ = options_.epsilon * emitted;
+    if (!started_) {
+        links_.clear();
+        Link root;
+        root.receiver = root.source = Hierarchy::kRoot;
+        links_.push_back(root);
+        started_ = true;
+    }
+    if (!(emitted > 0)) {
+        // No light: every radiosity is zero. Nothing to refine.
+        for (Node& n : h_.nodes) n.H = Rgb{};
+        pushPull(Hierarchy::kRoot, Rgb{});
+        return;
+    }
+    for (int round = 0; round < options_.maxRefineRounds; ++round) {
+        auto t0 = Clock::now();
+        const bool changed = refineAll();
+        if (round + 1 == options_.maxRefineRounds || !changed) {
+            if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
+        }
+        buildReceiverIndex();
+        timing_.timeRefine += secondsSince(t0);
+        ++timing_.refineRounds;
+        const int sweeps = gatherPushPull();
+        char msg[200];
+        std::snprintf(msg, sizeof msg, "refine round %d: %zu links, %d leaves, %d sweeps",
+                      round + 1, links_.size(), h_.leafCount(), sweeps);
+        report(msg);
+        if (!changed) break;
+    }
+}
+
+void HierarchicalSolver::addLinksFromSource(int node) {
+    Link l = makeLink(Hierarchy::kRoot, node);
+    changedInRefine_ = false;
+    refineLink(l, links_);
+}
+
+void HierarchicalSolver::setLightRadiance(int light, const Rgb& radiance) {
+    scene_.lights.at(light).radiance = radiance;
+    h_.updateEmittance(scene_);
+    if (!started_) return;
+    if (radiance.maxComponent() > 0) {
+        // A light that was off when the links were refined has none: refine its own.
+        for (int p : scene_.lights[light].polygons) {
+            bool hasLinks = false;
+            for (const Link& l : links_) {
+                const Node& S = h_.nodes[l.source];
+                if (!S.isCluster() && S.polygon == p) {
+                    hasLinks = true;
+                    break;
+                }
+            }
+            if (!hasLinks) {
+                if (powerThreshold_ <= 0)
+                    powerThreshold_ = options_.epsilon * scene_.emittedPower().maxComponent();
+                addLinksFromSource(h_.polygonRoot[p]);
+            }
+        }
+        if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
+        buildReceiverIndex();
+    }
+    gatherPushPull();
+}
+
+Rgb HierarchicalSolver::radiosityAt(int polygon, const Vec3& x) const {
+    return h_.nodes[h_.locateLeaf(polygon, x)].B;
+}
+
+Rgb HierarchicalSolver::irradianceAt(int polygon, const Vec3& x) const {
+    Rgb H;
+    for (int n = h_.locateLeaf(polygon, x); n >= 0; n = h_.nodes[n].parent) H += h_.nodes[n].H;
+    return H;
+}
+
+void HierarchicalSolver::setReflectance(int polygon, const Rgb& rho) {
+    scene_.polygons.at(polygon).rho = rho;
+    std::vector<int> stack{h_.polygonRoot[polygon]};
+    while (!stack.empty()) {
+        Node& n = h_.nodes[stack.back()];
+        stack.pop_back();
+        n.rho = rho;
+        for (int k = 0; k < n.childCount; ++k) stack.push_back(n.firstChild + k);
+    }
+    h_.pullAverages(Hierarchy::kRoot);
+}
+
+SolverStats HierarchicalSolver::stats() const {
+    SolverStats s = timing_;
+    s.clusters = h_.clusterCount();
+    s.elements = h_.elementCount();
+    s.leaves = h_.leafCount();
+    s.links = static_cast<int>(links_.size());
+    for (const Link& l : links_) {
+        if (l.type == VisibilityType::visible) ++s.linksVisible;
+        if (l.type == VisibilityType::invisible) ++s.linksInvisible;
+        if (l.type == VisibilityType::partial) ++s.linksPartial;
+    }
+    s.passiveLinks = static_cast<int>(passive_.size());
+    s.rays = transfer_->counters.rays.load();
+    s.formFactors = transfer_->counters.formFactors.load();
+    s.shaftTests = transfer_->counters.shaftTests.load();
+    s.shaftEmpty = transfer_->counters.shaftEmpty.load();
+    s.emittedPower = scene_.emittedPower();
+    // Energy balance: walk down with the irradiance gathered above each leaf.
+    struct Walk {
+        const Hierarchy& h;
+        SolverStats& s;
+        void operator()(int node, const Rgb& Hdown) const {
+            const Node& n = h.nodes[node];
+            const Rgb H = Hdown + n.H;
+            if (n.isLeaf()) {
+                if (n.isCluster()) return;
+                s.absorbedPower += (Rgb::gray(1.0) - n.rho) * H * n.area;
+                s.radiosityPower += n.B * n.area;
+                return;
+            }
+            for (int k = 0; k < n.childCount; ++k) (*this)(n.firstChild + k, H);
+        }
+    };
+    Walk{h_, s}(Hierarchy::kRoot, Rgb{});
+    return s;
+}
+
+}  // namespace radiosity

@@ -1,0 +1,132 @@
+// HierarchicalSolver: clustered hierarchical radiosity (Hanrahan, Salzman & Aupperle 1991;
+// Sillion 1995), as summarised in Loscos et al. 2000, §2.3.
+//
+// API
+//   HierarchicalSolver solver(scene, options);  // builds clusters, elements, Embree BVH
+//   solver.solve();                             // refine + gather/push-pull to convergence
+//   solver.radiosityAt(polygon, x)              // B at a point (radiosity units)
+//   solver.setLightRadiance(light, L);          // emittance edit: re-gather only
+//   solver.stats()                              // counts and times per phase
+//
+// The top-level loop (solve()): starting from the root cluster linked to itself,
+//   repeat { refine every link with the current B (BF oracle); gather + push-pull until
+//            the total power changes by less than `tolerance` } until no link changes.
+// Then links whose source is a light are pushed down to the leaf elements (the 2000
+// paper's shadow work needs them there).
+//
+// Options and their units:
+//   epsilon  BF refinement threshold, dimensionless: a link r <- s is refined when
+//            rho_r * B_s * F * A_r > epsilon * (total emitted power), i.e. when the power it
+//            would reflect exceeds that fraction of the power of all lights (max channel).
+//            Typical 1e-4 (fine) .. 1e-2 (coarse). Scale-free: the same value means the
+//            same accuracy in any room and any photo units.
+//   minArea  smallest element area, m^2; 0 selects 2e-5 of the scene's total area.
+//   tolerance  relative change of the total radiosity power (sum B A) between two
+//            gather/push-pull sweeps below which the sweeps stop (typ. 1e-4).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "radiosity/hierarchy.h"
+#include "radiosity/link.h"
+#include "radiosity/scene.h"
+#include "radiosity/transfer.h"
+#include "radiosity/visibility.h"
+
+namespace radiosity {
+
+struct SolverOptions {
+    double epsilon = 1e-3;
+    double minArea = 0;
+    double tolerance = 1e-4;
+    int maxSweeps = 2000;     ///< gather/push-pull sweeps per solve, a safety bound
+    int maxRefineRounds = 8;  ///< refine/solve rounds
+    int maxPolygonsPerCluster = 4;
+    bool forceLightLinksToLeaves = true;
+    TransferOptions transfer;
+    /// Called with a one-line message at each phase of long work (may be empty).
+    std::function<void(const std::string&)> progress;
+};
+
+struct SolverStats {
+    int clusters = 0, elements = 0, leaves = 0;
+    int links = 0, linksVisible = 0, linksInvisible = 0, linksPartial = 0;
+    int passiveLinks = 0;  ///< links kept after being refined (Drettakis & Sillion 1997)
+    int refineRounds = 0, sweeps = 0;
+    uint64_t rays = 0, formFactors = 0, shaftTests = 0, shaftEmpty = 0;
+    double timeBuild = 0, timeRefine = 0, timeGather = 0, timePushPull = 0;  ///< seconds
+    Rgb emittedPower;    ///< sum E A over lights (radiosity units x m^2)
+    Rgb absorbedPower;   ///< sum (1 - rho) H A over leaves
+    Rgb radiosityPower;  ///< sum B A over leaves
+};
+
+class HierarchicalSolver {
+  public:
+    HierarchicalSolver(Scene scene, SolverOptions options = {});
+    ~HierarchicalSolver();
+
+    /// Refines and solves from the current links (the first call starts from the root
+    /// cluster linked to itself).
+    void solve();
+    /// Gather + push-pull sweeps on the existing links until converged; returns sweeps.
+    int gatherPushPull();
+    /// One gather over all links (H of every receiver node), then one push-pull.
+    /// Returns the new total radiosity power (max channel).
+    double sweep();
+
+    /// Emittance edit: keeps subdivision and links, re-gathers. A light that had no links
+    /// (it was off when refined) gets its links refined first.
+    void setLightRadiance(int light, const Rgb& radiance);
+
+    /// B at point x of polygon (radiosity units): the value of the leaf containing it.
+    Rgb radiosityAt(int polygon, const Vec3& x) const;
+    /// Irradiance H at point x of polygon (radiosity units): the sum of what the links of
+    /// the leaf containing x and of all its ancestors gathered in the last sweep.
+    Rgb irradianceAt(int polygon, const Vec3& x) const;
+
+    /// Reflectance edit of one polygon: updates its elements (links are kept); call
+    /// solve() or gatherPushPull() after a batch of edits.
+    void setReflectance(int polygon, const Rgb& rho);
+
+    const Scene& scene() const { return scene_; }
+    const Hierarchy& hierarchy() const { return h_; }
+    const std::vector<Link>& links() const { return links_; }
+    const std::vector<Link>& passiveLinks() const { return passive_; }
+    const Visibility& visibility() const { return *vis_; }
+    const SolverOptions& options() const { return options_; }
+    SolverStats stats() const;
+    double minArea() const { return minArea_; }
+
+  private:
+    enum class Decision { accept, drop, splitReceiver, splitSource };
+    Decision oracle(const Link& link) const;
+    Link makeLink(int r, int s) const;
+    void refineLink(const Link& link, std::vector<Link>& out);
+    bool refineAll();
+    void pushLightLinksToLeaves();
+    void addLinksFromSource(int node);
+    void buildReceiverIndex();
+    double pushPull(int node, const Rgb& Hdown);
+    bool canSplit(int node) const;
+    void report(const std::string& msg) const;
+
+    Scene scene_;
+    SolverOptions options_;
+    Hierarchy h_;
+    std::unique_ptr<Visibility> vis_;
+    std::unique_ptr<TransferEvaluator> transfer_;
+    std::vector<Link> links_;     ///< active links, grouped by receiver after buildReceiverIndex
+    std::vector<Link> passive_;   ///< refined-away links, kept for dynamic updates
+    std::vector<int> receivers_;  ///< distinct receivers, in link order
+    std::vector<int> receiverStart_;  ///< links of receivers_[i]: [start[i], start[i+1])
+    double minArea_ = 0;
+    double powerThreshold_ = 0;  ///< epsilon * emitted power (max channel)
+    bool started_ = false;
+    bool changedInRefine_ = false;
+    SolverStats timing_;
+};
+
+}  // namespace radiosity

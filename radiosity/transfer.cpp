@@ -1,0 +1,177 @@
+#include "radiosity/transfer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "radiosity/form_factor.h"
+#include "radiosity/shaft.h"
+
+namespace radiosity {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// splitmix64: a small, well-mixed generator; seeded per link for reproducibility.
+struct Rng {
+    uint64_t state;
+    explicit Rng(uint64_t seed) : state(seed) {}
+    uint64_t next() {
+        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+};
+
+/// Signed distance of the farthest point of a node in front of a plane (n, p0): > 0 when
+/// some part of the node lies strictly in front.
+double maxInFront(const Node& node, const Vec3& n, const Vec3& p0) {
+    if (!node.isCluster()) {
+        double m = -1e300;
+        for (int i = 0; i < node.vertexCount; ++i) m = std::max(m, glm::dot(node.v[i] - p0, n));
+        return m;
+    }
+    // Box corner farthest along n.
+    const Vec3 far{n.x >= 0 ? node.bounds.hi.x : node.bounds.lo.x,
+                   n.y >= 0 ? node.bounds.hi.y : node.bounds.lo.y,
+                   n.z >= 0 ? node.bounds.hi.z : node.bounds.lo.z};
+    return glm::dot(far - p0, n);
+}
+
+}  // namespace
+
+bool TransferEvaluator::facing(int r, int s) const {
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    // Tolerance: 1e-9 of the larger node radius, so that coplanar elements (same plane,
+    // numerically) count as not facing.
+    const double tol = 1e-9 * std::max(R.radius, S.radius) + 1e-12;
+    if (!R.isCluster() && !(maxInFront(S, R.normal, R.v[0]) > tol)) return false;
+    if (!S.isCluster() && !(maxInFront(R, S.normal, S.v[0]) > tol)) return false;
+    return true;
+}
+
+double TransferEvaluator::formFactor(int r, int s) const {
+    counters.formFactors.fetch_add(1, std::memory_order_relaxed);
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    if (!R.isCluster() && !S.isCluster()) {
+        return polygonToPolygon(R.v.data(), R.vertexCount, R.normal, S.v.data(), S.vertexCount,
+                                S.normal, options_.quadratureOrder);
+    }
+    const Vec3 d = S.centre - R.centre;
+    const double d2 = glm::dot(d, d);
+    // Accepted cluster links join disjoint bounding spheres (see bound()), so d2 > 0; the
+    // guard keeps a degenerate input finite.
+    if (!(d2 > 1e-24)) return 0.0;
+    const Vec3 w = d / std::sqrt(d2);
+    const double cosR = R.isCluster() ? 0.25 : std::max(0.0, glm::dot(R.normal, w));
+    const double cosS = S.isCluster() ? 0.25 : std::max(0.0, -glm::dot(S.normal, w));
+    return S.area * cosR * cosS / (kPi * d2);
+}
+
+double TransferEvaluator::bound(int r, int s, double F) const {
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    if (!R.isCluster() && !S.isCluster()) return F;
+    const double dMin = glm::length(S.centre - R.centre) - R.radius - S.radius;
+    if (!(dMin > 0)) return std::numeric_limits<double>::infinity();
+    return S.area / (kPi * dMin * dMin);
+}
+
+bool TransferEvaluator::shaftQuery(const Shaft& shaft, int node, int skipA, int skipB,
+                                   const Bounds3& box) const {
+    const Node& n = h_.nodes[node];
+    // A box that only touches the shaft's outer box (a wall in the plane of a face of the
+    // union box) cannot block an open segment inside it: treat touching as outside.
+    const double tol = 1e-9 * (1.0 + glm::length(box.diagonal()));
+    for (int a = 0; a < 3; ++a) {
+        if (n.bounds.hi[a] <= box.lo[a] + tol || n.bounds.lo[a] >= box.hi[a] - tol) return false;
+    }
+    if (!shaft.mayIntersect(n.bounds)) return false;
+    if (!n.isCluster()) return n.polygon != skipA && n.polygon != skipB;
+    for (int k = 0; k < n.childCount; ++k) {
+        if (shaftQuery(shaft, n.firstChild + k, skipA, skipB, box)) return true;
+    }
+    return false;
+}
+
+bool TransferEvaluator::shaftIsEmpty(int r, int s) const {
+    counters.shaftTests.fetch_add(1, std::memory_order_relaxed);
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    const Shaft shaft(R.bounds, S.bounds);
+    // The polygons a link's ends lie on cannot block it (planar, one-sided); polygons
+    // inside an end cluster can, so only element ends are skipped.
+    const int skipA = R.isCluster() ? -1 : R.polygon;
+    const int skipB = S.isCluster() ? -1 : S.polygon;
+    return !shaftQuery(shaft, Hierarchy::kRoot, skipA, skipB, shaft.bounds());
+}
+
+void TransferEvaluator::visibility(Link& link, bool thorough) const {
+    const int r = link.receiver, s = link.source;
+    if (options_.useShafts && shaftIsEmpty(r, s)) {
+        counters.shaftEmpty.fetch_add(1, std::memory_order_relaxed);
+        link.V = 1;
+        link.type = VisibilityType::visible;
+        link.rays = 0;
+        link.shaftEmpty = true;
+        return;
+    }
+    link.shaftEmpty = false;
+    const int minRays = std::clamp(options_.minRays, 1, 256);
+    const int maxRays = std::clamp(options_.maxRays, minRays, 256);
+    Rng rng(0x5EEDull ^ (static_cast<uint64_t>(r) << 32) ^ static_cast<uint64_t>(s) * 0x9E37ull);
+    Vec3 from[256], to[256];
+    // One stratified set of maxRays pairs: a jittered k x k grid on each end (k^2 >= n),
+    // strata visited in independent random orders on the two ends, so any prefix of the
+    // set is a uniform sample of both ends: the first minRays rays decide, and in
+    // penumbra the rest of the set follows.
+    const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(maxRays))));
+    int permR[256], permS[256];
+    const int cells = k * k;
+    for (int i = 0; i < cells; ++i) permR[i] = permS[i] = i;
+    for (int i = cells - 1; i > 0; --i) {
+        std::swap(permR[i], permR[static_cast<int>(rng.next() % static_cast<uint64_t>(i + 1))]);
+        std::swap(permS[i], permS[static_cast<int>(rng.next() % static_cast<uint64_t>(i + 1))]);
+    }
+    for (int i = 0; i < maxRays; ++i) {
+        const int a = permR[i], b = permS[i];
+        // Only mutually facing point pairs carry light between one-sided surfaces; a ray
+        // from the back of a block's face would run through the block and count as
+        // blocked. Redraw within the strata up to 8 times to find one.
+        for (int attempt = 0; attempt < 8; ++attempt) {
+            const double u0 = ((a % k) + rng.uniform()) / k, v0 = ((a / k) + rng.uniform()) / k;
+            const double u1 = ((b % k) + rng.uniform()) / k, v1 = ((b / k) + rng.uniform()) / k;
+            Vec3 n0, n1;
+            from[i] = h_.samplePoint(r, u0, v0, rng.uniform(), &n0);
+            to[i] = h_.samplePoint(s, u1, v1, rng.uniform(), &n1);
+            const Vec3 d = to[i] - from[i];
+            if (glm::dot(n0, d) > 0 && glm::dot(n1, d) < 0) break;
+        }
+    }
+    // Rays between two elements ignore hits on the elements' own polygons (grazing
+    // rays near a shared edge would otherwise count as blocked).
+    const int polyR = h_.nodes[r].isCluster() ? -1 : h_.nodes[r].polygon;
+    const int polyS = h_.nodes[s].isCluster() ? -1 : h_.nodes[s].polygon;
+    const int first = thorough ? maxRays : minRays;
+    int visible = vis_.visibleBatch(from, to, first, nullptr, polyR, polyS);
+    int cast = first;
+    if (visible != 0 && visible != first && maxRays > first) {
+        visible +=
+            vis_.visibleBatch(from + first, to + first, maxRays - first, nullptr, polyR, polyS);
+        cast = maxRays;
+    }
+    counters.rays.fetch_add(static_cast<uint64_t>(cast), std::memory_order_relaxed);
+    link.rays = static_cast<uint8_t>(std::min(cast, 255));
+    link.V = static_cast<float>(visible) / static_cast<float>(cast);
+    link.type = visible == 0      ? VisibilityType::invisible
+                : visible == cast ? VisibilityType::visible
+                                  : VisibilityType::partial;
+}
+
+}  // namespace radiosity

@@ -1,0 +1,310 @@
+// Visibility on Embree 3 (Wald et al. 2014, "Embree: a kernel framework for efficient CPU
+// ray tracing"). One device, one static scene with a single quad geometry holding every
+// polygon: Embree's quad primitive takes triangles as degenerate quads (v3 = v2), so one
+// geometry type serves the whole scene and primID is the polygon index directly.
+//
+// Conventions followed (see docs/dependencies.md, "Embree 3 rays"): mask = 0xFFFFFFFF,
+// flags = 0, tnear set, a fresh RTCIntersectContext per call (the context is per-query
+// state, so sharing one between threads would race); rtcOccluded* marks an occluded ray by
+// setting tfar = -inf.
+#include "radiosity/visibility.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace radiosity {
+
+struct Visibility::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    // Centre of the scene's bounds (metres). Vertices and rays are sent to Embree relative
+    // to it, so that float spacing follows the scene's size, not its distance from the
+    // world origin (a room modelled at x = 40 m would otherwise lose 16x in precision).
+    Vec3 origin{0, 0, 0};
+
+    // Embree reports errors through a C callback; throwing through Embree's C API would
+    // unwind C++ frames Embree does not expect to lose, so the callback only records the
+    // error and check() throws it on our side of the call.
+    std::atomic<bool> failed{false};
+    std::mutex errorMutex;  // guards errorText; the callback may run on any thread
+    std::string errorText;  // first error message, "Embree error <code>: <text>"
+
+    // Occlusion queries so far ("Visibility/Rays"); own cache line so that the counter's
+    // traffic does not evict the scene handle other threads read on every query.
+    alignas(64) std::atomic<uint64_t> rays{0};
+
+    static void onError(void* self, RTCError code, const char* text) {
+        auto* impl = static_cast<Impl*>(self);
+        std::lock_guard<std::mutex> lock(impl->errorMutex);
+        if (!impl->failed.load()) {
+            impl->errorText = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
+                              (text ? text : "(no message)");
+            impl->failed.store(true);
+        }
+    }
+
+    void check(const char* where) {
+        if (!failed.load(std::memory_order_relaxed)) return;
+        std::lock_guard<std::mutex> lock(errorMutex);
+        throw std::runtime_error(std::string("Visibility: ") + where + ": " + errorText);
+    }
+
+    ~Impl() {
+        if (scene) rtcReleaseScene(scene);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+namespace {
+
+float f(double x) {
+    return static_cast<float>(x);
+}
+
+double maxAbs(const Vec3& p) {
+    return std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
+}
+
+// Intersect context that also carries the two polygons a segment's end points lie on.
+// Embree hands the context pointer back to the filter, which recovers the ids from it
+// (the context is the first member, so the two addresses coincide).
+struct EndContext {
+    RTCIntersectContext context;  // first member: &EndContext == &EndContext::context
+    unsigned ignoreA = RTC_INVALID_GEOMETRY_ID;  // polygon of the end point a, or invalid
+    unsigned ignoreB = RTC_INVALID_GEOMETRY_ID;  // polygon of the end point b, or invalid
+
+    EndContext(int polygonA, int polygonB) {
+        rtcInitIntersectContext(&context);
+        if (polygonA >= 0) ignoreA = static_cast<unsigned>(polygonA);
+        if (polygonB >= 0) ignoreB = static_cast<unsigned>(polygonB);
+        // Only pay for the filter call when there is something to ignore.
+        if (polygonA >= 0 || polygonB >= 0) context.filter = &ignoreEndPolygons;
+    }
+
+    // A segment from a point of a planar convex polygon meets that polygon's plane only at
+    // the point (or lies in the plane, where the polygon is seen edge-on and has zero
+    // thickness): its own polygon can never block it, so hits on it are rejected outright.
+    // This is exact at any grazing angle, unlike the end shrink alone.
+    static void ignoreEndPolygons(const RTCFilterFunctionNArguments* args) {
+        const auto* self = reinterpret_cast<const EndContext*>(args->context);
+        for (unsigned i = 0; i < args->N; ++i) {
+            if (args->valid[i] != -1) continue;
+            const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+            if (prim == self->ignoreA || prim == self->ignoreB) args->valid[i] = 0;
+        }
+    }
+};
+
+// A segment a-b as Embree traces it: org = a, dir = b - a (t = 0 at a, t = 1 at b), both
+// relative to `origin`, with the open interval (tNear, tFar) pulled in at both ends.
+struct FloatSegment {
+    float org[3], dir[3];  // x y z, metres relative to Impl::origin
+    float tNear, tFar;     // in units of the segment: 0 at a, 1 at b
+};
+
+// False when the segment is too short to hold a blocker. See visible() in the header for
+// the tolerance and why.
+bool makeSegment(const Vec3& a, const Vec3& b, const Vec3& origin, FloatSegment& s) {
+    constexpr double kRelative = 1e-5;       // of the segment length
+    constexpr double kAbsolute = 1e-7;       // metres
+    constexpr double kFloatRounding = 1e-6;  // of the largest coordinate, 16 float ulps
+    const Vec3 la = a - origin, lb = b - origin;
+    const double length = glm::length(lb - la);
+    const double eps =
+        kRelative * length + kAbsolute + kFloatRounding * std::max(maxAbs(la), maxAbs(lb));
+    if (!(length > 2 * eps)) return false;  // also catches NaN lengths
+    for (int k = 0; k < 3; ++k) {
+        // dir from the rounded end points, not rounded from b - a: the ray then ends where
+        // float(b) is, and b lying on an axis-aligned polygon stays on its rounded plane.
+        s.org[k] = f(la[k]);
+        s.dir[k] = f(static_cast<double>(f(lb[k])) - static_cast<double>(s.org[k]));
+    }
+    s.tNear = f(eps / length);
+    s.tFar = f(1.0 - eps / length);
+    return true;
+}
+
+}  // namespace
+
+Visibility::Visibility(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+    impl_->device = rtcNewDevice(nullptr);
+    if (!impl_->device)
+        throw std::runtime_error("Visibility: rtcNewDevice failed, Embree error " +
+                                 std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))));
+    rtcSetDeviceErrorFunction(impl_->device, &Impl::onError, impl_.get());
+
+    impl_->scene = rtcNewScene(impl_->device);
+    // Static scene, built once: spend the build time for faster traversal.
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    // ROBUST keeps Embree from trading watertightness for speed, so rays through the shared
+    // edge of two wall quads do not leak light; CONTEXT_FILTER_FUNCTION lets visible()
+    // ignore the end points' own polygons.
+    rtcSetSceneFlags(
+        impl_->scene,
+        static_cast<RTCSceneFlags>(RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION));
+    impl_->check("creating the scene");
+
+    const size_t n = scene.polygons.size();
+    for (size_t p = 0; p < n; ++p) {
+        const int count = scene.polygons[p].vertexCount;
+        if (count != 3 && count != 4)
+            throw std::invalid_argument("Visibility: polygon " + std::to_string(p) + " has " +
+                                        std::to_string(count) + " vertices, expected 3 or 4");
+    }
+    if (n > 0) {
+        impl_->origin = scene.bounds().centre();
+        RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
+        // 4 float3 per polygon (x y z, 12 bytes each); Embree pads the buffer's end itself.
+        // Released on every path: the scene takes its own reference when attached.
+        const std::unique_ptr<RTCGeometryTy, void (*)(RTCGeometry)> owner(geometry,
+                                                                          &rtcReleaseGeometry);
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * n));
+        // 4 vertex indices per polygon; a triangle repeats v2 as v3.
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), n));
+        impl_->check("allocating geometry buffers");
+        for (size_t p = 0; p < n; ++p) {
+            const Polygon& poly = scene.polygons[p];
+            for (int k = 0; k < 4; ++k) {
+                const Vec3 v = poly.v[std::min(k, poly.vertexCount - 1)] - impl_->origin;
+                vertices[3 * (4 * p + k) + 0] = f(v.x);
+                vertices[3 * (4 * p + k) + 1] = f(v.y);
+                vertices[3 * (4 * p + k) + 2] = f(v.z);
+                const unsigned base = static_cast<unsigned>(4 * p);
+                indices[4 * p + k] =
+                    base + static_cast<unsigned>(poly.vertexCount == 3 && k == 3 ? 2 : k);
+            }
+        }
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(impl_->scene, geometry);  // geomID 0
+        impl_->check("building the geometry");
+    }
+    rtcCommitScene(impl_->scene);
+    impl_->check("committing the scene");
+}
+
+Visibility::~Visibility() = default;
+
+bool Visibility::visible(const Vec3& a, const Vec3& b, int polygonA, int polygonB) const {
+    impl_->rays.fetch_add(1, std::memory_order_relaxed);
+    FloatSegment s;
+    if (!makeSegment(a, b, impl_->origin, s)) return true;
+    RTCRay ray;
+    ray.org_x = s.org[0];
+    ray.org_y = s.org[1];
+    ray.org_z = s.org[2];
+    ray.dir_x = s.dir[0];
+    ray.dir_y = s.dir[1];
+    ray.dir_z = s.dir[2];
+    ray.tnear = s.tNear;
+    ray.tfar = s.tFar;
+    ray.time = 0;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    EndContext context(polygonA, polygonB);
+    rtcOccluded1(impl_->scene, &context.context, &ray);
+    impl_->check("rtcOccluded1");
+    return ray.tfar >= 0;  // -inf when occluded
+}
+
+int Visibility::visibleBatch(const Vec3* from, const Vec3* to, int n, bool* out, int polygonA,
+                             int polygonB) const {
+    if (n <= 0) return 0;
+    impl_->rays.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
+    constexpr int kWidth = 16;
+    int visibleCount = 0;
+    EndContext context(polygonA, polygonB);
+    for (int start = 0; start < n; start += kWidth) {
+        const int count = std::min(kWidth, n - start);
+        RTCRay16 packet;    // RTC_ALIGN(64) in the type, so the stack slot is aligned
+        int valid[kWidth];  // -1: lane traced, 0: lane ignored by Embree
+        bool trivial[kWidth];
+        for (int k = 0; k < kWidth; ++k) {
+            valid[k] = 0;
+            trivial[k] = true;
+            // Fill every lane, including ignored ones, so that Embree's SIMD loads read
+            // defined values.
+            packet.org_x[k] = packet.org_y[k] = packet.org_z[k] = 0;
+            packet.dir_x[k] = packet.dir_y[k] = 0;
+            packet.dir_z[k] = 1;
+            packet.tnear[k] = 0;
+            packet.tfar[k] = 0;
+            packet.time[k] = 0;
+            packet.mask[k] = 0xFFFFFFFFu;
+            packet.id[k] = static_cast<unsigned>(k);
+            packet.flags[k] = 0;
+            if (k >= count) continue;
+            FloatSegment s;
+            if (!makeSegment(from[start + k], to[start + k], impl_->origin, s)) continue;
+            packet.org_x[k] = s.org[0];
+            packet.org_y[k] = s.org[1];
+            packet.org_z[k] = s.org[2];
+            packet.dir_x[k] = s.dir[0];
+            packet.dir_y[k] = s.dir[1];
+            packet.dir_z[k] = s.dir[2];
+            packet.tnear[k] = s.tNear;
+            packet.tfar[k] = s.tFar;
+            valid[k] = -1;
+            trivial[k] = false;
+        }
+        rtcOccluded16(valid, impl_->scene, &context.context, &packet);
+        impl_->check("rtcOccluded16");
+        for (int k = 0; k < count; ++k) {
+            const bool v = trivial[k] || packet.tfar[k] >= 0;
+            visibleCount += v ? 1 : 0;
+            if (out) out[start + k] = v;
+        }
+    }
+    return visibleCount;
+}
+
+Visibility::Hit Visibility::intersect(const Vec3& org, const Vec3& dir, double tMin,
+                                      double tMax) const {
+    RTCRayHit rayHit;
+    RTCRay& ray = rayHit.ray;
+    const Vec3 localOrg = org - impl_->origin;
+    ray.org_x = f(localOrg.x);
+    ray.org_y = f(localOrg.y);
+    ray.org_z = f(localOrg.z);
+    ray.dir_x = f(dir.x);
+    ray.dir_y = f(dir.y);
+    ray.dir_z = f(dir.z);
+    ray.tnear = f(std::max(tMin, 0.0));
+    // Beyond float range means "unbounded": Embree accepts +inf for tfar.
+    ray.tfar = tMax >= static_cast<double>(std::numeric_limits<float>::max())
+                   ? std::numeric_limits<float>::infinity()
+                   : f(tMax);
+    ray.time = 0;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayHit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    Hit result;
+    if (!(ray.tnear < ray.tfar)) return result;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(impl_->scene, &context, &rayHit);
+    impl_->check("rtcIntersect1");
+    if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return result;
+    result.polygon = static_cast<int>(rayHit.hit.primID);
+    result.t = static_cast<double>(ray.tfar);
+    return result;
+}
+
+uint64_t Visibility::raysCast() const {
+    return impl_->rays.load(std::memory_order_relaxed);
+}
+
+}  // namespace radiosity

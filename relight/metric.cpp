@@ -1,0 +1,65 @@
+#include "relight/metric.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace relight {
+
+Score scoreImage(const Image& R, const Image& T, const Image& P, const std::vector<uint8_t>& maskT,
+                 const std::vector<uint8_t>& maskP) {
+    const int w = T.width, h = T.height;
+    const size_t n = static_cast<size_t>(w) * h;
+    if (R.width != w || R.height != h || P.width != w || P.height != h || maskT.size() != n ||
+        maskP.size() != n)
+        throw std::invalid_argument("scoreImage: images and masks must have the same size");
+    double sq = 0, sumT = 0, sqC = 0, sumTC = 0;
+    Score s;
+    for (int by = 0; by < h / 4; ++by) {
+        for (int bx = 0; bx < w / 4; ++bx) {
+            double r[3] = {0, 0, 0}, t[3] = {0, 0, 0}, p[3] = {0, 0, 0};
+            bool keep = true;
+            for (int y = by * 4; y < by * 4 + 4 && keep; ++y) {
+                for (int x = bx * 4; x < bx * 4 + 4; ++x) {
+                    const size_t i = static_cast<size_t>(y) * w + x;
+                    if (maskT[i] != 255 || maskP[i] != 255) {
+                        keep = false;
+                        break;
+                    }
+                    for (int c = 0; c < 3; ++c) {
+                        r[c] += static_cast<double>(R.at(x, y)[c]) / 16;
+                        t[c] += static_cast<double>(T.at(x, y)[c]) / 16;
+                        p[c] += static_cast<double>(P.at(x, y)[c]) / 16;
+                    }
+                }
+            }
+            if (!keep) continue;
+            ++s.blocks;
+            double diffTP = 0, meanT = 0, blockSq = 0;
+            for (int c = 0; c < 3; ++c) {
+                blockSq += (r[c] - t[c]) * (r[c] - t[c]);
+                diffTP += std::abs(t[c] - p[c]) / 3;
+                meanT += t[c] / 3;
+            }
+            sq += blockSq;
+            sumT += 3 * meanT;
+            if (diffTP > 0.1 * meanT) {
+                ++s.changedBlocks;
+                sqC += blockSq;
+                sumTC += 3 * meanT;
+            }
+        }
+    }
+    // Guards: no kept block, or a black truth, leave the score at 0 / undefined.
+    if (s.blocks > 0 && sumT > 0) {
+        const double m = 3.0 * s.blocks;
+        s.relRmse = std::sqrt(sq / m) / (sumT / m);
+    }
+    if (s.changedBlocks > 0 && sumTC > 0) {
+        const double m = 3.0 * s.changedBlocks;
+        s.changedRelRmse = std::sqrt(sqC / m) / (sumTC / m);
+        s.hasChanged = true;
+    }
+    return s;
+}
+
+}  // namespace relight

@@ -1,0 +1,78 @@
+#include "relight/reflectance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace relight {
+
+using radiosity::Rgb;
+
+ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
+                                             const SceneFile& sceneFile, const ItemBuffer& items,
+                                             const Image& photo, int rounds, int minSamples) {
+    constexpr double kMaxRho = 0.98;
+    ReflectanceReport report;
+    const radiosity::Scene& scene = solver.scene();
+    const int np = static_cast<int>(scene.polygons.size());
+    solver.solve();
+    for (int round = 0; round < rounds; ++round) {
+        std::vector<Rgb> sumL(np), sumH(np);
+        std::vector<int> count(np, 0);
+        for (int y = 0; y < items.height; ++y) {
+            for (int x = 0; x < items.width; ++x) {
+                const float* px = photo.at(x, y);
+                if (!std::isfinite(px[0]) || !std::isfinite(px[1]) || !std::isfinite(px[2]))
+                    continue;
+                for (int s = 0; s < items.spp; ++s) {
+                    const int idx = items.sampleIndex(x, y, s);
+                    const int p = items.polygon[idx];
+                    if (p < 0 || scene.polygons[p].light >= 0) continue;
+                    sumL[p] += Rgb{px[0], px[1], px[2]};
+                    sumH[p] += solver.irradianceAt(p, items.point[idx]);
+                    ++count[p];
+                }
+            }
+        }
+        // Estimates, and their area-weighted mean for the polygons the photo misses.
+        std::vector<Rgb> rho(np);
+        std::vector<bool> seen(np, false);
+        Rgb meanRho;
+        double meanArea = 0;
+        report.polygonsSeen = 0;
+        for (int p = 0; p < np; ++p) {
+            if (scene.polygons[p].light >= 0 || count[p] < minSamples) continue;
+            for (int c = 0; c < 3; ++c) {
+                // Guard: a polygon in total darkness (H = 0) tells nothing of its colour.
+                rho[p][c] = sumH[p][c] > 0 ? std::numbers::pi * sumL[p][c] / sumH[p][c]
+                                           : scene.polygons[p].rho[c];
+                rho[p][c] = std::clamp(rho[p][c], 0.0, kMaxRho);
+            }
+            seen[p] = true;
+            ++report.polygonsSeen;
+            meanRho += rho[p] * scene.polygons[p].area;
+            meanArea += scene.polygons[p].area;
+        }
+        if (meanArea > 0) meanRho = meanRho * (1.0 / meanArea);
+        report.polygonsDefaulted = 0;
+        for (int p = 0; p < np; ++p) {
+            const radiosity::Polygon& poly = scene.polygons[p];
+            if (poly.light >= 0) continue;
+            if (!seen[p]) {
+                ++report.polygonsDefaulted;
+                const std::string& name = scene.objects[poly.object];
+                auto it = sceneFile.objectSettings.find(name);
+                rho[p] = it != sceneFile.objectSettings.end() && it->second.reflectance
+                             ? *it->second.reflectance
+                             : (meanArea > 0 ? meanRho : poly.rho);
+            }
+            solver.setReflectance(p, rho[p]);
+        }
+        solver.solve();
+        report.rounds = round + 1;
+    }
+    return report;
+}
+
+}  // namespace relight
