@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -16,19 +17,47 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
     ReflectanceReport report;
     const radiosity::Scene& scene = solver.scene();
     const int np = static_cast<int>(scene.polygons.size());
+    // Usable pixels: finite, every sample on the same reflecting polygon (a pixel across
+    // an edge mixes two surfaces), and no emitting face within one pixel (a lamp is tens
+    // of times brighter than what it lights: a sliver of it in a pixel ruins the ratio).
+    const int w = items.width, hgt = items.height;
+    std::vector<uint8_t> usable(static_cast<size_t>(w) * hgt, 0),
+        nearEmitter(static_cast<size_t>(w) * hgt, 0);
+    for (int y = 0; y < hgt; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int s = 0; s < items.spp; ++s) {
+                const int p = items.polygon[items.sampleIndex(x, y, s)];
+                if (p >= 0 && scene.polygons[p].light >= 0)
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            const int xx = x + dx, yy = y + dy;
+                            if (xx >= 0 && yy >= 0 && xx < w && yy < hgt)
+                                nearEmitter[static_cast<size_t>(yy) * w + xx] = 1;
+                        }
+            }
+    for (int y = 0; y < hgt; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const float* px = photo.at(x, y);
+            if (!std::isfinite(px[0]) || !std::isfinite(px[1]) || !std::isfinite(px[2])) continue;
+            if (nearEmitter[static_cast<size_t>(y) * w + x]) continue;
+            const int p0 = items.polygon[items.sampleIndex(x, y, 0)];
+            bool pure = p0 >= 0;
+            for (int s = 1; s < items.spp && pure; ++s)
+                pure = items.polygon[items.sampleIndex(x, y, s)] == p0;
+            usable[static_cast<size_t>(y) * w + x] = pure ? 1 : 0;
+        }
+    }
     solver.solve();
     for (int round = 0; round < rounds; ++round) {
         std::vector<Rgb> sumL(np), sumH(np);
         std::vector<int> count(np, 0);
         for (int y = 0; y < items.height; ++y) {
             for (int x = 0; x < items.width; ++x) {
+                if (!usable[static_cast<size_t>(y) * items.width + x]) continue;
                 const float* px = photo.at(x, y);
-                if (!std::isfinite(px[0]) || !std::isfinite(px[1]) || !std::isfinite(px[2]))
-                    continue;
                 for (int s = 0; s < items.spp; ++s) {
                     const int idx = items.sampleIndex(x, y, s);
                     const int p = items.polygon[idx];
-                    if (p < 0 || scene.polygons[p].light >= 0) continue;
                     sumL[p] += Rgb{px[0], px[1], px[2]};
                     sumH[p] += solver.irradianceAt(p, items.point[idx]);
                     ++count[p];

@@ -29,8 +29,9 @@ struct ReflectanceReport {
     int polygonsDefaulted = 0;  ///< reflecting polygons the photo does not see
 };
 
-/// Runs solver.solve() and `rounds` estimate/solve rounds. Pixels with NaN/Inf values
-/// are ignored. A polygon needs `minSamples` photo samples to be estimated.
+/// Runs solver.solve() and `rounds` estimate/solve rounds. Only pixels whose samples all
+/// see one reflecting polygon, with no emitting face within one pixel and finite values,
+/// are used. A polygon needs `minSamples` photo samples to be estimated.
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const Image& photo, int rounds = 3,
