@@ -201,12 +201,12 @@ void HierarchicalSolver::buildReceiverIndex() {
     receiverStart_.push_back(static_cast<int>(links_.size()));
 }
 
-double HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
+void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
     Node& n = h_.nodes[node];
     const Rgb H = Hdown + n.H;
     if (n.isLeaf()) {
         if (!n.isCluster()) n.B = n.E + n.rho * H;
-        return 0;
+        return;
     }
     // Push: children inherit the irradiance gathered above them (an isotropic cluster
     // hands it to its contents unchanged). Pull: B is the area-weighted mean.
@@ -220,7 +220,6 @@ double HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
         area += c.area;
     }
     h_.nodes[node].B = area > 0 ? B * (1.0 / area) : Rgb{};  // guard: no area below
-    return 0;
 }
 
 double HierarchicalSolver::sweep() {

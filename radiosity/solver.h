@@ -109,7 +109,7 @@ class HierarchicalSolver {
     void pushLightLinksToLeaves();
     void addLinksFromSource(int node);
     void buildReceiverIndex();
-    double pushPull(int node, const Rgb& Hdown);
+    void pushPull(int node, const Rgb& Hdown);
     bool canSplit(int node) const;
     void report(const std::string& msg) const;
 

@@ -160,12 +160,18 @@ int runSolve(const SolveArgs& a) {
 
 int runEval(const std::string& sceneDir, const std::string& edit, const std::string& image) {
     const fs::path dir(sceneDir);
+    const SceneFile sf = loadScene(dir);
+    if (sf.photos.empty())
+        throw InputError((dir / "scene.json").string() + ": key \"photos\": eval needs a photo");
+    const fs::path photo = sf.photos.front().file;
+    fs::path photoMask = photo;
+    photoMask.replace_extension(".mask.png");
     Image R = readImage(image);
     Image T = readImage(dir / "truth" / (edit + ".exr"));
-    Image P = readImage(dir / "photo.exr");
+    Image P = readImage(photo, sf.photos.front().encoding == PhotoSpec::Encoding::srgb);
     int w = 0, h = 0, w2 = 0, h2 = 0;
     auto mT = readMask(dir / "truth" / (edit + ".mask.png"), w, h);
-    auto mP = readMask(dir / "photo.mask.png", w2, h2);
+    auto mP = readMask(photoMask, w2, h2);
     if (R.width != T.width || R.height != T.height)
         throw InputError(image + ": image is " + std::to_string(R.width) + "x" +
                          std::to_string(R.height) + ", the truth is " + std::to_string(T.width) +
