@@ -24,10 +24,12 @@
 #include <vector>
 
 #include "plot.h"
+#include "radiosity/final_gather.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/solver.h"
 #include "relight/image.h"
 #include "relight/item_buffer.h"
+#include "relight/lighting_buffer.h"
 #include "relight/metric.h"
 #include "relight/reflectance.h"
 #include "relight/scene_file.h"
@@ -45,6 +47,7 @@ struct Row {
     int minRays, maxRays;
     SolverStats st;
     double seconds, error;
+    double errorGathered, secondsGathered;  ///< final gather at 16 points per element
 };
 
 std::vector<Row> sweepScene(const std::string& name, const Scene& scene, double refArea,
@@ -62,8 +65,8 @@ std::vector<Row> sweepScene(const std::string& name, const Scene& scene, double 
     }
     std::printf("   %zu elements, %d Gauss-Seidel sweeps, %.1f s (2 threads)\n",
                 ref.leaves().size(), ref.sweeps(), since(t0));
-    std::printf("   %-8s %-6s %8s %8s %9s %10s %9s %8s\n", "epsilon", "rays", "leaves", "links",
-                "passive", "rays cast", "solve s", "rel err");
+    std::printf("   %-8s %-6s %8s %8s %9s %10s %9s %8s %8s %9s\n", "epsilon", "rays", "leaves",
+                "links", "passive", "rays cast", "solve s", "rel err", "gathered", "gather s");
     std::vector<Row> rows;
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
     for (auto [minR, maxR] : rays) {
@@ -78,10 +81,20 @@ std::vector<Row> sweepScene(const std::string& name, const Scene& scene, double 
             const double secs = since(t0);
             const double err =
                 relativeRmsError(ref, [&](int p, const Vec3& x) { return hr.radiosityAt(p, x); });
-            Row r{eps, minR, maxR, hr.stats(), secs, err};
-            std::printf("   %-8.0e %2d/%-3d %8d %8d %9d %10llu %9.3f %8.4f\n", eps, minR, maxR,
-                        r.st.leaves, r.st.links, r.st.passiveLinks,
-                        static_cast<unsigned long long>(r.st.rays), secs, err);
+            // The same solution read by final gather at each point (per-point direct
+            // light, indirect through the links), as the renderer shows it.
+            t0 = Clock::now();
+            const DirectLight direct(hr);
+            uint64_t seed = 0;
+            const double errGather = relativeRmsError(ref, [&](int p, const Vec3& x) {
+                return gatheredRadiosity(hr, direct, p, x, ++seed);
+            });
+            const double secsGather = since(t0);
+            Row r{eps, minR, maxR, hr.stats(), secs, err, errGather, secsGather};
+            std::printf("   %-8.0e %2d/%-3d %8d %8d %9d %10llu %9.3f %8.4f %8.4f %9.3f\n", eps,
+                        minR, maxR, r.st.leaves, r.st.links, r.st.passiveLinks,
+                        static_cast<unsigned long long>(r.st.rays), secs, err, errGather,
+                        secsGather);
             std::fflush(stdout);
             rows.push_back(r);
         }
@@ -134,8 +147,8 @@ int main(int argc, char** argv) {
         std::printf(
             "\n== cornell vs truth/identity.exr (reflectance from the photo, 16 spp, spec "
             "metric)\n");
-        std::printf("   %-8s %8s %8s %10s %12s %9s\n", "epsilon", "leaves", "links", "solve s",
-                    "estimate s", "rel_rmse");
+        std::printf("   %-8s %8s %8s %10s %10s %12s %9s\n", "epsilon", "leaves", "links", "solve s",
+                    "render s", "estimate s", "rel_rmse");
         relight::Image photo = relight::readImage(cornell.photos[0].file);
         relight::Image truth = relight::readImage(data + "/cornell/truth/identity.exr");
         int w, h;
@@ -149,19 +162,23 @@ int main(int argc, char** argv) {
             auto t0 = Clock::now();
             HierarchicalSolver est(cornell.scene, o);
             auto items = relight::castItemBuffer(cornell.camera, est.scene(), est.visibility(), 16);
-            relight::estimatePolygonReflectance(est, cornell, items, photo, 3);
+            est.solve();
+            auto estLighting = relight::computeLightingBuffer(items, est);
+            relight::estimatePolygonReflectance(est, cornell, items, estLighting, photo);
             const double tEst = since(t0);
             t0 = Clock::now();
             HierarchicalSolver hr(est.scene(), o);  // a fresh solve with the estimated reflectances
             hr.solve();
             const double tSolve = since(t0);
-            relight::Image img = relight::shadeItemBuffer(items, [&](int p, const Vec3& x) {
-                return hr.radiosityAt(p, x) * (1.0 / std::numbers::pi);
-            });
+            t0 = Clock::now();
+            auto lighting = relight::computeLightingBuffer(items, hr);
+            relight::updateIndirect(lighting, hr);
+            relight::Image img = relight::renderRadiosity(items, lighting, hr.scene());
+            const double tRender = since(t0);
             const auto score = relight::scoreImage(img, truth, photo, maskT, maskP);
             const auto st = hr.stats();
-            std::printf("   %-8.0e %8d %8d %10.3f %12.3f %9.4f\n", e, st.leaves, st.links, tSolve,
-                        tEst, score.relRmse);
+            std::printf("   %-8.0e %8d %8d %10.3f %10.3f %12.3f %9.4f\n", e, st.leaves, st.links,
+                        tSolve, tRender, tEst, score.relRmse);
             std::fflush(stdout);
             truthCurve.push_back({tSolve, score.relRmse});
         }
@@ -180,6 +197,17 @@ int main(int argc, char** argv) {
             series.push_back(
                 toSeries(rowsC, 64, "cornell vs reference, 8/64 rays", {0.95f, 0.6f, 0.2f}));
         series.push_back(toSeries(rowsR, 16, "room vs reference, 4/16 rays", {0.2f, 0.4f, 0.9f}));
+        auto gathered = [](const std::vector<Row>& rows, const char* label, bench::Colour c) {
+            bench::Series s{label, c, {}};
+            for (const Row& r : rows)
+                if (r.maxRays == 16)
+                    s.points.push_back({r.seconds + r.secondsGathered, r.errorGathered});
+            return s;
+        };
+        series.push_back(gathered(rowsC, "cornell vs reference, final gather (solve + gather s)",
+                                  {0.6f, 0.1f, 0.5f}));
+        series.push_back(gathered(rowsR, "room vs reference, final gather (solve + gather s)",
+                                  {0.1f, 0.7f, 0.8f}));
         series.push_back({"cornell vs path-traced truth", {0.1f, 0.7f, 0.3f}, truthCurve});
         const std::string png = "bench/figures/time_vs_error.png";
         if (bench::plotLogLog(png, series, "solve time, one core (s)", "relative RMS error"))

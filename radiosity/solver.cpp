@@ -199,6 +199,17 @@ void HierarchicalSolver::buildReceiverIndex() {
         }
     }
     receiverStart_.push_back(static_cast<int>(links_.size()));
+    receiverSlot_.assign(h_.nodes.size(), -1);
+    for (size_t i = 0; i < receivers_.size(); ++i)
+        receiverSlot_[receivers_[i]] = static_cast<int>(i);
+}
+
+std::span<const Link> HierarchicalSolver::linksOf(int node) const {
+    if (node < 0 || node >= static_cast<int>(receiverSlot_.size()) || receiverSlot_[node] < 0)
+        return {};
+    const int i = receiverSlot_[node];
+    return {links_.data() + receiverStart_[i],
+            static_cast<size_t>(receiverStart_[i + 1] - receiverStart_[i])};
 }
 
 void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
@@ -224,18 +235,24 @@ void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
 
 double HierarchicalSolver::sweep() {
     auto t0 = Clock::now();
-    for (Node& n : h_.nodes) n.H = Rgb{};
+    for (Node& n : h_.nodes) n.H = n.Hlight = Rgb{};
     // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
     // result does not depend on the thread count.
     tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              Rgb H;
+                              Rgb H, Hlight;
                               for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
                                   const Link& l = links_[k];
-                                  H += h_.nodes[l.source].B * (l.F * static_cast<double>(l.V));
+                                  const Node& S = h_.nodes[l.source];
+                                  const Rgb h = S.B * (l.F * static_cast<double>(l.V));
+                                  H += h;
+                                  // Cluster sources never hold an emitter (the oracle splits
+                                  // them), so an emitting source is a light's element.
+                                  if (S.emitting) Hlight += h;
                               }
                               h_.nodes[receivers_[i]].H = H;
+                              h_.nodes[receivers_[i]].Hlight = Hlight;
                           }
                       });
     timing_.timeGather += secondsSince(t0);
@@ -346,6 +363,13 @@ Rgb HierarchicalSolver::radiosityAt(int polygon, const Vec3& x) const {
 Rgb HierarchicalSolver::irradianceAt(int polygon, const Vec3& x) const {
     Rgb H;
     for (int n = h_.locateLeaf(polygon, x); n >= 0; n = h_.nodes[n].parent) H += h_.nodes[n].H;
+    return H;
+}
+
+Rgb HierarchicalSolver::indirectIrradianceAt(int polygon, const Vec3& x) const {
+    Rgb H;
+    for (int n = h_.locateLeaf(polygon, x); n >= 0; n = h_.nodes[n].parent)
+        H += h_.nodes[n].H - h_.nodes[n].Hlight;
     return H;
 }
 

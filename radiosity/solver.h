@@ -27,6 +27,7 @@
 
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,12 @@ class HierarchicalSolver {
     /// the leaf containing x and of all its ancestors gathered in the last sweep.
     Rgb irradianceAt(int polygon, const Vec3& x) const;
 
+    /// The part of irradianceAt() that did not come straight from a light: light reflected
+    /// at least once (indirect). Direct light is evaluated per point by DirectLight.
+    Rgb indirectIrradianceAt(int polygon, const Vec3& x) const;
+    /// The active links gathered by `node` (empty when it has none).
+    std::span<const Link> linksOf(int node) const;
+
     /// Reflectance edit of one polygon: updates its elements (links are kept); call
     /// solve() or gatherPushPull() after a batch of edits.
     void setReflectance(int polygon, const Rgb& rho);
@@ -122,6 +129,7 @@ class HierarchicalSolver {
     std::vector<Link> passive_;   ///< refined-away links, kept for dynamic updates
     std::vector<int> receivers_;  ///< distinct receivers, in link order
     std::vector<int> receiverStart_;  ///< links of receivers_[i]: [start[i], start[i+1])
+    std::vector<int> receiverSlot_;   ///< node -> i with receivers_[i] == node, or -1
     double minArea_ = 0;
     double powerThreshold_ = 0;  ///< epsilon * emitted power (max channel)
     bool started_ = false;

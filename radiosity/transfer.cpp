@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "radiosity/form_factor.h"
+#include "radiosity/rng.h"
 #include "radiosity/shaft.h"
 
 namespace radiosity {
@@ -13,19 +14,6 @@ namespace radiosity {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-/// splitmix64: a small, well-mixed generator; seeded per link for reproducibility.
-struct Rng {
-    uint64_t state;
-    explicit Rng(uint64_t seed) : state(seed) {}
-    uint64_t next() {
-        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-};
 
 /// Signed distance of the farthest point of a node in front of a plane (n, p0): > 0 when
 /// some part of the node lies strictly in front.

@@ -14,6 +14,7 @@
 #include "radiosity/solver.h"
 #include "relight/image.h"
 #include "relight/item_buffer.h"
+#include "relight/lighting_buffer.h"
 #include "relight/metric.h"
 #include "relight/reflectance.h"
 #include "relight/scene_file.h"
@@ -38,7 +39,7 @@ struct SolveArgs {
     double minArea = 0;
     int minRays = 4, maxRays = 16;
     int spp = 16;
-    int reflectanceRounds = 3;
+    int reflectanceRounds = 12;
     bool photoReflectance = true;
     std::string report, output;
     double exposure = 0;
@@ -64,6 +65,22 @@ int runSolve(const SolveArgs& a) {
             items = castItemBuffer(sf.camera, solver.scene(), solver.visibility(), a.spp);
         haveItems = true;
     };
+    LightingBuffer lighting;
+    bool haveLighting = false;
+    double tLighting = 0;
+    auto needLighting = [&] {
+        if (haveLighting) return;
+        const auto t0 = Clock::now();
+        radiosity::DirectLightOptions dlo;
+        dlo.minRays = a.minRays;
+        dlo.maxRays = a.maxRays;
+        lighting = computeLightingBuffer(items, solver, dlo);
+        tLighting = since(t0);
+        haveLighting = true;
+        std::fprintf(stderr, "per-pixel lighting: %llu shadow rays, %zu gather points, %.3f s\n",
+                     static_cast<unsigned long long>(lighting.rays), lighting.gatherPolygon.size(),
+                     tLighting);
+    };
     double tReflectance = 0;
     nlohmann::json reflectanceJson = nullptr;
     if (a.photoReflectance && !sf.photos.empty()) {
@@ -77,9 +94,12 @@ int runSolve(const SolveArgs& a) {
                              std::to_string(sf.camera.height));
         }
         needItems();
+        solver.solve();
+        needLighting();
         std::fprintf(stderr, "estimating reflectance from %s (%d rounds)\n", ph.file.c_str(),
                      a.reflectanceRounds);
-        auto rep = estimatePolygonReflectance(solver, sf, items, photo, a.reflectanceRounds);
+        auto rep =
+            estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds);
         tReflectance = since(t0);
         reflectanceJson = {{"rounds", rep.rounds},
                            {"polygons_seen", rep.polygonsSeen},
@@ -108,9 +128,9 @@ int runSolve(const SolveArgs& a) {
                 st.radiosityPower.average());
     if (!a.output.empty()) {
         needItems();
-        Image img = shadeItemBuffer(items, [&](int p, const radiosity::Vec3& x) {
-            return solver.radiosityAt(p, x) * (1.0 / std::numbers::pi);  // radiance = B / pi
-        });
+        needLighting();
+        updateIndirect(lighting, solver);
+        Image img = renderRadiosity(items, lighting, solver.scene());
         writeImage(a.output, img, a.exposure);
         std::printf("wrote %s (%dx%d, %d samples per pixel)\n", a.output.c_str(), img.width,
                     img.height, items.spp);
@@ -158,7 +178,8 @@ int runSolve(const SolveArgs& a) {
     return 0;
 }
 
-int runEval(const std::string& sceneDir, const std::string& edit, const std::string& image) {
+int runEval(const std::string& sceneDir, const std::string& edit, const std::string& image,
+            const std::string& errorMapFile) {
     const fs::path dir(sceneDir);
     const SceneFile sf = loadScene(dir);
     if (sf.photos.empty())
@@ -176,7 +197,8 @@ int runEval(const std::string& sceneDir, const std::string& edit, const std::str
         throw InputError(image + ": image is " + std::to_string(R.width) + "x" +
                          std::to_string(R.height) + ", the truth is " + std::to_string(T.width) +
                          "x" + std::to_string(T.height));
-    const Score s = scoreImage(R, T, P, mT, mP);
+    Image errorMap;
+    const Score s = scoreImage(R, T, P, mT, mP, errorMapFile.empty() ? nullptr : &errorMap);
     Image identity = readImage(dir / "truth" / "identity.exr");
     auto mI = readMask(dir / "truth" / "identity.mask.png", w, h);
     const Score floor = scoreImage(P, identity, P, mI, mP);
@@ -187,6 +209,11 @@ int runEval(const std::string& sceneDir, const std::string& edit, const std::str
     else
         std::printf("changed_rel_rmse undefined (no block changes)\n");
     std::printf("noise_floor %.4f\n", floor.relRmse);
+    if (!errorMapFile.empty()) {
+        writeImage(errorMapFile, errorMap);
+        std::printf("wrote %s (%dx%d blocks, block RMS error / mean truth)\n", errorMapFile.c_str(),
+                    errorMap.width, errorMap.height);
+    }
     return 0;
 }
 
@@ -229,6 +256,9 @@ int main(int argc, char** argv) {
     eval->add_option("scene_dir", evScene)->required();
     eval->add_option("edit_name", evEdit)->required();
     eval->add_option("image", evImage)->required();
+    std::string evErrorMap;
+    eval->add_option("--error-map", evErrorMap,
+                     "write the per-block error relative to the mean truth (EXR, or PNG)");
 
     CLI11_PARSE(app, argc, argv);
     try {
@@ -236,7 +266,7 @@ int main(int argc, char** argv) {
             if (sa.maxRays < sa.minRays) sa.maxRays = sa.minRays;
             return runSolve(sa);
         }
-        if (*eval) return runEval(evScene, evEdit, evImage);
+        if (*eval) return runEval(evScene, evEdit, evImage, evErrorMap);
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

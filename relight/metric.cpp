@@ -6,7 +6,7 @@
 namespace relight {
 
 Score scoreImage(const Image& R, const Image& T, const Image& P, const std::vector<uint8_t>& maskT,
-                 const std::vector<uint8_t>& maskP) {
+                 const std::vector<uint8_t>& maskP, Image* errorMap) {
     const int w = T.width, h = T.height;
     const size_t n = static_cast<size_t>(w) * h;
     if (R.width != w || R.height != h || P.width != w || P.height != h || maskT.size() != n ||
@@ -14,6 +14,7 @@ Score scoreImage(const Image& R, const Image& T, const Image& P, const std::vect
         throw std::invalid_argument("scoreImage: images and masks must have the same size");
     double sq = 0, sumT = 0, sqC = 0, sumTC = 0;
     Score s;
+    std::vector<double> blockRms(static_cast<size_t>(w / 4) * (h / 4), -1.0);
     for (int by = 0; by < h / 4; ++by) {
         for (int bx = 0; bx < w / 4; ++bx) {
             double r[3] = {0, 0, 0}, t[3] = {0, 0, 0}, p[3] = {0, 0, 0};
@@ -41,6 +42,7 @@ Score scoreImage(const Image& R, const Image& T, const Image& P, const std::vect
                 meanT += t[c] / 3;
             }
             sq += blockSq;
+            blockRms[static_cast<size_t>(by) * (w / 4) + bx] = std::sqrt(blockSq / 3);
             sumT += 3 * meanT;
             if (diffTP > 0.1 * meanT) {
                 ++s.changedBlocks;
@@ -53,6 +55,21 @@ Score scoreImage(const Image& R, const Image& T, const Image& P, const std::vect
     if (s.blocks > 0 && sumT > 0) {
         const double m = 3.0 * s.blocks;
         s.relRmse = std::sqrt(sq / m) / (sumT / m);
+    }
+    if (errorMap) {
+        *errorMap = Image(w / 4, h / 4);
+        const double meanT = s.blocks > 0 ? sumT / (3.0 * s.blocks) : 0;
+        for (int by = 0; by < h / 4; ++by)
+            for (int bx = 0; bx < w / 4; ++bx) {
+                const double e = blockRms[static_cast<size_t>(by) * (w / 4) + bx];
+                float* px = errorMap->at(bx, by);
+                if (e < 0 || !(meanT > 0)) {
+                    px[0] = px[1] = 0;
+                    px[2] = 0.05f;
+                } else {
+                    px[0] = px[1] = px[2] = static_cast<float>(e / meanT);
+                }
+            }
     }
     if (s.changedBlocks > 0 && sumTC > 0) {
         const double m = 3.0 * s.changedBlocks;

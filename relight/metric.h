@@ -23,8 +23,10 @@ struct Score {
 };
 
 /// R: relit image, T: truth, P: photo, masks of the truth and the photo (255 = keep).
-/// All the same size; throws std::invalid_argument otherwise.
+/// All the same size; throws std::invalid_argument otherwise. `errorMap` (optional)
+/// receives one pixel per block: the block's RMS error over the channels divided by the
+/// mean of T over all kept blocks, in grey; blocks that are not kept are dark blue.
 Score scoreImage(const Image& R, const Image& T, const Image& P, const std::vector<uint8_t>& maskT,
-                 const std::vector<uint8_t>& maskP);
+                 const std::vector<uint8_t>& maskP, Image* errorMap = nullptr);
 
 }  // namespace relight

@@ -6,13 +6,18 @@
 #include <numbers>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
+#include "radiosity/final_gather.h"
+
 namespace relight {
 
 using radiosity::Rgb;
 
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
-                                             const Image& photo, int rounds, int minSamples) {
+                                             const LightingBuffer& lighting, const Image& photo,
+                                             int rounds, int minSamples, double tolerance) {
     constexpr double kMaxRho = 0.98;
     ReflectanceReport report;
     const radiosity::Scene& scene = solver.scene();
@@ -47,23 +52,53 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
             usable[static_cast<size_t>(y) * w + x] = pure ? 1 : 0;
         }
     }
-    solver.solve();
-    for (int round = 0; round < rounds; ++round) {
-        std::vector<Rgb> sumL(np), sumH(np);
-        std::vector<int> count(np, 0);
-        for (int y = 0; y < items.height; ++y) {
-            for (int x = 0; x < items.width; ++x) {
-                if (!usable[static_cast<size_t>(y) * items.width + x]) continue;
-                const float* px = photo.at(x, y);
-                for (int s = 0; s < items.spp; ++s) {
-                    const int idx = items.sampleIndex(x, y, s);
-                    const int p = items.polygon[idx];
-                    sumL[p] += Rgb{px[0], px[1], px[2]};
-                    sumH[p] += solver.irradianceAt(p, items.point[idx]);
-                    ++count[p];
-                }
+    // What does not change between rounds: per polygon, the photo's sum and the direct
+    // light's sum over the usable samples (direct light depends on the lights only).
+    std::vector<Rgb> sumL(np), sumDirect(np);
+    std::vector<int> count(np, 0);
+    // Indirect light varies slowly: its mean over a polygon's usable samples is taken from
+    // at most kIndirectPoints of their gather points, evenly spread in scan order, each
+    // weighted by the number of usable samples it stands for.
+    constexpr int kIndirectPoints = 256;
+    std::vector<std::vector<std::pair<int, int>>> points(np);  // (gather point, samples)
+    for (int y = 0; y < hgt; ++y) {
+        for (int x = 0; x < w; ++x) {
+            if (!usable[static_cast<size_t>(y) * w + x]) continue;
+            const float* px = photo.at(x, y);
+            const int idx0 = items.sampleIndex(x, y, 0);
+            const int p = items.polygon[idx0];
+            for (int s = 0; s < items.spp; ++s) {
+                const int idx = items.sampleIndex(x, y, s);
+                sumL[p] += Rgb{px[0], px[1], px[2]};
+                const float* G = lighting.direct(idx);
+                for (int l = 0; l < lighting.lights; ++l)
+                    sumDirect[p] += scene.lights[l].emittance() * static_cast<double>(G[l]);
+                ++count[p];
             }
+            points[p].push_back({lighting.gatherPoint[idx0], items.spp});  // a pure pixel: one
         }
+    }
+    for (auto& list : points) {
+        if (static_cast<int>(list.size()) <= kIndirectPoints) continue;
+        std::vector<std::pair<int, int>> kept;
+        const double step = static_cast<double>(list.size()) / kIndirectPoints;
+        for (int i = 0; i < kIndirectPoints; ++i)
+            kept.push_back(list[static_cast<size_t>(i * step)]);
+        list.swap(kept);
+    }
+    for (int round = 0; round < rounds; ++round) {
+        std::vector<Rgb> sumH(np);
+        tbb::parallel_for(0, np, [&](int p) {
+            Rgb sumI;
+            double weight = 0;
+            for (auto [g, n] : points[p]) {
+                sumI += radiosity::finalGatherIndirect(solver, p, lighting.gatherPosition[g], 4,
+                                                       static_cast<uint64_t>(g)) *
+                        static_cast<double>(n);
+                weight += n;
+            }
+            sumH[p] = sumDirect[p] + (weight > 0 ? sumI * (count[p] / weight) : Rgb{});
+        });
         // Estimates, and their area-weighted mean for the polygons the photo misses.
         std::vector<Rgb> rho(np);
         std::vector<bool> seen(np, false);
@@ -85,6 +120,7 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         }
         if (meanArea > 0) meanRho = meanRho * (1.0 / meanArea);
         report.polygonsDefaulted = 0;
+        report.lastChange = 0;
         for (int p = 0; p < np; ++p) {
             const radiosity::Polygon& poly = scene.polygons[p];
             if (poly.light >= 0) continue;
@@ -96,10 +132,18 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
                              ? *it->second.reflectance
                              : (meanArea > 0 ? meanRho : poly.rho);
             }
-            solver.setReflectance(p, rho[p]);
+            // Damped update (see the header): a full step from the first guess, half
+            // steps after.
+            const Rgb previous = poly.rho;
+            const double alpha = round == 0 ? 1.0 : 0.5;
+            const Rgb next = previous * (1.0 - alpha) + rho[p] * alpha;
+            for (int c = 0; c < 3; ++c)
+                report.lastChange = std::max(report.lastChange, std::abs(next[c] - previous[c]));
+            solver.setReflectance(p, next);
         }
         solver.solve();
         report.rounds = round + 1;
+        if (round > 0 && report.lastChange < tolerance) break;
     }
     return report;
 }

@@ -1,0 +1,89 @@
+#include "radiosity/direct_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "radiosity/form_factor.h"
+#include "radiosity/rng.h"
+
+namespace radiosity {
+
+DirectLight::DirectLight(const HierarchicalSolver& solver, DirectLightOptions options)
+    : solver_(solver), options_(options) {
+    options_.minRays = std::clamp(options_.minRays, 1, 256);
+    options_.maxRays = std::clamp(options_.maxRays, options_.minRays, 256);
+}
+
+bool DirectLight::shaftClear(int leaf, int q) const {
+    const Hierarchy& h = solver_.hierarchy();
+    bool found = false;
+    for (int n = leaf; n >= 0; n = h.nodes[n].parent) {
+        for (const Link& l : solver_.linksOf(n)) {
+            const Node& S = h.nodes[l.source];
+            if (S.isCluster() || S.polygon != q) continue;
+            if (!l.shaftEmpty) return false;
+            found = true;
+        }
+    }
+    return found;
+}
+
+void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G) const {
+    const Scene& scene = solver_.scene();
+    const Polygon& p = scene.polygons[polygon];
+    const int leaf = solver_.hierarchy().locateLeaf(polygon, x);
+    Rng rng(seed * 0x9E3779B97F4A7C15ull + 0x1234567ull);
+    const int maxRays = options_.maxRays;
+    const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(maxRays))));
+    uint64_t rays = 0;
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+        double g = 0;
+        for (int qi : scene.lights[l].polygons) {
+            if (qi == polygon) continue;  // an emitting face does not light itself
+            const Polygon& q = scene.polygons[qi];
+            const double F = pointToPolygon(x, p.normal, q.v.data(), q.vertexCount, q.normal);
+            if (!(F > 0)) continue;
+            if (shaftClear(leaf, qi)) {
+                g += F;
+                continue;
+            }
+            // Stratified points on q, strata in random order so that any prefix of the
+            // set covers q uniformly: the first minRays decide, the rest follow in
+            // penumbra. Only points above x's horizon carry light (F is clipped the same
+            // way), so the others are not counted.
+            int perm[256];
+            const int cells = k * k;
+            for (int i = 0; i < cells; ++i) perm[i] = i;
+            for (int i = cells - 1; i > 0; --i)
+                std::swap(perm[i],
+                          perm[static_cast<int>(rng.next() % static_cast<uint64_t>(i + 1))]);
+            Vec3 from[256], to[256];
+            int n = 0;
+            for (int i = 0; i < maxRays; ++i) {
+                const double u = ((perm[i] % k) + rng.uniform()) / k;
+                const double v = ((perm[i] / k) + rng.uniform()) / k;
+                const Vec3 y = pointOnPolygon(q, u, v);
+                if (!(glm::dot(y - x, p.normal) > 0)) continue;
+                from[n] = x;
+                to[n] = y;
+                ++n;
+            }
+            if (n == 0) continue;
+            const Visibility& vis = solver_.visibility();
+            const int first = std::min(n, options_.minRays);
+            int visible = vis.visibleBatch(from, to, first, nullptr, polygon, qi);
+            int cast = first;
+            if (visible != 0 && visible != first && n > first) {
+                visible +=
+                    vis.visibleBatch(from + first, to + first, n - first, nullptr, polygon, qi);
+                cast = n;
+            }
+            rays += static_cast<uint64_t>(cast);
+            g += F * static_cast<double>(visible) / cast;
+        }
+        G[l] = g;
+    }
+    rays_.fetch_add(rays, std::memory_order_relaxed);
+}
+
+}  // namespace radiosity

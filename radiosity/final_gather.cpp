@@ -1,0 +1,122 @@
+#include "radiosity/final_gather.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "radiosity/form_factor.h"
+#include "radiosity/rng.h"
+
+namespace radiosity {
+
+namespace {
+
+/// Fraction of `count` rays from x to stratified points of node s that arrive.
+double pointVisibility(const HierarchicalSolver& solver, int polygon, const Vec3& x, const Vec3& n,
+                       int s, int count, Rng& rng, uint64_t& rays) {
+    const Hierarchy& h = solver.hierarchy();
+    const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(count))));
+    Vec3 from[64], to[64];
+    int m = 0;
+    for (int i = 0; i < count; ++i) {
+        const int cell = static_cast<int>(rng.next() % static_cast<uint64_t>(k * k));
+        const double u = ((cell % k) + rng.uniform()) / k, v = ((cell / k) + rng.uniform()) / k;
+        Vec3 ns;
+        const Vec3 y = h.samplePoint(s, u, v, rng.uniform(), &ns);
+        // Only mutually facing pairs carry light between one-sided surfaces.
+        if (!(glm::dot(y - x, n) > 0) || !(glm::dot(x - y, ns) > 0)) continue;
+        from[m] = x;
+        to[m] = y;
+        ++m;
+    }
+    if (m == 0) return 0.0;
+    const int polyS = h.nodes[s].isCluster() ? -1 : h.nodes[s].polygon;
+    const int visible = solver.visibility().visibleBatch(from, to, m, nullptr, polygon, polyS);
+    rays += static_cast<uint64_t>(m);
+    return static_cast<double>(visible) / m;
+}
+
+/// What an element source sends to x: B_s F(x), where F = F(x -> s) is given. Where x is
+/// close to s (F above kDescendF) the source's own subdivision is used instead: the sum
+/// over its children of B_c F(x -> c). A link is accepted for the receiver element as a
+/// whole (its mean F is small), yet a point of it near the source's edge can see the
+/// source at a large angle, and there the source's mean B is wrong: a wall that is bright
+/// near a corner and dark elsewhere would light the corner with its mean.
+constexpr double kDescendF = 0.05;
+
+Rgb elementTransfer(const Hierarchy& h, const Vec3& x, const Vec3& n, int s, double F) {
+    const Node& S = h.nodes[s];
+    if (S.isLeaf() || !(F > kDescendF)) return (S.emitting ? S.B - S.E : S.B) * F;
+    Rgb sum;
+    for (int k = 0; k < S.childCount; ++k) {
+        const Node& C = h.nodes[S.firstChild + k];
+        const double Fc = pointToPolygon(x, n, C.v.data(), C.vertexCount, C.normal);
+        if (Fc > 0) sum += elementTransfer(h, x, n, S.firstChild + k, Fc);
+    }
+    return sum;
+}
+
+}  // namespace
+
+Rgb finalGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x,
+                        int partialRays, uint64_t seed, uint64_t* rays) {
+    const Hierarchy& h = solver.hierarchy();
+    const Vec3& n = solver.scene().polygons[polygon].normal;
+    partialRays = std::clamp(partialRays, 0, 64);
+    Rng rng(seed * 0xD1B54A32D192ED03ull + 0x51ED27ull);
+    uint64_t cast = 0;
+    Rgb H;
+    for (int node = h.locateLeaf(polygon, x); node >= 0; node = h.nodes[node].parent) {
+        for (const Link& l : solver.linksOf(node)) {
+            const Node& S = h.nodes[l.source];
+            if (!(l.V > 0) && l.type != VisibilityType::partial) continue;
+            // An emitter's own emission is direct light (DirectLight); what it reflects, if
+            // anything, is indirect.
+            const Rgb Bs = S.emitting ? S.B - S.E : S.B;
+            if (!(Bs.maxComponent() > 0)) continue;
+            Rgb transfer;
+            if (!S.isCluster()) {
+                const double F = pointToPolygon(x, n, S.v.data(), S.vertexCount, S.normal);
+                if (!(F > 0)) continue;
+                transfer = elementTransfer(h, x, n, l.source, F);
+            } else {
+                const Vec3 d = S.centre - x;
+                const double d2 = glm::dot(d, d);
+                // Guard: accepted cluster links join disjoint bounding spheres, so x (inside
+                // the receiver's) is away from the source's centre; a degenerate input
+                // gives 0 rather than infinity.
+                if (!(d2 > 1e-24)) continue;
+                const double cosR = glm::dot(n, d) / std::sqrt(d2);
+                if (!(cosR > 0)) continue;
+                transfer = Bs * (S.area * cosR / (4.0 * std::numbers::pi * d2));
+            }
+            const double V =
+                l.type == VisibilityType::partial && partialRays > 0
+                    ? pointVisibility(solver, polygon, x, n, l.source, partialRays, rng, cast)
+                    : static_cast<double>(l.V);
+            H += transfer * V;
+        }
+    }
+    if (rays) *rays += cast;
+    return H;
+}
+
+Rgb gatheredRadiosity(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,
+                      const Vec3& x, uint64_t seed) {
+    const Scene& scene = solver.scene();
+    const Polygon& p = scene.polygons[polygon];
+    double G[64];
+    std::vector<double> Gheap;
+    double* g = G;
+    if (scene.lights.size() > 64) {
+        Gheap.resize(scene.lights.size());
+        g = Gheap.data();
+    }
+    direct.geometry(polygon, x, seed, g);
+    Rgb H = finalGatherIndirect(solver, polygon, x, 4, seed);
+    for (size_t l = 0; l < scene.lights.size(); ++l) H += scene.lights[l].emittance() * g[l];
+    return scene.emittance(polygon) + p.rho * H;
+}
+
+}  // namespace radiosity

@@ -1,0 +1,47 @@
+// Final gather: the indirect irradiance at a point, gathered through the links of the
+// element that holds it (and of every node above it) with the form factor taken from the
+// point itself rather than averaged over the element.
+//
+// The hierarchical solution is piecewise constant: one B per leaf element. Shown as is, it
+// draws the element grid on every wall, and it misses how light from a neighbouring wall
+// rises towards a shared corner inside one element. Re-evaluating the transfer of each
+// link at the shaded point (Lischinski, Tampieri & Greenberg 1993; Smits, Arvo & Greenberg
+// 1994, "final gather") removes both, at no cost in rays: a link's visibility V is reused.
+//
+// For a link r <- s on the chain above the leaf holding x (normal n):
+//   element s:  F(x) = pointToPolygon(x, n, s)                (Lambert's contour integral);
+//               where F(x) > 0.05 (x close to s) s's children are used, each with its
+//               own B and F(x), recursively: a link is accepted for the receiving element
+//               as a whole, and a point near the source's edge sees its B vary
+//   cluster s:  F(x) = A_s max(0, n.w) / (4 pi d^2)           (isotropic cluster, Sillion
+//               1995, with the receiver's cosine taken at x; w, d: direction and distance
+//               from x to the cluster's centre)
+//   H_indirect(x) = sum over links of (B_s - E_s) F(x) V(x)
+// (an emitter's emission E_s is direct light; what it reflects, if anything, is not).
+// V(x) is the link's V where the link is VISIBLE or INVISIBLE. A PARTIAL link's V is an
+// average over the receiving element: kept as is, it paints the element grid into the
+// indirect light next to every occluder (a floor beside a block). There V(x) is measured
+// from x itself with `partialRays` rays to stratified points of the source (0 keeps V).
+// Direct light is evaluated per point by DirectLight.
+#pragma once
+
+#include <cstdint>
+
+#include "radiosity/direct_light.h"
+#include "radiosity/solver.h"
+
+namespace radiosity {
+
+/// Indirect irradiance at point x of `polygon` (radiosity units) from the solver's
+/// current links and radiosities. Thread-safe (reads only). `seed` selects the rays;
+/// `rays` (optional) counts those cast.
+Rgb finalGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x,
+                        int partialRays = 4, uint64_t seed = 0, uint64_t* rays = nullptr);
+
+/// Radiosity at point x of `polygon` by final gather (radiosity units):
+///   B(x) = E + rho (sum_l E_l G_l(x) + H_indirect(x)),
+/// G from `direct` (built on the same solver), H_indirect from finalGatherIndirect().
+Rgb gatheredRadiosity(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,
+                      const Vec3& x, uint64_t seed = 0);
+
+}  // namespace radiosity

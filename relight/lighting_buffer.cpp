@@ -1,0 +1,114 @@
+#include "relight/lighting_buffer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <numbers>
+
+#include "radiosity/final_gather.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+using radiosity::Vec3;
+
+LightingBuffer computeLightingBuffer(const ItemBuffer& items,
+                                     const radiosity::HierarchicalSolver& solver,
+                                     radiosity::DirectLightOptions options) {
+    const radiosity::DirectLight dl(solver, options);
+    const radiosity::Scene& scene = solver.scene();
+    LightingBuffer buf;
+    buf.lights = dl.lightCount();
+    const int n = static_cast<int>(items.polygon.size());
+    buf.G.assign(static_cast<size_t>(n) * buf.lights, 0.0f);
+    if (buf.lights > 0) {
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, n, 256), [&](const tbb::blocked_range<int>& r) {
+                std::vector<double> G(static_cast<size_t>(buf.lights));
+                for (int i = r.begin(); i != r.end(); ++i) {
+                    const int p = items.polygon[i];
+                    if (p < 0 || scene.polygons[p].light >= 0) continue;
+                    dl.geometry(p, items.point[i], static_cast<uint64_t>(i), G.data());
+                    for (int l = 0; l < buf.lights; ++l)
+                        buf.G[static_cast<size_t>(i) * buf.lights + l] = static_cast<float>(G[l]);
+                }
+            });
+    }
+    buf.rays = dl.raysCast();
+
+    // Gather points: per pixel, one per reflecting polygon its samples see, at their mean
+    // (inside the polygon: it is convex).
+    buf.gatherPoint.assign(static_cast<size_t>(n), -1);
+    for (int y = 0; y < items.height; ++y) {
+        for (int x = 0; x < items.width; ++x) {
+            const int first = static_cast<int>(buf.gatherPolygon.size());
+            std::vector<int> count;
+            for (int s = 0; s < items.spp; ++s) {
+                const int idx = items.sampleIndex(x, y, s);
+                const int p = items.polygon[idx];
+                if (p < 0 || scene.polygons[p].light >= 0) continue;
+                int g = first;
+                while (g < static_cast<int>(buf.gatherPolygon.size()) && buf.gatherPolygon[g] != p)
+                    ++g;
+                if (g == static_cast<int>(buf.gatherPolygon.size())) {
+                    buf.gatherPolygon.push_back(p);
+                    buf.gatherPosition.push_back(Vec3{0, 0, 0});
+                    count.push_back(0);
+                }
+                buf.gatherPosition[g] += items.point[idx];
+                ++count[g - first];
+                buf.gatherPoint[idx] = g;
+            }
+            for (size_t k = 0; k < count.size(); ++k)
+                buf.gatherPosition[first + k] /= static_cast<double>(count[k]);
+        }
+    }
+    return buf;
+}
+
+void updateIndirect(LightingBuffer& buf, const radiosity::HierarchicalSolver& solver) {
+    const int m = static_cast<int>(buf.gatherPolygon.size());
+    buf.indirect.assign(static_cast<size_t>(m), Rgb{});
+    tbb::parallel_for(tbb::blocked_range<int>(0, m, 64), [&](const tbb::blocked_range<int>& r) {
+        for (int g = r.begin(); g != r.end(); ++g)
+            buf.indirect[g] = radiosity::finalGatherIndirect(
+                solver, buf.gatherPolygon[g], buf.gatherPosition[g], 4, static_cast<uint64_t>(g));
+    });
+}
+
+Rgb sampleIrradiance(const LightingBuffer& buf, const radiosity::Scene& scene, int idx) {
+    const int g = buf.gatherPoint[idx];
+    if (g < 0) return {};
+    Rgb H = static_cast<size_t>(g) < buf.indirect.size() ? buf.indirect[g] : Rgb{};
+    const float* G = buf.direct(idx);
+    for (int l = 0; l < buf.lights; ++l)
+        H += scene.lights[l].emittance() * static_cast<double>(G[l]);
+    return H;
+}
+
+Image renderRadiosity(const ItemBuffer& items, const LightingBuffer& buf,
+                      const radiosity::Scene& scene) {
+    Image img(items.width, items.height);
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, items.height), [&](const tbb::blocked_range<int>& rows) {
+            for (int y = rows.begin(); y != rows.end(); ++y) {
+                for (int x = 0; x < items.width; ++x) {
+                    Rgb sum;
+                    for (int s = 0; s < items.spp; ++s) {
+                        const int idx = items.sampleIndex(x, y, s);
+                        const int p = items.polygon[idx];
+                        if (p < 0) continue;
+                        // The radiosity equation at a point, B = E + rho H (HSA91).
+                        sum += scene.emittance(p) +
+                               scene.polygons[p].rho * sampleIrradiance(buf, scene, idx);
+                    }
+                    float* px = img.at(x, y);
+                    for (int c = 0; c < 3; ++c)
+                        px[c] = static_cast<float>(sum[c] / (std::numbers::pi * items.spp));
+                }
+            }
+        });
+    return img;
+}
+
+}  // namespace relight
