@@ -69,15 +69,9 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G)
                 ++n;
             }
             if (n == 0) continue;
-            const Visibility& vis = solver_.visibility();
-            const int first = std::min(n, options_.minRays);
-            int visible = vis.visibleBatch(from, to, first, nullptr, polygon, qi);
-            int cast = first;
-            if (visible != 0 && visible != first && n > first) {
-                visible +=
-                    vis.visibleBatch(from + first, to + first, n - first, nullptr, polygon, qi);
-                cast = n;
-            }
+            int cast = 0;
+            const int visible = solver_.visibility().visibleAdaptive(from, to, options_.minRays, n,
+                                                                     cast, polygon, qi);
             rays += static_cast<uint64_t>(cast);
             g += F * static_cast<double>(visible) / cast;
         }

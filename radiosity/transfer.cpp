@@ -146,14 +146,9 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     // rays near a shared edge would otherwise count as blocked).
     const int polyR = h_.nodes[r].isCluster() ? -1 : h_.nodes[r].polygon;
     const int polyS = h_.nodes[s].isCluster() ? -1 : h_.nodes[s].polygon;
-    const int first = thorough ? maxRays : minRays;
-    int visible = vis_.visibleBatch(from, to, first, nullptr, polyR, polyS);
-    int cast = first;
-    if (visible != 0 && visible != first && maxRays > first) {
-        visible +=
-            vis_.visibleBatch(from + first, to + first, maxRays - first, nullptr, polyR, polyS);
-        cast = maxRays;
-    }
+    int cast = 0;
+    const int visible =
+        vis_.visibleAdaptive(from, to, thorough ? maxRays : minRays, maxRays, cast, polyR, polyS);
     counters.rays.fetch_add(static_cast<uint64_t>(cast), std::memory_order_relaxed);
     link.rays = static_cast<uint8_t>(std::min(cast, 255));
     link.V = static_cast<float>(visible) / static_cast<float>(cast);

@@ -307,4 +307,16 @@ uint64_t Visibility::raysCast() const {
     return impl_->rays.load(std::memory_order_relaxed);
 }
 
+int Visibility::visibleAdaptive(const Vec3* from, const Vec3* to, int first, int n, int& cast,
+                                int polygonA, int polygonB) const {
+    first = std::clamp(first, 0, n);
+    int visible = visibleBatch(from, to, first, nullptr, polygonA, polygonB);
+    cast = first;
+    if (visible != 0 && visible != first && n > first) {
+        visible += visibleBatch(from + first, to + first, n - first, nullptr, polygonA, polygonB);
+        cast = n;
+    }
+    return visible;
+}
+
 }  // namespace radiosity

@@ -74,6 +74,13 @@ class Visibility {
     int visibleBatch(const Vec3* from, const Vec3* to, int n, bool* out = nullptr,
                      int polygonA = -1, int polygonB = -1) const;
 
+    /// Adaptive visibility of n segments (one link's or one point's rays): the first
+    /// `first` are cast; only when they disagree (penumbra) are the rest cast too. Returns
+    /// the number of visible segments and sets `cast` to the number cast. polygonA /
+    /// polygonB as in visibleBatch().
+    int visibleAdaptive(const Vec3* from, const Vec3* to, int first, int n, int& cast,
+                        int polygonA = -1, int polygonB = -1) const;
+
     /// First hit along the ray org + t dir with t in (tMin, tMax). `dir` should be unit
     /// length, so that t is a distance in metres (it is in units of |dir| otherwise).
     struct Hit {

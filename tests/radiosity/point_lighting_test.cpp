@@ -4,12 +4,14 @@
 #include <cmath>
 #include <numbers>
 
+#include "furnace.h"
 #include "radiosity/direct_light.h"
 #include "radiosity/final_gather.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
 
 using namespace radiosity;
+using radiosity::test::furnace;
 
 namespace {
 
@@ -29,30 +31,6 @@ Scene lampOverFloor(bool plate) {
     lamp.light = 0;
     s.lights.push_back({"lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(3.0)});
     s.polygons.push_back(lamp);
-    return s;
-}
-
-Scene furnace(double rho, double L) {
-    // A closed box, faces inwards, every face emitting L and reflecting rho.
-    const double sx = 1.0, sy = 1.3, sz = 0.8;
-    const std::vector<std::vector<Vec3>> faces = {
-        {{0, 0, 0}, {sx, 0, 0}, {sx, sy, 0}, {0, sy, 0}},
-        {{0, 0, sz}, {0, sy, sz}, {sx, sy, sz}, {sx, 0, sz}},
-        {{0, 0, 0}, {0, 0, sz}, {sx, 0, sz}, {sx, 0, 0}},
-        {{0, sy, 0}, {sx, sy, 0}, {sx, sy, sz}, {0, sy, sz}},
-        {{0, 0, 0}, {0, sy, 0}, {0, sy, sz}, {0, 0, sz}},
-        {{sx, 0, 0}, {sx, 0, sz}, {sx, sy, sz}, {sx, sy, 0}},
-    };
-    Scene s;
-    s.objects = {"box"};
-    for (const auto& f : faces) {
-        Polygon p = makePolygon(f, 0, Rgb::gray(rho));
-        p.light = static_cast<int>(s.lights.size());
-        s.lights.push_back({"face" + std::to_string(s.lights.size()),
-                            {static_cast<int>(s.polygons.size())},
-                            Rgb::gray(L)});
-        s.polygons.push_back(p);
-    }
     return s;
 }
 
