@@ -34,7 +34,7 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G)
     const int leaf = solver_.hierarchy().locateLeaf(polygon, x);
     Rng rng(seed * 0x9E3779B97F4A7C15ull + 0x1234567ull);
     const int maxRays = options_.maxRays;
-    const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(maxRays))));
+    const int k = strataSide(maxRays);
     uint64_t rays = 0;
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         double g = 0;
@@ -52,11 +52,7 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G)
             // penumbra. Only points above x's horizon carry light (F is clipped the same
             // way), so the others are not counted.
             int perm[256];
-            const int cells = k * k;
-            for (int i = 0; i < cells; ++i) perm[i] = i;
-            for (int i = cells - 1; i > 0; --i)
-                std::swap(perm[i],
-                          perm[static_cast<int>(rng.next() % static_cast<uint64_t>(i + 1))]);
+            shuffledStrata(rng, k, perm);
             Vec3 from[256], to[256];
             int n = 0;
             for (int i = 0; i < maxRays; ++i) {

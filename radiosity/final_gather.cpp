@@ -16,11 +16,13 @@ namespace {
 double pointVisibility(const HierarchicalSolver& solver, int polygon, const Vec3& x, const Vec3& n,
                        int s, int count, Rng& rng, uint64_t& rays) {
     const Hierarchy& h = solver.hierarchy();
-    const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(count))));
+    const int k = strataSide(count);
+    int perm[64];
+    shuffledStrata(rng, k, perm);
     Vec3 from[64], to[64];
     int m = 0;
     for (int i = 0; i < count; ++i) {
-        const int cell = static_cast<int>(rng.next() % static_cast<uint64_t>(k * k));
+        const int cell = perm[i];
         const double u = ((cell % k) + rng.uniform()) / k, v = ((cell / k) + rng.uniform()) / k;
         Vec3 ns;
         const Vec3 y = h.samplePoint(s, u, v, rng.uniform(), &ns);

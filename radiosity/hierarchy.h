@@ -39,11 +39,10 @@ struct Node {
     Bounds3 bounds;
     double area = 0;  ///< element: its area; cluster: total area of its polygons (m^2)
 
-    Rgb rho;     ///< reflectance (cluster: area-weighted mean)
-    Rgb E;       ///< emittance, radiosity units (cluster: area-weighted mean)
-    Rgb B;       ///< radiosity, radiosity units (cluster: area-weighted mean of its contents)
-    Rgb H;       ///< irradiance gathered through this node's own links in the last gather
-    Rgb Hlight;  ///< the part of H that came straight from emitting sources (direct light)
+    Rgb rho;  ///< reflectance (cluster: area-weighted mean)
+    Rgb E;    ///< emittance, radiosity units (cluster: area-weighted mean)
+    Rgb B;    ///< radiosity, radiosity units (cluster: area-weighted mean of its contents)
+    Rgb H;    ///< irradiance gathered through this node's own links in the last gather
     bool emitting = false;  ///< an emitter with E > 0 lies in this node
 
     bool isCluster() const { return kind == NodeKind::cluster; }

@@ -235,24 +235,18 @@ void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
 
 double HierarchicalSolver::sweep() {
     auto t0 = Clock::now();
-    for (Node& n : h_.nodes) n.H = n.Hlight = Rgb{};
+    for (Node& n : h_.nodes) n.H = Rgb{};
     // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
     // result does not depend on the thread count.
     tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              Rgb H, Hlight;
+                              Rgb H;
                               for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
                                   const Link& l = links_[k];
-                                  const Node& S = h_.nodes[l.source];
-                                  const Rgb h = S.B * (l.F * static_cast<double>(l.V));
-                                  H += h;
-                                  // Cluster sources never hold an emitter (the oracle splits
-                                  // them), so an emitting source is a light's element.
-                                  if (S.emitting) Hlight += h;
+                                  H += h_.nodes[l.source].B * (l.F * static_cast<double>(l.V));
                               }
                               h_.nodes[receivers_[i]].H = H;
-                              h_.nodes[receivers_[i]].Hlight = Hlight;
                           }
                       });
     timing_.timeGather += secondsSince(t0);
@@ -363,13 +357,6 @@ Rgb HierarchicalSolver::radiosityAt(int polygon, const Vec3& x) const {
 Rgb HierarchicalSolver::irradianceAt(int polygon, const Vec3& x) const {
     Rgb H;
     for (int n = h_.locateLeaf(polygon, x); n >= 0; n = h_.nodes[n].parent) H += h_.nodes[n].H;
-    return H;
-}
-
-Rgb HierarchicalSolver::indirectIrradianceAt(int polygon, const Vec3& x) const {
-    Rgb H;
-    for (int n = h_.locateLeaf(polygon, x); n >= 0; n = h_.nodes[n].parent)
-        H += h_.nodes[n].H - h_.nodes[n].Hlight;
     return H;
 }
 

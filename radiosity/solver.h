@@ -88,9 +88,6 @@ class HierarchicalSolver {
     /// the leaf containing x and of all its ancestors gathered in the last sweep.
     Rgb irradianceAt(int polygon, const Vec3& x) const;
 
-    /// The part of irradianceAt() that did not come straight from a light: light reflected
-    /// at least once (indirect). Direct light is evaluated per point by DirectLight.
-    Rgb indirectIrradianceAt(int polygon, const Vec3& x) const;
     /// The active links gathered by `node` (empty when it has none).
     std::span<const Link> linksOf(int node) const;
 

@@ -119,14 +119,10 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     // strata visited in independent random orders on the two ends, so any prefix of the
     // set is a uniform sample of both ends: the first minRays rays decide, and in
     // penumbra the rest of the set follows.
-    const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(maxRays))));
+    const int k = strataSide(maxRays);
     int permR[256], permS[256];
-    const int cells = k * k;
-    for (int i = 0; i < cells; ++i) permR[i] = permS[i] = i;
-    for (int i = cells - 1; i > 0; --i) {
-        std::swap(permR[i], permR[static_cast<int>(rng.next() % static_cast<uint64_t>(i + 1))]);
-        std::swap(permS[i], permS[static_cast<int>(rng.next() % static_cast<uint64_t>(i + 1))]);
-    }
+    shuffledStrata(rng, k, permR);
+    shuffledStrata(rng, k, permS);
     for (int i = 0; i < maxRays; ++i) {
         const int a = permR[i], b = permS[i];
         // Only mutually facing point pairs carry light between one-sided surfaces; a ray

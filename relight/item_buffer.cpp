@@ -41,26 +41,4 @@ ItemBuffer castItemBuffer(const Camera& camera, const radiosity::Scene& scene,
     return items;
 }
 
-Image shadeItemBuffer(const ItemBuffer& items,
-                      const std::function<radiosity::Rgb(int, const radiosity::Vec3&)>& radiance) {
-    Image img(items.width, items.height);
-    tbb::parallel_for(tbb::blocked_range<int>(0, items.height),
-                      [&](const tbb::blocked_range<int>& rows) {
-                          for (int y = rows.begin(); y != rows.end(); ++y) {
-                              for (int x = 0; x < items.width; ++x) {
-                                  radiosity::Rgb sum;
-                                  for (int s = 0; s < items.spp; ++s) {
-                                      const int idx = items.sampleIndex(x, y, s);
-                                      if (items.polygon[idx] >= 0)
-                                          sum += radiance(items.polygon[idx], items.point[idx]);
-                                  }
-                                  float* px = img.at(x, y);
-                                  for (int c = 0; c < 3; ++c)
-                                      px[c] = static_cast<float>(sum[c] / items.spp);
-                              }
-                          }
-                      });
-    return img;
-}
-
 }  // namespace relight

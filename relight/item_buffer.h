@@ -7,7 +7,6 @@
 // A sample that hits the back of a one-sided polygon, or nothing, has polygon -1.
 #pragma once
 
-#include <functional>
 #include <vector>
 
 #include "radiosity/scene.h"
@@ -29,11 +28,5 @@ struct ItemBuffer {
 /// Casts spp rays per pixel (spp is rounded down to a square, at least 1).
 ItemBuffer castItemBuffer(const Camera& camera, const radiosity::Scene& scene,
                           const radiosity::Visibility& vis, int spp);
-
-/// Radiance image: per pixel, the mean of radiance(polygon, point) over its samples
-/// (0 for samples with polygon -1).
-Image shadeItemBuffer(
-    const ItemBuffer& items,
-    const std::function<radiosity::Rgb(int polygon, const radiosity::Vec3& x)>& radiance);
 
 }  // namespace relight

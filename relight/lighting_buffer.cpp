@@ -39,10 +39,11 @@ LightingBuffer computeLightingBuffer(const ItemBuffer& items,
     // Gather points: per pixel, one per reflecting polygon its samples see, at their mean
     // (inside the polygon: it is convex).
     buf.gatherPoint.assign(static_cast<size_t>(n), -1);
+    std::vector<int> count;  // samples per gather point of the current pixel
     for (int y = 0; y < items.height; ++y) {
         for (int x = 0; x < items.width; ++x) {
             const int first = static_cast<int>(buf.gatherPolygon.size());
-            std::vector<int> count;
+            count.clear();
             for (int s = 0; s < items.spp; ++s) {
                 const int idx = items.sampleIndex(x, y, s);
                 const int p = items.polygon[idx];

@@ -157,6 +157,7 @@ int runSolve(const SolveArgs& a) {
                               {"gather", st.timeGather},
                               {"push_pull", st.timePushPull},
                               {"reflectance_total", tReflectance},
+                              {"per_pixel_lighting", tLighting},
                               {"total", since(tAll)}}},
                             {"sweeps", st.sweeps},
                             {"refine_rounds", st.refineRounds},
