@@ -47,41 +47,41 @@ double pointVisibility(const HierarchicalSolver& solver, int polygon, const Vec3
 /// near a corner and dark elsewhere would light the corner with its mean.
 constexpr double kDescendF = 0.05;
 
-Rgb elementTransfer(const Hierarchy& h, const Vec3& x, const Vec3& n, int s, double F) {
+template <class Accumulate>
+void elementWeights(const Hierarchy& h, const Vec3& x, const Vec3& n, int s, double F, double V,
+                    Accumulate& acc) {
     const Node& S = h.nodes[s];
-    if (S.isLeaf() || !(F > kDescendF)) return (S.emitting ? S.B - S.E : S.B) * F;
-    Rgb sum;
+    if (S.isLeaf() || !(F > kDescendF)) {
+        acc(s, F * V);
+        return;
+    }
     for (int k = 0; k < S.childCount; ++k) {
         const Node& C = h.nodes[S.firstChild + k];
         const double Fc = pointToPolygon(x, n, C.v.data(), C.vertexCount, C.normal);
-        if (Fc > 0) sum += elementTransfer(h, x, n, S.firstChild + k, Fc);
+        if (Fc > 0) elementWeights(h, x, n, S.firstChild + k, Fc, V, acc);
     }
-    return sum;
 }
 
-}  // namespace
-
-Rgb finalGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x,
-                        int partialRays, uint64_t seed, uint64_t* rays) {
+/// The final gather's traversal: for every link on the chain above the leaf holding x
+/// whose source `carries(source)`, calls acc(node, w) with the weight w = F(x) V(x) by
+/// which the radiosity that `node` reflects reaches x (F per point; element sources
+/// descend into their children near x; V measured from x on PARTIAL links).
+template <class Carries, class Accumulate>
+void gatherWeights(const HierarchicalSolver& solver, int polygon, const Vec3& x, int partialRays,
+                   uint64_t seed, uint64_t* rays, const Carries& carries, Accumulate& acc) {
     const Hierarchy& h = solver.hierarchy();
     const Vec3& n = solver.scene().polygons[polygon].normal;
     partialRays = std::clamp(partialRays, 0, 64);
     Rng rng(seed * 0xD1B54A32D192ED03ull + 0x51ED27ull);
     uint64_t cast = 0;
-    Rgb H;
     for (int node = h.locateLeaf(polygon, x); node >= 0; node = h.nodes[node].parent) {
         for (const Link& l : solver.linksOf(node)) {
             const Node& S = h.nodes[l.source];
             if (!(l.V > 0) && l.type != VisibilityType::partial) continue;
-            // An emitter's own emission is direct light (DirectLight); what it reflects, if
-            // anything, is indirect.
-            const Rgb Bs = S.emitting ? S.B - S.E : S.B;
-            if (!(Bs.maxComponent() > 0)) continue;
-            Rgb transfer;
+            if (!carries(l.source)) continue;
+            double F;
             if (!S.isCluster()) {
-                const double F = pointToPolygon(x, n, S.v.data(), S.vertexCount, S.normal);
-                if (!(F > 0)) continue;
-                transfer = elementTransfer(h, x, n, l.source, F);
+                F = pointToPolygon(x, n, S.v.data(), S.vertexCount, S.normal);
             } else {
                 const Vec3 d = S.centre - x;
                 const double d2 = glm::dot(d, d);
@@ -90,18 +90,55 @@ Rgb finalGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec
                 // gives 0 rather than infinity.
                 if (!(d2 > 1e-24)) continue;
                 const double cosR = glm::dot(n, d) / std::sqrt(d2);
-                if (!(cosR > 0)) continue;
-                transfer = Bs * (S.area * cosR / (4.0 * std::numbers::pi * d2));
+                F = S.area * cosR / (4.0 * std::numbers::pi * d2);
             }
+            if (!(F > 0)) continue;
             const double V =
                 l.type == VisibilityType::partial && partialRays > 0
                     ? pointVisibility(solver, polygon, x, n, l.source, partialRays, rng, cast)
                     : static_cast<double>(l.V);
-            H += transfer * V;
+            if (!(V > 0)) continue;
+            if (S.isCluster())
+                acc(l.source, F * V);
+            else
+                elementWeights(h, x, n, l.source, F, V, acc);
         }
     }
     if (rays) *rays += cast;
+}
+
+}  // namespace
+
+Rgb finalGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x,
+                        int partialRays, uint64_t seed, uint64_t* rays) {
+    const auto& nodes = solver.hierarchy().nodes;
+    // An emitter's own emission is direct light (DirectLight); what it reflects, if
+    // anything, is indirect.
+    auto reflected = [&](int s) {
+        return nodes[s].emitting ? nodes[s].B - nodes[s].E : nodes[s].B;
+    };
+    auto carries = [&](int s) { return reflected(s).maxComponent() > 0; };
+    Rgb H;
+    auto acc = [&](int s, double w) { H += reflected(s) * w; };
+    gatherWeights(solver, polygon, x, partialRays, seed, rays, carries, acc);
     return H;
+}
+
+void finalGatherResponses(const HierarchicalSolver& solver, const LightResponses& responses,
+                          int polygon, const Vec3& x, Rgb* H, int partialRays, uint64_t seed,
+                          uint64_t* rays) {
+    const int L = responses.lights();
+    for (int l = 0; l < L; ++l) H[l] = Rgb{};
+    auto carries = [&](int s) {
+        for (const Rgb& r : responses.reflected(s))
+            if (r.maxComponent() > 0) return true;
+        return false;
+    };
+    auto acc = [&](int s, double w) {
+        const auto r = responses.reflected(s);
+        for (int l = 0; l < L; ++l) H[l] += r[l] * w;
+    };
+    gatherWeights(solver, polygon, x, partialRays, seed, rays, carries, acc);
 }
 
 Rgb gatheredRadiosity(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,

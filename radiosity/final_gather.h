@@ -28,6 +28,7 @@
 #include <cstdint>
 
 #include "radiosity/direct_light.h"
+#include "radiosity/light_response.h"
 #include "radiosity/solver.h"
 
 namespace radiosity {
@@ -37,6 +38,13 @@ namespace radiosity {
 /// `rays` (optional) counts those cast.
 Rgb finalGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x,
                         int partialRays = 4, uint64_t seed = 0, uint64_t* rays = nullptr);
+
+/// The same gather for every light at once: H[l] = indirect irradiance at x per unit
+/// radiance of light l, from `responses` (built on the same solver, same links). H holds
+/// responses.lights() values. The rays and V(x) of PARTIAL links are shared by all lights.
+void finalGatherResponses(const HierarchicalSolver& solver, const LightResponses& responses,
+                          int polygon, const Vec3& x, Rgb* H, int partialRays = 4,
+                          uint64_t seed = 0, uint64_t* rays = nullptr);
 
 /// Radiosity at point x of `polygon` by final gather (radiosity units):
 ///   B(x) = E + rho (sum_l E_l G_l(x) + H_indirect(x)),

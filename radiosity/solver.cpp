@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace radiosity {
 
@@ -324,26 +325,35 @@ void HierarchicalSolver::addLinksFromSource(int node) {
 }
 
 void HierarchicalSolver::setLightRadiance(int light, const Rgb& radiance) {
-    scene_.lights.at(light).radiance = radiance;
+    std::vector<Rgb> all(scene_.lights.size());
+    for (size_t l = 0; l < all.size(); ++l) all[l] = scene_.lights[l].radiance;
+    all.at(light) = radiance;
+    setLightRadiances(all);
+}
+
+void HierarchicalSolver::setLightRadiances(std::span<const Rgb> radiance) {
+    if (radiance.size() != scene_.lights.size())
+        throw std::invalid_argument("setLightRadiances: one radiance per light expected");
+    for (size_t l = 0; l < radiance.size(); ++l) scene_.lights[l].radiance = radiance[l];
     h_.updateEmittance(scene_);
     if (!started_) return;
-    if (radiance.maxComponent() > 0) {
-        // A light that was off when the links were refined has none: refine its own.
+    // A light that was off when the links were refined has none: refine its own.
+    bool added = false;
+    for (size_t light = 0; light < radiance.size(); ++light) {
+        if (!(radiance[light].maxComponent() > 0)) continue;
         for (int p : scene_.lights[light].polygons) {
-            bool hasLinks = false;
-            for (const Link& l : links_) {
+            const bool hasLinks = std::any_of(links_.begin(), links_.end(), [&](const Link& l) {
                 const Node& S = h_.nodes[l.source];
-                if (!S.isCluster() && S.polygon == p) {
-                    hasLinks = true;
-                    break;
-                }
-            }
-            if (!hasLinks) {
-                if (powerThreshold_ <= 0)
-                    powerThreshold_ = options_.epsilon * scene_.emittedPower().maxComponent();
-                addLinksFromSource(h_.polygonRoot[p]);
-            }
+                return !S.isCluster() && S.polygon == p;
+            });
+            if (hasLinks) continue;
+            if (powerThreshold_ <= 0)
+                powerThreshold_ = options_.epsilon * scene_.emittedPower().maxComponent();
+            addLinksFromSource(h_.polygonRoot[p]);
+            added = true;
         }
+    }
+    if (added) {
         if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
         buildReceiverIndex();
     }

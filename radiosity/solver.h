@@ -81,6 +81,8 @@ class HierarchicalSolver {
     /// Emittance edit: keeps subdivision and links, re-gathers. A light that had no links
     /// (it was off when refined) gets its links refined first.
     void setLightRadiance(int light, const Rgb& radiance);
+    /// The same for all lights at once (one radiance per light), with one re-gather.
+    void setLightRadiances(std::span<const Rgb> radiance);
 
     /// B at point x of polygon (radiosity units): the value of the leaf containing it.
     Rgb radiosityAt(int polygon, const Vec3& x) const;

@@ -3,28 +3,29 @@
 // Reading is strict: the spec is an interchange format, so a key we do not know is more
 // likely a typo (whose setting would silently be lost) than an extension; it is an error
 // naming the key path. Every message names scene.json or the OBJ file and the key path or
-// line, so the user can go straight to the problem.
+// line, so the user can go straight to the problem. The JSON helpers (parsing with
+// duplicate-key detection, typed access) are shared with the edit loader: json_reader.h.
 #include "relight/scene_file.h"
 
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <set>
 
 #include <glm/geometric.hpp>
 
+#include "relight/json_reader.h"
 #include "relight/obj_reader.h"
 
 namespace relight {
 
 namespace fs = std::filesystem;
+using jsonio::child;
+using jsonio::element;
+using jsonio::JsonReader;
+using jsonio::parseJsonFile;
 using nlohmann::json;
 using radiosity::checkPolygon;
 using radiosity::makePolygon;
@@ -32,197 +33,6 @@ using radiosity::PolygonCheck;
 using radiosity::Vec3;
 
 namespace {
-
-// ---- key paths -------------------------------------------------------------------------
-
-/// "camera" + "K" -> "camera.K"; at the top level just the key.
-std::string child(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-}
-
-/// "lights" + 2 -> "lights[2]".
-std::string element(const std::string& path, size_t i) {
-    return path + "[" + std::to_string(i) + "]";
-}
-
-// ---- parsing with duplicate-key detection ----------------------------------------------
-
-/// Parses scene.json. nlohmann::json keeps only the last of duplicate keys, which would
-/// silently drop e.g. a first "lights" list, so the parser callback tracks the key path
-/// and reports the first duplicate.
-json parseJsonFile(const fs::path& path) {
-    const std::string file = path.string();
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(file + ": file not found");
-    if (fs::is_directory(path, ec)) throw InputError(file + ": is a directory");
-    std::ifstream in(path);
-    if (!in) throw InputError(file + ": cannot open: " + std::strerror(errno));
-
-    struct Frame {
-        bool isArray = false;
-        size_t next = 0;      // arrays: index of the next element
-        std::string path;     // key path of this object or array
-        std::string lastKey;  // objects: the key whose value is being read
-        std::set<std::string> keys;
-    };
-    std::vector<Frame> stack;
-    std::string duplicate;
-    auto label = [&]() -> std::string {
-        if (stack.empty()) return "";
-        const Frame& top = stack.back();
-        return top.isArray ? element(top.path, top.next) : child(top.path, top.lastKey);
-    };
-    auto endElement = [&] {
-        if (!stack.empty() && stack.back().isArray) ++stack.back().next;
-    };
-    json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
-        switch (event) {
-            case json::parse_event_t::object_start:
-            case json::parse_event_t::array_start: {
-                Frame f;
-                f.isArray = event == json::parse_event_t::array_start;
-                f.path = label();
-                stack.push_back(std::move(f));
-                break;
-            }
-            case json::parse_event_t::object_end:
-            case json::parse_event_t::array_end:
-                if (!stack.empty()) stack.pop_back();
-                endElement();
-                break;
-            case json::parse_event_t::key:
-                if (!stack.empty() && parsed.is_string()) {
-                    Frame& top = stack.back();
-                    top.lastKey = parsed.get<std::string>();
-                    if (!top.keys.insert(top.lastKey).second && duplicate.empty())
-                        duplicate = child(top.path, top.lastKey);
-                }
-                break;
-            case json::parse_event_t::value:
-                endElement();
-                break;
-        }
-        return true;
-    };
-
-    json root;
-    try {
-        root = json::parse(in, callback);
-    } catch (const json::exception& e) {
-        // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column
-        // 5: ..."; keep the part from "parse error", which names the line and column.
-        std::string what = e.what();
-        if (size_t close = what.find("] "); close != std::string::npos) what.erase(0, close + 2);
-        throw InputError(file + ": invalid JSON: " + what);
-    }
-    if (!duplicate.empty()) throw InputError(file + ": key \"" + duplicate + "\": duplicate key");
-    return root;
-}
-
-// ---- typed access to JSON values, every error naming the key path -----------------------
-
-class JsonReader {
-  public:
-    explicit JsonReader(std::string file) : file_(std::move(file)) {}
-
-    [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-        if (path.empty()) throw InputError(file_ + ": " + what);
-        throw InputError(file_ + ": key \"" + path + "\": " + what);
-    }
-    std::string message(const std::string& path, const std::string& what) const {
-        return file_ + ": key \"" + path + "\": " + what;
-    }
-
-    /// Rejects any key of `obj` that is not in `allowed` (see the file comment).
-    void checkKeys(const json& obj, const std::string& path,
-                   std::initializer_list<const char*> allowed) const {
-        if (!obj.is_object()) fail(path, "expected an object, got " + describe(obj));
-        for (auto it = obj.begin(); it != obj.end(); ++it) {
-            bool known = false;
-            for (const char* a : allowed) known = known || it.key() == a;
-            if (!known) fail(child(path, it.key()), "unknown key");
-        }
-    }
-
-    const json& require(const json& obj, const std::string& path, const char* key) const {
-        auto it = obj.find(key);
-        if (it == obj.end()) fail(child(path, key), "missing required key");
-        return *it;
-    }
-
-    /// A finite number. JSON has no NaN, but an overflowing literal (1e999) may read as inf.
-    double number(const json& j, const std::string& path) const {
-        if (!j.is_number()) fail(path, "expected a number, got " + describe(j));
-        const double v = j.get<double>();
-        if (!std::isfinite(v)) fail(path, "number is not finite");
-        return v;
-    }
-
-    /// A positive integer (an integral float such as 320.0 is accepted).
-    int positiveInt(const json& j, const std::string& path) const {
-        const double v = number(j, path);
-        if (!(v >= 1 && v <= 1e6 && v == std::floor(v)))
-            fail(path, "expected a positive integer, got " + j.dump());
-        return static_cast<int>(v);
-    }
-
-    std::string string(const json& j, const std::string& path) const {
-        if (!j.is_string()) fail(path, "expected a string, got " + describe(j));
-        return j.get<std::string>();
-    }
-
-    bool boolean(const json& j, const std::string& path) const {
-        if (!j.is_boolean()) fail(path, "expected true or false, got " + describe(j));
-        return j.get<bool>();
-    }
-
-    /// An array; size must be `size` when it is non-zero, at least `minSize` otherwise.
-    const json& array(const json& j, const std::string& path, size_t size,
-                      size_t minSize = 0) const {
-        if (!j.is_array()) fail(path, "expected an array, got " + describe(j));
-        if (size != 0 && j.size() != size)
-            fail(path, "expected an array of " + std::to_string(size) + " elements, got " +
-                           std::to_string(j.size()));
-        if (j.size() < minSize)
-            fail(path, "expected an array of at least " + std::to_string(minSize) +
-                           " elements, got " + std::to_string(j.size()));
-        return j;
-    }
-
-    Vec3 point(const json& j, const std::string& path) const {
-        array(j, path, 3);
-        return {number(j[0], element(path, 0)), number(j[1], element(path, 1)),
-                number(j[2], element(path, 2))};
-    }
-
-    Rgb rgb(const json& j, const std::string& path) const {
-        array(j, path, 3);
-        return {number(j[0], element(path, 0)), number(j[1], element(path, 1)),
-                number(j[2], element(path, 2))};
-    }
-
-    /// rows x cols numbers, row-major as in the spec.
-    std::vector<std::vector<double>> matrix(const json& j, const std::string& path, size_t rows,
-                                            size_t cols) const {
-        array(j, path, rows);
-        std::vector<std::vector<double>> m(rows, std::vector<double>(cols));
-        for (size_t r = 0; r < rows; ++r) {
-            const std::string rowPath = element(path, r);
-            array(j[r], rowPath, cols);
-            for (size_t c = 0; c < cols; ++c) m[r][c] = number(j[r][c], element(rowPath, c));
-        }
-        return m;
-    }
-
-  private:
-    static std::string describe(const json& j) {
-        std::string d = j.dump();
-        if (d.size() > 40) d = d.substr(0, 37) + "...";
-        return std::string(j.type_name()) + " " + d;
-    }
-
-    std::string file_;
-};
 
 // ---- camera ----------------------------------------------------------------------------
 

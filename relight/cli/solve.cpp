@@ -1,0 +1,147 @@
+// relight solve <scene_dir> [--epsilon E] [--report out.json] [-o radiosity.exr|png]
+#include "relight/cli/commands.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "radiosity/solver.h"
+#include "relight/cli/util.h"
+#include "relight/image.h"
+#include "relight/item_buffer.h"
+#include "relight/lighting_buffer.h"
+#include "relight/reflectance.h"
+#include "relight/scene_file.h"
+
+namespace relight::cli {
+
+int runSolve(const SolveArgs& a) {
+    const auto tAll = Clock::now();
+    SceneFile sf = loadScene(a.scene);
+    for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    radiosity::SolverOptions o;
+    o.epsilon = a.epsilon;
+    o.minArea = a.minArea;
+    o.transfer.minRays = a.minRays;
+    o.transfer.maxRays = a.maxRays;
+    o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
+    std::fprintf(stderr, "relight solve %s: %zu polygons, %zu lights, epsilon %g\n",
+                 a.scene.c_str(), sf.scene.polygons.size(), sf.scene.lights.size(), a.epsilon);
+    radiosity::HierarchicalSolver solver(sf.scene, o);
+    ItemBuffer items;
+    bool haveItems = false;
+    auto needItems = [&] {
+        if (!haveItems)
+            items = castItemBuffer(sf.camera, solver.scene(), solver.visibility(), a.spp);
+        haveItems = true;
+    };
+    LightingBuffer lighting;
+    bool haveLighting = false;
+    double tLighting = 0;
+    auto needLighting = [&] {
+        if (haveLighting) return;
+        const auto t0 = Clock::now();
+        radiosity::DirectLightOptions dlo;
+        dlo.minRays = a.minRays;
+        dlo.maxRays = a.maxRays;
+        lighting = computeLightingBuffer(items, solver, dlo);
+        tLighting = since(t0);
+        haveLighting = true;
+        std::fprintf(stderr, "per-pixel lighting: %llu shadow rays, %zu gather points, %.3f s\n",
+                     static_cast<unsigned long long>(lighting.rays), lighting.gatherPolygon.size(),
+                     tLighting);
+    };
+    double tReflectance = 0;
+    nlohmann::json reflectanceJson = nullptr;
+    if (a.photoReflectance && !sf.photos.empty()) {
+        const auto t0 = Clock::now();
+        const PhotoSpec& ph = sf.photos.front();
+        Image photo = readImage(ph.file, ph.encoding == PhotoSpec::Encoding::srgb);
+        if (photo.width != sf.camera.width || photo.height != sf.camera.height) {
+            throw InputError(ph.file.string() + ": photo is " + std::to_string(photo.width) + "x" +
+                             std::to_string(photo.height) + " but the camera is " +
+                             std::to_string(sf.camera.width) + "x" +
+                             std::to_string(sf.camera.height));
+        }
+        needItems();
+        solver.solve();
+        needLighting();
+        std::fprintf(stderr, "estimating reflectance from %s (%d rounds)\n", ph.file.c_str(),
+                     a.reflectanceRounds);
+        auto rep =
+            estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds);
+        tReflectance = since(t0);
+        reflectanceJson = {{"rounds", rep.rounds},
+                           {"polygons_seen", rep.polygonsSeen},
+                           {"polygons_defaulted", rep.polygonsDefaulted},
+                           {"seconds", tReflectance}};
+    } else {
+        solver.solve();
+    }
+    const radiosity::SolverStats st = solver.stats();
+    std::printf("elements %d (leaves %d), clusters %d\n", st.elements, st.leaves, st.clusters);
+    std::printf("links %d: visible %d, partial %d, invisible %d; passive %d\n", st.links,
+                st.linksVisible, st.linksPartial, st.linksInvisible, st.passiveLinks);
+    std::printf("rays %llu, form factors %llu, shafts %llu (empty %llu)\n",
+                static_cast<unsigned long long>(st.rays),
+                static_cast<unsigned long long>(st.formFactors),
+                static_cast<unsigned long long>(st.shaftTests),
+                static_cast<unsigned long long>(st.shaftEmpty));
+    std::printf(
+        "time: build %.3f s, refine+visibility %.3f s, gather %.3f s, push-pull %.3f s (%d sweeps, "
+        "%d rounds)\n",
+        st.timeBuild, st.timeRefine, st.timeGather, st.timePushPull, st.sweeps, st.refineRounds);
+    const double emitted = st.emittedPower.average();
+    std::printf("energy: emitted %.4g, absorbed %.4g (%.1f %%), radiosity power %.4g\n", emitted,
+                st.absorbedPower.average(),
+                emitted > 0 ? 100 * st.absorbedPower.average() / emitted : 0.0,
+                st.radiosityPower.average());
+    if (!a.output.empty()) {
+        needItems();
+        needLighting();
+        updateIndirect(lighting, solver);
+        Image img = renderRadiosity(items, lighting, solver.scene());
+        writeImage(a.output, img, a.exposure);
+        std::printf("wrote %s (%dx%d, %d samples per pixel)\n", a.output.c_str(), img.width,
+                    img.height, items.spp);
+    }
+    if (!a.report.empty()) {
+        nlohmann::json j = {{"scene", a.scene},
+                            {"epsilon", a.epsilon},
+                            {"min_area_m2", solver.minArea()},
+                            {"elements", st.elements},
+                            {"leaves", st.leaves},
+                            {"clusters", st.clusters},
+                            {"links",
+                             {{"total", st.links},
+                              {"visible", st.linksVisible},
+                              {"partial", st.linksPartial},
+                              {"invisible", st.linksInvisible},
+                              {"passive", st.passiveLinks}}},
+                            {"rays", st.rays},
+                            {"form_factors", st.formFactors},
+                            {"shafts", {{"tests", st.shaftTests}, {"empty", st.shaftEmpty}}},
+                            {"time_s",
+                             {{"build", st.timeBuild},
+                              {"refine_visibility", st.timeRefine},
+                              {"gather", st.timeGather},
+                              {"push_pull", st.timePushPull},
+                              {"reflectance_total", tReflectance},
+                              {"per_pixel_lighting", tLighting},
+                              {"total", since(tAll)}}},
+                            {"sweeps", st.sweeps},
+                            {"refine_rounds", st.refineRounds},
+                            {"energy",
+                             {{"emitted", rgbJson(st.emittedPower)},
+                              {"absorbed", rgbJson(st.absorbedPower)},
+                              {"radiosity_power", rgbJson(st.radiosityPower)}}},
+                            {"reflectance", reflectanceJson}};
+        writeJsonAtomic(a.report, j);
+        std::printf("wrote %s\n", a.report.c_str());
+    }
+    return 0;
+}
+
+}  // namespace relight::cli

@@ -1,0 +1,57 @@
+// The ratio display of Loscos, Drettakis & Robert 2000 (Eq. (3), §4.5, §5.3): each pixel
+// of the photo texture T is modulated by B/D, the ratio of the current radiosity to the
+// display correction factor, both known at the leaf vertices and interpolated across the
+// leaves (Gouraud), as the paper's glColor per vertex does.
+//
+// DisplayMap holds, per pixel, what the display needs from the item buffer: for each leaf
+// vertex that shades one of its samples, the sum over those samples of the sample's
+// interpolation weight (divided by the samples per pixel); the fraction of samples that see
+// each light's emitting face; the fraction that see no reflecting surface (kept as in the
+// photo). A light edit then costs one multiply-add per (pixel, vertex) pair.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "radiosity/leaf_mesh.h"
+#include "radiosity/scene.h"
+#include "relight/image.h"
+#include "relight/item_buffer.h"
+
+namespace relight {
+
+struct DisplayMap {
+    int width = 0, height = 0;
+    std::vector<int> start;         ///< per pixel, + 1 at the end: its range of vertex/weight
+    std::vector<int> vertex;        ///< leaf vertex ids
+    std::vector<float> weight;      ///< interpolation weight x fraction of the pixel
+    std::vector<float> unshaded;    ///< per pixel: fraction of samples kept as in the photo
+    std::vector<int> emitterStart;  ///< per pixel, + 1: its range of emitterLight/Fraction
+    std::vector<int> emitterLight;  ///< light whose emitting face a sample sees
+    std::vector<float> emitterFraction;
+};
+
+/// Builds the map from the item buffer and the leaf mesh (locates each sample's leaf).
+DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
+                           const radiosity::Scene& scene);
+
+/// Per-vertex display ratio r = B/D, channel by channel, guarded where D vanishes (umbra,
+/// surfaces no light reaches): r = (B + delta) / (D + delta) with delta = kRatioFloor
+/// times the mean of D over the vertices (per channel). Where D >> delta this is B/D to
+/// within delta/D; where both vanish it is 1 (nothing changes: the photo is kept); where
+/// only D vanishes it is bounded by B/delta instead of infinite. Dimensionless.
+constexpr double kRatioFloor = 1e-4;
+std::vector<radiosity::Rgb> displayRatio(std::span<const radiosity::Rgb> B,
+                                         std::span<const radiosity::Rgb> D);
+
+/// The relit image: per pixel
+///   out = max(0, T_rest * rbar + sum_e f_e L_e(now)),   T_rest = T - sum_e f_e L_e(photo)
+/// where rbar is the mean display ratio over the pixel's non-emitter samples (ratio 1 for
+/// the unshaded ones) and f_e the fraction of samples that see light e's emitting face:
+/// a light's face shows its current radiance (spec), the rest of the pixel is the photo
+/// modulated by B/D.
+Image renderRatio(const DisplayMap& map, const Image& photo, std::span<const radiosity::Rgb> ratio,
+                  std::span<const radiosity::Rgb> radianceNow,
+                  std::span<const radiosity::Rgb> radianceInPhoto);
+
+}  // namespace relight

@@ -1,0 +1,119 @@
+#include "relight/relighting.h"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "relight/lighting_buffer.h"
+#include "relight/reflectance.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// The first photo, linear, checked against the camera; non-finite pixels are an error
+/// (they would spread through every ratio that touches them).
+Image loadPhoto(const SceneFile& sf) {
+    if (sf.photos.empty())
+        throw InputError((sf.dir / "scene.json").string() +
+                         ": key \"photos\": the scene has no photo to relight");
+    const PhotoSpec& ph = sf.photos.front();
+    Image photo = readImage(ph.file, ph.encoding == PhotoSpec::Encoding::srgb);
+    if (photo.width != sf.camera.width || photo.height != sf.camera.height)
+        throw InputError(ph.file.string() + ": photo is " + std::to_string(photo.width) + "x" +
+                         std::to_string(photo.height) + " but the camera is " +
+                         std::to_string(sf.camera.width) + "x" + std::to_string(sf.camera.height));
+    for (int y = 0; y < photo.height; ++y)
+        for (int x = 0; x < photo.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(photo.at(x, y)[c]))
+                    throw InputError(ph.file.string() + ": pixel (" + std::to_string(x) + ", " +
+                                     std::to_string(y) + ") is not a finite number");
+    return photo;
+}
+
+}  // namespace
+
+std::unique_ptr<Relighting> prepareRelighting(const std::filesystem::path& sceneDir,
+                                              const RelightOptions& o) {
+    auto say = [&](const std::string& m) {
+        if (o.progress) o.progress(m);
+    };
+    auto r = std::make_unique<Relighting>();
+    r->scene = loadScene(sceneDir);
+    for (size_t l = 0; l < r->scene.estimateRadiance.size(); ++l)
+        if (r->scene.estimateRadiance[l])
+            throw InputError((sceneDir / "scene.json").string() + ": key \"lights[" +
+                             std::to_string(l) +
+                             "].radiance\": \"estimate\" is not supported yet by relighting");
+    r->photo = loadPhoto(r->scene);
+    r->photoRadiance.resize(r->scene.scene.lights.size());
+    for (size_t l = 0; l < r->photoRadiance.size(); ++l)
+        r->photoRadiance[l] = r->scene.scene.lights[l].radiance;  // the photo's state
+
+    radiosity::SolverOptions so;
+    so.epsilon = o.epsilon;
+    so.transfer.minRays = o.minRays;
+    so.transfer.maxRays = o.maxRays;
+    so.progress = o.progress;
+    auto t0 = Clock::now();
+    r->solver = std::make_unique<radiosity::HierarchicalSolver>(r->scene.scene, so);
+    say("item buffer");
+    r->items = castItemBuffer(r->scene.camera, r->solver->scene(), r->solver->visibility(), o.spp);
+    r->times.itemBuffer = since(t0);
+
+    t0 = Clock::now();
+    say("radiosity solution of the photo's lights");
+    r->solver->solve();
+    r->times.solve = since(t0);
+
+    t0 = Clock::now();
+    say("reflectance from the photo");
+    radiosity::DirectLightOptions dlo;
+    dlo.minRays = o.minRays;
+    dlo.maxRays = o.maxRays;
+    const LightingBuffer lighting = computeLightingBuffer(r->items, *r->solver, dlo);
+    estimatePolygonReflectance(*r->solver, r->scene, r->items, lighting, r->photo,
+                               o.reflectanceRounds);
+    r->times.reflectance = since(t0);
+
+    t0 = Clock::now();
+    say("per-light responses");
+    r->responses = std::make_unique<radiosity::LightResponses>(*r->solver);
+    r->times.responses = since(t0);
+
+    t0 = Clock::now();
+    r->mesh = std::make_unique<radiosity::LeafMesh>(r->solver->hierarchy());
+    say("lighting at " + std::to_string(r->mesh->vertices().size()) + " leaf vertices");
+    r->vertexLighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo);
+    r->times.vertexLighting = since(t0);
+
+    t0 = Clock::now();
+    r->display = buildDisplayMap(r->items, *r->mesh, r->solver->scene());
+    // D: the photo's own lighting, so that the unedited display is the photo (B/D = 1).
+    r->D = vertexIrradiance(*r, r->photoRadiance);
+    r->times.displayMap = since(t0);
+    return r;
+}
+
+std::vector<Rgb> vertexIrradiance(const Relighting& r, std::span<const Rgb> radiance) {
+    const int n = static_cast<int>(r.vertexLighting.vertexCount());
+    std::vector<Rgb> B(static_cast<size_t>(n));
+    for (int v = 0; v < n; ++v) B[v] = r.vertexLighting.irradiance(v, radiance);
+    return B;
+}
+
+Image renderEdit(const Relighting& r, std::span<const Rgb> radiance) {
+    const auto B = vertexIrradiance(r, radiance);
+    const auto ratio = displayRatio(B, r.D);
+    return renderRatio(r.display, r.photo, ratio, radiance, r.photoRadiance);
+}
+
+}  // namespace relight

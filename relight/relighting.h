@@ -1,0 +1,82 @@
+// Relighting the photograph: the prepared state and the light edit.
+//
+// prepareRelighting() runs the pipeline once (Loscos et al. 2000, Fig. 5):
+//   1. photo and camera: the first photo (sRGB decoded when the scene says so), checked
+//      against the camera; the item buffer (polygon and point per sample, Embree);
+//   2. the radiosity solution of the photo's lights, and reflectance from the photo
+//      (relight/reflectance.h);
+//   3. per-light responses of the solution (radiosity/light_response.h) and the
+//      irradiance per light at every leaf vertex (relight/vertex_lighting.h);
+//   4. the display map (relight/ratio_display.h) and the display correction factor D at
+//      the vertices: the radiosity of the photo's own lighting, so that the unedited
+//      display B/D is 1 and reproduces the photo.
+// renderEdit() then renders any setting of the real lights' radiances by superposition:
+//   B(v) = rho sum_l L_l h_l(v),  pixel = T * B/D  (Eq. (3)),
+// a weighted sum per vertex and one multiply-add per (pixel, vertex) pair.
+//
+// Not yet here (the later steps): texture-based refinement of shadow boundaries
+// (§4.2), shadow regions and real-shadow removal (§4.3-4.4), and emittance estimation for
+// lights whose radiance is "estimate". Without shadow removal this is the 1997 method
+// (Drettakis et al. 1997, the paper's Fig. 9(c)): B/D at the vertices, D = B_orig.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "radiosity/leaf_mesh.h"
+#include "radiosity/light_response.h"
+#include "radiosity/solver.h"
+#include "relight/image.h"
+#include "relight/item_buffer.h"
+#include "relight/ratio_display.h"
+#include "relight/scene_file.h"
+#include "relight/vertex_lighting.h"
+
+namespace relight {
+
+struct RelightOptions {
+    double epsilon = 1e-4;  ///< BF refinement threshold (radiosity/solver.h)
+    int spp = 16;           ///< item-buffer samples per pixel
+    int minRays = 4, maxRays = 16;
+    int reflectanceRounds = 12;
+    std::function<void(const std::string&)> progress;  ///< one line per step (may be empty)
+};
+
+struct PrepareTimes {
+    double itemBuffer = 0, solve = 0, reflectance = 0, responses = 0, vertexLighting = 0,
+           displayMap = 0;  ///< seconds
+};
+
+struct Relighting {
+    SceneFile scene;
+    Image photo;  ///< T: the first photo, linear
+    std::unique_ptr<radiosity::HierarchicalSolver> solver;
+    ItemBuffer items;
+    std::unique_ptr<radiosity::LeafMesh> mesh;
+    std::unique_ptr<radiosity::LightResponses> responses;
+    VertexLighting vertexLighting;
+    DisplayMap display;
+    std::vector<radiosity::Rgb> photoRadiance;  ///< per light: its radiance in the photo
+    std::vector<radiosity::Rgb> D;              ///< per vertex: display correction factor
+    PrepareTimes times;
+};
+
+/// Loads the scene and runs the pipeline above. Throws InputError for bad input (photo
+/// missing, unreadable, of the wrong size, with NaN/Inf pixels; no photo at all).
+std::unique_ptr<Relighting> prepareRelighting(const std::filesystem::path& sceneDir,
+                                              const RelightOptions& options);
+
+/// Per-vertex radiosity B for the lights' radiances (one per light; photo units):
+/// the vertex's irradiance by superposition (vertex reflectance cancels in B/D and is
+/// left out: B and D here are irradiances of the same vertex).
+std::vector<radiosity::Rgb> vertexIrradiance(const Relighting& r,
+                                             std::span<const radiosity::Rgb> radiance);
+
+/// The relit photo for the lights' radiances (superposition path).
+Image renderEdit(const Relighting& r, std::span<const radiosity::Rgb> radiance);
+
+}  // namespace relight

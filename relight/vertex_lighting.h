@@ -1,0 +1,43 @@
+// VertexLighting: the irradiance at every leaf vertex, split by light.
+//
+// Loscos et al. 2000 display B and D at the vertices of the leaf elements (§4.4.1: "we
+// modulate the original texture by a correction factor computed at the vertices of the leaf
+// radiosity patches"; §5.3: glColor per vertex). Here each vertex holds, for every light l,
+// its irradiance per unit radiance of l:
+//   h_l(v) = pi G_l(v) + H_l,indirect(v)
+// - direct: G_l(v) per point (radiosity/direct_light.h: exact form factor, shadow rays
+//   where the solution's shafts are not empty), times E = pi L for L = 1;
+// - indirect: final gather of the per-light responses (radiosity/light_response.h).
+// Because the solution is linear in the lights' radiances L_l, the irradiance of any
+// light setting is the weighted sum  H(v) = sum_l L_l * h_l(v)  (channel by channel): a
+// change of colour or strength costs lights x vertices multiply-adds, no ray, no gather.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "radiosity/direct_light.h"
+#include "radiosity/leaf_mesh.h"
+#include "radiosity/light_response.h"
+#include "radiosity/solver.h"
+
+namespace relight {
+
+struct VertexLighting {
+    int lights = 0;
+    std::vector<radiosity::Rgb> response;  ///< [vertex * lights + l], per unit radiance
+    uint64_t rays = 0;                     ///< shadow and gather rays cast
+
+    size_t vertexCount() const { return lights > 0 ? response.size() / lights : 0; }
+    /// H(v) = sum_l radiance[l] * h_l(v) (radiosity units).
+    radiosity::Rgb irradiance(int v, std::span<const radiosity::Rgb> radiance) const;
+};
+
+/// Evaluates h_l at every vertex of `mesh` (built on `solver`'s hierarchy), in parallel,
+/// deterministically (each vertex draws its rays from its own index).
+VertexLighting computeVertexLighting(const radiosity::HierarchicalSolver& solver,
+                                     const radiosity::LeafMesh& mesh,
+                                     const radiosity::LightResponses& responses,
+                                     radiosity::DirectLightOptions options = {});
+
+}  // namespace relight

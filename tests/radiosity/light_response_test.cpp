@@ -1,0 +1,111 @@
+// LightResponses and finalGatherResponses: the solution split by light equals the solution
+// of the same links re-gathered with the lights' new radiances (linearity in emittance).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "radiosity/final_gather.h"
+#include "radiosity/light_response.h"
+#include "radiosity/solver.h"
+
+using namespace radiosity;
+
+namespace {
+
+/// A 4 m x 4 m floor with a plate above half of it (both grey 0.5) and two lamps facing
+/// down at different places: light 1 starts switched off when `secondOn` is false.
+Scene twoLamps(bool secondOn) {
+    Scene s;
+    s.objects = {"floor", "plate", "lamps"};
+    s.polygons.push_back(
+        makePolygon({{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}}, 0, Rgb::gray(0.5)));
+    s.polygons.push_back(makePolygon({{-2, -2, 0.5}, {-2, 2, 0.5}, {0, 2, 0.5}, {0, -2, 0.5}}, 1,
+                                     Rgb{0.7, 0.5, 0.3}));
+    auto lamp = [&](double cx, const Rgb& L, const char* name) {
+        Polygon p = makePolygon(
+            {{cx - 0.3, -0.3, 1}, {cx - 0.3, 0.3, 1}, {cx + 0.3, 0.3, 1}, {cx + 0.3, -0.3, 1}}, 2,
+            Rgb{});
+        p.light = static_cast<int>(s.lights.size());
+        s.lights.push_back({name, {static_cast<int>(s.polygons.size())}, L});
+        s.polygons.push_back(p);
+    };
+    lamp(-0.5, Rgb::gray(3.0), "left");
+    lamp(1.0, secondOn ? Rgb{1, 2, 0.5} : Rgb{}, "right");
+    return s;
+}
+
+SolverOptions tightOptions() {
+    SolverOptions o;
+    o.epsilon = 1e-3;
+    // Both paths iterate to the same fixed point; a tolerance far below the assertion's
+    // 1e-6 keeps the convergence error out of the comparison.
+    o.tolerance = 1e-10;
+    return o;
+}
+
+/// Largest |a - b| over the leaves, relative to the largest B.
+double leafDifference(const HierarchicalSolver& solver, const std::vector<Rgb>& expected) {
+    const auto& nodes = solver.hierarchy().nodes;
+    double maxB = 0, maxDiff = 0;
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        if (nodes[n].isCluster() || !nodes[n].isLeaf()) continue;
+        maxB = std::max(maxB, nodes[n].B.maxComponent());
+        for (int c = 0; c < 3; ++c)
+            maxDiff = std::max(maxDiff, std::abs(nodes[n].B[c] - expected[n][c]));
+    }
+    return maxB > 0 ? maxDiff / maxB : maxDiff;
+}
+
+void checkSuperposition(bool secondOn) {
+    HierarchicalSolver solver(twoLamps(secondOn), tightOptions());
+    solver.solve();
+    const LightResponses responses(solver);
+    const std::vector<Rgb> radiance = {{0.4, 2.0, 1.1}, {2.5, 0.2, 1.0}};
+    // Superposition: B = E + sum_l L_l R_l, with E from the new radiances.
+    solver.setLightRadiances(radiance);
+    const auto& nodes = solver.hierarchy().nodes;
+    std::vector<Rgb> sum(nodes.size());
+    for (size_t n = 0; n < nodes.size(); ++n)
+        sum[n] = nodes[n].E + responses.reflected(static_cast<int>(n), radiance);
+    // The re-gather path has just run (setLightRadiances): compare.
+    EXPECT_LT(leafDifference(solver, sum), 1e-6);
+}
+
+}  // namespace
+
+TEST(LightResponses, WeightedSumEqualsReGather) {
+    checkSuperposition(true);
+}
+
+TEST(LightResponses, LightOffWhenSolvedGetsLinksAndAResponse) {
+    // The right lamp had no links when the solution was refined; its response must be
+    // complete all the same, so switching it on by superposition matches a re-gather.
+    checkSuperposition(false);
+    HierarchicalSolver solver(twoLamps(false), tightOptions());
+    solver.solve();
+    const LightResponses responses(solver);
+    double right = 0;
+    for (size_t n = 0; n < solver.hierarchy().nodes.size(); ++n)
+        right = std::max(right, responses.reflected(static_cast<int>(n))[1].maxComponent());
+    EXPECT_GT(right, 0.0);
+    // The solver's own state is restored: the right lamp is still off.
+    EXPECT_EQ(solver.scene().lights[1].radiance, Rgb{});
+}
+
+TEST(LightResponses, GatheredResponsesSumToTheFinalGather) {
+    // Same links, same rays (same seed), per-light sources: sum_l L_l H_l(x) equals the
+    // final gather of the re-gathered solution up to the solution's convergence.
+    HierarchicalSolver solver(twoLamps(true), tightOptions());
+    solver.solve();
+    const LightResponses responses(solver);
+    const std::vector<Rgb> radiance = {{1.0, 0.2, 0.7}, {0.1, 1.5, 2.0}};
+    solver.setLightRadiances(radiance);
+    for (const Vec3 x : {Vec3{0.5, 0.3, 0}, Vec3{-1.0, 1.2, 0}, Vec3{1.9, -1.9, 0}}) {
+        Rgb H[2];
+        finalGatherResponses(solver, responses, 0, x, H, 4, 11);
+        const Rgb sum = radiance[0] * H[0] + radiance[1] * H[1];
+        const Rgb direct = finalGatherIndirect(solver, 0, x, 4, 11);
+        ASSERT_GT(direct.maxComponent(), 0.0);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], direct[c], 1e-6 * direct.maxComponent());
+    }
+}

@@ -1,0 +1,392 @@
+// Tests of edit loading (relight/edit_file.h): every bundled edit of data/room, the
+// radiance an edit gives each real light (exact equalities: an edit only copies or scales
+// numbers), and one bad input per error class, each of which must raise an InputError
+// naming the edit file and the key path.
+#include "relight/edit_file.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using radiosity::Rgb;
+using relight::editedRadiance;
+using relight::EditFile;
+using relight::InputError;
+using relight::loadEdit;
+using relight::requireLightsOnly;
+using relight::SceneFile;
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+/// A fresh folder under the system's temporary directory, removed afterwards.
+class TempDir {
+  public:
+    TempDir() {
+        static std::atomic<int> counter{0};
+        const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+        path_ = fs::temp_directory_path() /
+                ("relight_edit_test_" + std::to_string(stamp) + "_" + std::to_string(counter++));
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    const fs::path& path() const { return path_; }
+    fs::path write(const std::string& name, const std::string& text) const {
+        std::ofstream out(path_ / name, std::ios::binary);
+        out << text;
+        return path_ / name;
+    }
+
+  private:
+    fs::path path_;
+};
+
+const fs::path kRoom = fs::path(RELIGHT_DATA_DIR) / "room";
+
+/// data/room, loaded once: loading solves nothing but reads the OBJ.
+const SceneFile& room() {
+    static const SceneFile sf = relight::loadScene(kRoom);
+    return sf;
+}
+
+EditFile loadRoomEdit(const std::string& name) {
+    return loadEdit(kRoom / "edits" / (name + ".json"), room());
+}
+
+size_t lightIndex(const SceneFile& sf, const std::string& name) {
+    const int i = sf.scene.findLight(name);
+    EXPECT_GE(i, 0) << name;
+    return static_cast<size_t>(i);
+}
+
+/// The InputError's message for `f`; fails the test when `f` throws none.
+template <class F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no InputError";
+    return {};
+}
+
+// ---- the bundled edits -----------------------------------------------------------------
+
+const std::vector<std::string> kLightsOnly = {"identity", "back_off", "colours",
+                                              "left_off_right_double", "right_off_left_double"};
+const std::vector<std::string> kLater = {"virtual_box", "virtual_box_moved",
+                                         "virtual_light_and_box", "virtual_light_only",
+                                         "remove_table"};
+
+TEST(RoomEdits, EveryBundledEditIsCovered) {
+    std::set<std::string> listed(kLightsOnly.begin(), kLightsOnly.end());
+    listed.insert(kLater.begin(), kLater.end());
+    for (const auto& entry : fs::directory_iterator(kRoom / "edits")) {
+        if (entry.path().extension() != ".json") continue;
+        EXPECT_TRUE(listed.count(entry.path().stem().string())) << entry.path();
+    }
+}
+
+TEST(RoomEdits, LightsOnlyEditsLoadAndAreAccepted) {
+    for (const std::string& name : kLightsOnly) {
+        SCOPED_TRACE(name);
+        const EditFile edit = loadRoomEdit(name);
+        EXPECT_FALSE(edit.hasAddLights || edit.hasAddObjects || edit.hasRemoveObjects);
+        EXPECT_NO_THROW(requireLightsOnly(edit));
+    }
+}
+
+TEST(RoomEdits, VirtualAndRemovalEditsLoadButAreNotSupportedYet) {
+    for (const std::string& name : kLater) {
+        SCOPED_TRACE(name);
+        const EditFile edit = loadRoomEdit(name);
+        EXPECT_TRUE(edit.hasAddLights || edit.hasAddObjects || edit.hasRemoveObjects);
+        const std::string msg = errorOf([&] { requireLightsOnly(edit); });
+        EXPECT_TRUE(contains(msg, edit.file.string() + ": ")) << msg;
+        EXPECT_TRUE(contains(msg, "not supported yet")) << msg;
+    }
+    // The message names the parts, so the user knows what to take out.
+    const std::string msg =
+        errorOf([] { requireLightsOnly(loadRoomEdit("virtual_light_and_box")); });
+    EXPECT_TRUE(contains(msg, "\"add_lights\" and \"add_objects\" are not supported yet")) << msg;
+    EXPECT_TRUE(contains(errorOf([] { requireLightsOnly(loadRoomEdit("remove_table")); }),
+                         "\"remove_objects\" is not supported yet"));
+}
+
+TEST(RoomEdits, LeftOffRightDouble) {
+    // The file: {"A": {"scale": 0.0}, "B": {"scale": 2.0}}; C and D are not named.
+    const SceneFile& sf = room();
+    const EditFile edit = loadRoomEdit("left_off_right_double");
+    ASSERT_EQ(edit.lights.size(), 2u);
+    const std::vector<Rgb>& nominal = sf.nominalRadiance;
+    const std::vector<Rgb> out = editedRadiance(sf, edit, nominal);
+    ASSERT_EQ(out.size(), 4u);
+    const size_t a = lightIndex(sf, "A"), b = lightIndex(sf, "B");
+    EXPECT_EQ(out[a], Rgb{});
+    EXPECT_EQ(out[b], nominal[b] * 2.0);
+    EXPECT_NE(out[b], Rgb{});
+    // All four lights are on in the room's photo, so C and D keep their nominal radiance.
+    for (const char* name : {"C", "D"})
+        EXPECT_EQ(out[lightIndex(sf, name)], nominal[lightIndex(sf, name)]);
+}
+
+TEST(RoomEdits, ColoursSetsTheRadianceInTheFile) {
+    const SceneFile& sf = room();
+    const std::vector<Rgb> out = editedRadiance(sf, loadRoomEdit("colours"), sf.nominalRadiance);
+    EXPECT_EQ(out[lightIndex(sf, "A")], Rgb(14.0, 3.0, 2.0));
+    EXPECT_EQ(out[lightIndex(sf, "B")], Rgb(2.5, 12.0, 3.0));
+    EXPECT_EQ(out[lightIndex(sf, "C")], Rgb(2.0, 4.0, 15.0));
+    EXPECT_EQ(out[lightIndex(sf, "D")], Rgb(12.0, 10.0, 1.5));
+}
+
+TEST(RoomEdits, IdentityGivesThePhotosState) {
+    const SceneFile& sf = room();
+    const EditFile edit = loadRoomEdit("identity");
+    EXPECT_TRUE(edit.lights.empty());
+    EXPECT_EQ(editedRadiance(sf, edit, sf.nominalRadiance), sf.nominalRadiance);
+}
+
+TEST(RoomEdits, ScaleAppliesToTheGivenNominalRadiance) {
+    // Where scene.json says "estimate", the caller passes the estimated radiance.
+    const SceneFile& sf = room();
+    const std::vector<Rgb> estimated(sf.scene.lights.size(), Rgb(1.0, 2.0, 4.0));
+    const std::vector<Rgb> out =
+        editedRadiance(sf, loadRoomEdit("right_off_left_double"), estimated);
+    EXPECT_EQ(out[lightIndex(sf, "A")], Rgb(2.0, 4.0, 8.0));
+    EXPECT_EQ(out[lightIndex(sf, "B")], Rgb{});
+    EXPECT_EQ(out[lightIndex(sf, "C")], Rgb(1.0, 2.0, 4.0));
+}
+
+TEST(RoomEdits, WrongNumberOfNominalRadiancesIsAProgrammingError) {
+    const SceneFile& sf = room();
+    EXPECT_THROW(editedRadiance(sf, loadRoomEdit("identity"), {Rgb{}}), std::invalid_argument);
+}
+
+// ---- a small scene in memory: lights on and off in the photo ---------------------------
+
+/// Lights L1 (on in the photo) and L2 (off); only their names and the photo matter here.
+SceneFile twoLightScene() {
+    SceneFile sf;
+    for (const char* name : {"L1", "L2"}) {
+        radiosity::Light light;
+        light.name = name;
+        sf.scene.lights.push_back(light);
+    }
+    sf.nominalRadiance = {Rgb(1, 2, 3), Rgb(4, 5, 6)};
+    sf.estimateRadiance = {false, false};
+    relight::PhotoSpec photo;
+    photo.lightsOn = {"L1"};
+    sf.photos.push_back(photo);
+    return sf;
+}
+
+class EditFixture : public ::testing::Test {
+  protected:
+    TempDir dir;
+    SceneFile sf = twoLightScene();
+
+    std::string editFile() const { return (dir.path() / "edit.json").string(); }
+    EditFile load(const std::string& text) const {
+        return loadEdit(dir.write("edit.json", text), sf);
+    }
+    /// Loads and returns the InputError's message; fails the test when there is none.
+    std::string loadError(const std::string& text) const {
+        return errorOf([&] { load(text); });
+    }
+    /// {"format": "relight-edit/1", "lights": {"L1": entry}}
+    static std::string withL1(const json& entry) {
+        return json{{"format", "relight-edit/1"}, {"lights", {{"L1", entry}}}}.dump(1);
+    }
+};
+
+TEST_F(EditFixture, EmptyEditGivesThePhotosState) {
+    const EditFile edit = load(R"({"format":"relight-edit/1"})");
+    EXPECT_EQ(edit.file, dir.path() / "edit.json");
+    EXPECT_TRUE(edit.lights.empty());
+    EXPECT_NO_THROW(requireLightsOnly(edit));
+    const std::vector<Rgb> out = editedRadiance(sf, edit, sf.nominalRadiance);
+    EXPECT_EQ(out, (std::vector<Rgb>{Rgb(1, 2, 3), Rgb{}}));
+}
+
+TEST_F(EditFixture, LightOffInThePhotoStaysOffUnlessNamed) {
+    // Naming only L1 leaves L2 off...
+    EditFile edit = load(withL1({{"scale", 0.5}}));
+    EXPECT_EQ(editedRadiance(sf, edit, sf.nominalRadiance),
+              (std::vector<Rgb>{Rgb(0.5, 1, 1.5), Rgb{}}));
+    // ...and scale 1 turns L2 on at its nominal radiance.
+    edit = load(R"({"format":"relight-edit/1","lights":{"L2":{"scale":1}}})");
+    EXPECT_EQ(editedRadiance(sf, edit, sf.nominalRadiance),
+              (std::vector<Rgb>{Rgb(1, 2, 3), Rgb(4, 5, 6)}));
+    edit = load(R"({"format":"relight-edit/1","lights":{"L2":{"radiance":[7,8,9]}}})");
+    EXPECT_EQ(editedRadiance(sf, edit, sf.nominalRadiance)[1], Rgb(7, 8, 9));
+}
+
+TEST_F(EditFixture, WithoutAPhotoEveryLightIsOn) {
+    sf.photos.clear();
+    const EditFile edit = load(R"({"format":"relight-edit/1"})");
+    EXPECT_EQ(editedRadiance(sf, edit, sf.nominalRadiance), sf.nominalRadiance);
+}
+
+TEST_F(EditFixture, EmptyAddAndRemoveListsChangeNothing) {
+    const EditFile edit = load(
+        R"({"format":"relight-edit/1","lights":{},"add_lights":[],"add_objects":[],"remove_objects":[]})");
+    EXPECT_FALSE(edit.hasAddLights || edit.hasAddObjects || edit.hasRemoveObjects);
+    EXPECT_NO_THROW(requireLightsOnly(edit));
+}
+
+TEST_F(EditFixture, EditLoadedAgainstAnotherSceneIsAProgrammingError) {
+    const EditFile edit = load(withL1({{"scale", 1}}));
+    SceneFile other = sf;
+    other.scene.lights[0].name = "X";
+    EXPECT_THROW(editedRadiance(other, edit, other.nominalRadiance), std::invalid_argument);
+}
+
+// ---- one bad input per error class -----------------------------------------------------
+
+TEST_F(EditFixture, MissingFile) {
+    const std::string msg = errorOf([&] { loadEdit(dir.path() / "none.json", sf); });
+    EXPECT_TRUE(contains(msg, (dir.path() / "none.json").string() + ": file not found")) << msg;
+}
+
+TEST_F(EditFixture, InvalidJsonNamesFileAndLine) {
+    const std::string msg = loadError("{\n \"format\": \"relight-edit/1\",\n \"lights\": {,}\n}\n");
+    EXPECT_TRUE(contains(msg, editFile() + ": invalid JSON")) << msg;
+    EXPECT_TRUE(contains(msg, "line 3")) << msg;
+}
+
+TEST_F(EditFixture, DuplicateKeysAreErrors) {
+    std::string msg =
+        loadError(R"({"format":"relight-edit/1","lights":{"L1":{"scale":0},"L1":{"scale":2}}})");
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1\": duplicate key")) << msg;
+    msg = loadError(R"({"format":"relight-edit/1","lights":{"L1":{"scale":0,"scale":2}}})");
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1.scale\": duplicate key")) << msg;
+}
+
+TEST_F(EditFixture, TopLevelMustBeAnObject) {
+    const std::string msg = loadError("[1, 2]");
+    EXPECT_TRUE(contains(msg, editFile() + ": the top level must be a JSON object")) << msg;
+}
+
+TEST_F(EditFixture, MissingFormat) {
+    const std::string msg = loadError(R"({"lights":{}})");
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"format\": missing required key")) << msg;
+}
+
+TEST_F(EditFixture, WrongFormatIsCheckedFirst) {
+    // A scene.json given as an edit: named by its format, not by its unknown keys.
+    const std::string msg = loadError(R"({"format":"relight-scene/1","camera":{}})");
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"format\": expected \"relight-edit/1\", got "
+                                           "\"relight-scene/1\""))
+        << msg;
+    EXPECT_TRUE(contains(loadError(R"({"format":1})"), "key \"format\": expected"));
+}
+
+TEST_F(EditFixture, UnknownTopLevelKey) {
+    const std::string msg = loadError(R"({"format":"relight-edit/1","light":{}})");
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"light\": unknown key")) << msg;
+}
+
+TEST_F(EditFixture, LightsMustBeAnObject) {
+    const std::string msg = loadError(R"({"format":"relight-edit/1","lights":[{"L1":{}}]})");
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights\": expected an object of light names"))
+        << msg;
+}
+
+TEST_F(EditFixture, UnknownLightListsTheScenesLights) {
+    const std::string msg = loadError(R"({"format":"relight-edit/1","lights":{"Q":{"scale":0}}})");
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.Q\": unknown light \"Q\" (the scene "
+                                           "has L1, L2)"))
+        << msg;
+}
+
+TEST_F(EditFixture, LightEntryMustBeAnObject) {
+    const std::string msg = loadError(withL1(0.5));
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1\": expected an object")) << msg;
+}
+
+TEST_F(EditFixture, LightEntryUnknownKey) {
+    const std::string msg = loadError(withL1({{"scale", 1}, {"gain", 2}}));
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1.gain\": unknown key")) << msg;
+}
+
+TEST_F(EditFixture, LightEntryWithBothScaleAndRadiance) {
+    const std::string msg = loadError(withL1({{"scale", 1}, {"radiance", {1, 1, 1}}}));
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1\": has both \"scale\" and "
+                                           "\"radiance\""))
+        << msg;
+}
+
+TEST_F(EditFixture, LightEntryWithNeitherScaleNorRadiance) {
+    const std::string msg = loadError(withL1(json::object()));
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1\": says nothing")) << msg;
+}
+
+TEST_F(EditFixture, ScaleMustBeAFiniteNonNegativeNumber) {
+    const std::pair<std::string, std::string> cases[] = {
+        {R"("2")", "expected a number, got string"},
+        {"null", "expected a number, got null"},
+        {"-0.5", "scale must not be negative"},
+    };
+    for (const auto& [value, expected] : cases) {
+        const std::string msg =
+            loadError(R"({"format":"relight-edit/1","lights":{"L1":{"scale":)" + value + "}}}");
+        EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1.scale\": " + expected)) << msg;
+    }
+}
+
+TEST_F(EditFixture, OverflowingNumberIsRejected) {
+    // nlohmann::json refuses a literal that overflows a double at parse time, so the key
+    // path is not known; the reader's "number is not finite" check stays as a safety net.
+    for (const char* entry : {R"({"scale":1e999})", R"({"radiance":[1, 2, 1e999]})"}) {
+        const std::string msg =
+            loadError(R"({"format":"relight-edit/1","lights":{"L1":)" + std::string(entry) + "}}");
+        EXPECT_TRUE(contains(msg, editFile() + ": invalid JSON: number overflow")) << msg;
+    }
+}
+
+TEST_F(EditFixture, RadianceMustBeThreeFiniteNonNegativeNumbers) {
+    const std::pair<std::string, std::string> cases[] = {
+        {"5", "\"lights.L1.radiance\": expected an array"},
+        {"[1, 2]", "\"lights.L1.radiance\": expected an array of 3 elements, got 2"},
+        {"[1, 2, 3, 4]", "\"lights.L1.radiance\": expected an array of 3 elements, got 4"},
+        {R"([1, "2", 3])", "\"lights.L1.radiance[1]\": expected a number"},
+        {"[1, -2, 3]", "\"lights.L1.radiance[1]\": radiance must not be negative"},
+    };
+    for (const auto& [value, expected] : cases) {
+        const std::string msg =
+            loadError(R"({"format":"relight-edit/1","lights":{"L1":{"radiance":)" + value + "}}}");
+        EXPECT_TRUE(contains(msg, editFile() + ": key " + expected)) << msg;
+    }
+}
+
+TEST_F(EditFixture, AddAndRemovePartsMustBeArrays) {
+    for (const char* key : {"add_lights", "add_objects", "remove_objects"}) {
+        json j = {{"format", "relight-edit/1"}, {key, {{"name", "table"}}}};
+        const std::string msg = loadError(j.dump(1));
+        EXPECT_TRUE(contains(
+            msg, editFile() + ": key \"" + std::string(key) + "\": expected an array, got object"))
+            << msg;
+    }
+}
+
+}  // namespace

@@ -1,0 +1,149 @@
+// The ratio display (relight/ratio_display.h) and the prepared relighting of the room
+// (relight/relighting.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "relight/edit_file.h"
+#include "relight/ratio_display.h"
+#include "relight/relighting.h"
+
+using namespace relight;
+using radiosity::Rgb;
+
+TEST(DisplayRatio, GuardsWhereDVanishes) {
+    // D is 1 on average per channel, so delta = kRatioFloor.
+    const std::vector<Rgb> D = {Rgb::gray(2.0), Rgb::gray(0.0), Rgb::gray(1.0), Rgb::gray(1.0)};
+    const std::vector<Rgb> B = {Rgb::gray(2.0), Rgb::gray(0.0), Rgb::gray(3.0), Rgb::gray(0.0)};
+    std::vector<Rgb> Bunlit = B;
+    Bunlit[1] = Rgb::gray(0.5);  // light reaches a vertex that had none
+    const auto r = displayRatio(B, D);
+    EXPECT_EQ(r[0], Rgb::gray(1.0));  // B = D: exactly 1, the photo is kept
+    EXPECT_EQ(r[1], Rgb::gray(1.0));  // both vanish: 1, not 0/0
+    // Far from the guard, B/D to within delta/D = 1e-4 relative.
+    EXPECT_NEAR(r[2].r, 3.0, 3.0 * kRatioFloor);
+    EXPECT_NEAR(r[3].r, 0.0, kRatioFloor);
+    const auto r2 = displayRatio(Bunlit, D);
+    // Only D vanishes: finite and bounded by (B + delta) / delta.
+    EXPECT_TRUE(std::isfinite(r2[1].r));
+    EXPECT_LE(r2[1].r, (0.5 + kRatioFloor) / kRatioFloor * (1 + 1e-12));
+    // No light at all in the photo: still finite.
+    const std::vector<Rgb> zero(3);
+    for (const Rgb& v : displayRatio(zero, zero)) EXPECT_EQ(v, Rgb::gray(1.0));
+}
+
+TEST(RenderRatio, EmittersShowTheirCurrentRadianceAndSurfacesTheModulatedPhoto) {
+    // Three pixels: all surface (one vertex, weight 1); all emitting face of light 0;
+    // half face, half surface.
+    DisplayMap m;
+    m.width = 3;
+    m.height = 1;
+    m.start = {0, 1, 1, 2};
+    m.vertex = {0, 0};
+    m.weight = {1.0f, 0.5f};
+    m.unshaded = {0, 0, 0};
+    m.emitterStart = {0, 0, 1, 2};
+    m.emitterLight = {0, 0};
+    m.emitterFraction = {1.0f, 0.5f};
+    Image photo(3, 1);
+    const float px[3][3] = {{0.2f, 0.3f, 0.4f}, {5, 5, 5}, {2.6f, 2.7f, 2.8f}};
+    for (int x = 0; x < 3; ++x)
+        for (int c = 0; c < 3; ++c) photo.at(x, 0)[c] = px[x][c];
+    const std::vector<Rgb> ratio = {Rgb{2.0, 0.5, 1.0}};
+    const std::vector<Rgb> now = {Rgb{1, 2, 3}}, inPhoto = {Rgb::gray(5)};
+    const Image out = renderRatio(m, photo, ratio, now, inPhoto);
+    // Surface: T * r.
+    EXPECT_FLOAT_EQ(out.at(0, 0)[0], 0.4f);
+    EXPECT_FLOAT_EQ(out.at(0, 0)[1], 0.15f);
+    // Emitting face: the current radiance, whatever the photo showed.
+    EXPECT_FLOAT_EQ(out.at(1, 0)[2], 3.0f);
+    // Mixed: the surface half is T - 0.5 * 5 = (0.1, 0.2, 0.3) over half the pixel,
+    // modulated by r; the face half shows 0.5 * now.
+    EXPECT_NEAR(out.at(2, 0)[0], 0.1 * 2.0 + 0.5, 1e-6);
+    EXPECT_NEAR(out.at(2, 0)[1], 0.2 * 0.5 + 1.0, 1e-6);
+    EXPECT_NEAR(out.at(2, 0)[2], 0.3 * 1.0 + 1.5, 1e-6);
+}
+
+namespace {
+
+const Relighting& room() {
+    // Coarse settings keep the test fast; what is checked holds at any setting.
+    static const auto r = [] {
+        RelightOptions o;
+        o.epsilon = 1e-3;
+        o.spp = 4;
+        o.reflectanceRounds = 3;
+        return prepareRelighting(RELIGHT_DATA_DIR "/room", o);
+    }();
+    return *r;
+}
+
+}  // namespace
+
+TEST(Relighting, UneditedLightsReproduceThePhoto) {
+    // B = D at every vertex, so B/D = 1 exactly and each pixel is T times the sum of its
+    // interpolation weights (1 up to float rounding of the weights: 1e-5 relative).
+    // Pixels that see a light's emitting face show its radiance instead (spec) and are
+    // left out.
+    const Relighting& r = room();
+    const Image out = renderEdit(r, r.photoRadiance);
+    double worst = 0;
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const int px = y * out.width + x;
+                if (r.display.emitterStart[px] != r.display.emitterStart[px + 1]) continue;
+                const double t = r.photo.at(x, y)[c], o = out.at(x, y)[c];
+                worst = std::max(worst, std::abs(o - t) / std::max(std::abs(t), 1e-3));
+            }
+    EXPECT_LT(worst, 1e-5);
+}
+
+TEST(Relighting, AllLightsOffLeavesOnlyDarkness) {
+    // Every light at 0: B = 0, so each vertex ratio is delta / (D + delta) and the surfaces
+    // go black, up to the guard: at most kRatioFloor x mean D / D of the photo, which over
+    // the image is far below 1 % of the photo's mean.
+    const Relighting& r = room();
+    const std::vector<Rgb> off(r.photoRadiance.size());
+    const Image out = renderEdit(r, off);
+    double sumOut = 0, sumPhoto = 0;
+    for (size_t i = 0; i < out.rgb.size(); ++i) {
+        sumOut += static_cast<double>(out.rgb[i]);
+        sumPhoto += static_cast<double>(r.photo.rgb[i]);
+    }
+    EXPECT_LT(sumOut, 0.01 * sumPhoto);
+}
+
+TEST(Relighting, DoublingEveryLightDoublesTheSurfaces) {
+    // Linear in emittance: 2 L gives B = 2 D, a ratio of (2 D + delta) / (D + delta), 2 to
+    // within delta / D = kRatioFloor x mean D / D: below 1 % wherever D is above 1 % of its
+    // mean, i.e. everywhere but in deep umbra, whose pixels are dark (skipped below 1e-3).
+    const Relighting& r = room();
+    std::vector<Rgb> twice = r.photoRadiance;
+    for (Rgb& L : twice) L = L * 2.0;
+    const Image out = renderEdit(r, twice);
+    const Image same = renderEdit(r, r.photoRadiance);
+    int checked = 0;
+    for (int px = 0; px < r.display.width * r.display.height; ++px) {
+        if (r.display.emitterStart[px] != r.display.emitterStart[px + 1]) continue;
+        if (r.display.unshaded[px] > 0) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double a = out.rgb[px * 3 + c], b = same.rgb[px * 3 + c];
+            if (b < 1e-3) continue;  // dark pixels: the guard's share is not negligible
+            EXPECT_NEAR(a, 2 * b, 2e-2 * b) << px;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 100000);
+}
+
+TEST(Relighting, RealEditsLoadAndRender) {
+    const Relighting& r = room();
+    const EditFile e = loadEdit(RELIGHT_DATA_DIR "/room/edits/back_off.json", r.scene);
+    const auto radiance = editedRadiance(r.scene, e, r.photoRadiance);
+    const Image out = renderEdit(r, radiance);
+    EXPECT_EQ(out.width, r.photo.width);
+    EXPECT_EQ(out.height, r.photo.height);
+    for (float v : out.rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0);
+}
