@@ -3,6 +3,7 @@
 // numbers), and one bad input per error class, each of which must raise an InputError
 // naming the edit file and the key path.
 #include "relight/edit_file.h"
+#include "temp_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -32,33 +33,7 @@ bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
 
-/// A fresh folder under the system's temporary directory, removed afterwards.
-class TempDir {
-  public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path_ = fs::temp_directory_path() /
-                ("relight_edit_test_" + std::to_string(stamp) + "_" + std::to_string(counter++));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-
-    const fs::path& path() const { return path_; }
-    fs::path write(const std::string& name, const std::string& text) const {
-        std::ofstream out(path_ / name, std::ios::binary);
-        out << text;
-        return path_ / name;
-    }
-
-  private:
-    fs::path path_;
-};
+using relight::test::TempDir;
 
 const fs::path kRoom = fs::path(RELIGHT_DATA_DIR) / "room";
 

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "relight/obj_reader.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -42,32 +43,7 @@ std::string allWarnings(const SceneFile& sf) {
     return s;
 }
 
-/// A fresh folder under the system's temporary directory, removed afterwards.
-class TempDir {
-  public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path_ = fs::temp_directory_path() /
-                ("relight_scene_test_" + std::to_string(stamp) + "_" + std::to_string(counter++));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-
-    const fs::path& path() const { return path_; }
-    void write(const std::string& name, const std::string& text) const {
-        std::ofstream out(path_ / name, std::ios::binary);
-        out << text;
-    }
-
-  private:
-    fs::path path_;
-};
+using relight::test::TempDir;
 
 // A one-face scene: a 1 m x 1 m floor at z = 0 lit by a 0.2 m x 0.2 m light at z = 0.9
 // facing down, seen from above by a camera looking down -z.
