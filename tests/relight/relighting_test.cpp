@@ -8,6 +8,7 @@
 #include "relight/edit_file.h"
 #include "relight/ratio_display.h"
 #include "relight/relighting.h"
+#include "temp_dir.h"
 
 using namespace relight;
 using radiosity::Rgb;
@@ -146,4 +147,44 @@ TEST(Relighting, RealEditsLoadAndRender) {
     EXPECT_EQ(out.width, r.photo.width);
     EXPECT_EQ(out.height, r.photo.height);
     for (float v : out.rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0);
+}
+
+namespace {
+
+/// A copy of the room whose photo is replaced by `photo`.
+std::string roomWithPhoto(const relight::test::TempDir& dir, const Image& photo) {
+    namespace fs = std::filesystem;
+    const fs::path src = RELIGHT_DATA_DIR "/room";
+    for (const char* f : {"scene.json", "room.obj", "photo.mask.png"})
+        fs::copy_file(src / f, dir.path() / f, fs::copy_options::overwrite_existing);
+    writeImage(dir.path() / "photo.exr", photo);
+    return dir.path().string();
+}
+
+std::string prepareError(const std::string& sceneDir) {
+    try {
+        prepareRelighting(sceneDir, {});
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(Relighting, PhotoOfTheWrongSizeIsAnError) {
+    relight::test::TempDir dir("relight_photo_test");
+    const std::string scene = roomWithPhoto(dir, Image(32, 24));
+    const std::string msg = prepareError(scene);
+    EXPECT_NE(msg.find("photo.exr: photo is 32x24 but the camera is 320x240"), std::string::npos)
+        << msg;
+}
+
+TEST(Relighting, NonFinitePixelIsAnErrorNamingThePixel) {
+    relight::test::TempDir dir("relight_photo_test");
+    Image photo = room().photo;
+    photo.at(17, 5)[1] = std::numeric_limits<float>::quiet_NaN();
+    const std::string msg = prepareError(roomWithPhoto(dir, photo));
+    EXPECT_NE(msg.find("photo.exr: pixel (17, 5) is not a finite number"), std::string::npos)
+        << msg;
 }
