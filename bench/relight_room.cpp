@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
         const std::string dir = data + "/room";
         tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
         auto t0 = Clock::now();
-        const auto r = prepareRelighting(dir, o);
+        const auto r = prepareRelighting(loadScene(dir), o);
         const double tPrepare = since(t0);
         const auto st = r->solver->stats();
         std::printf("\n== prepare (2 threads): %.3f s; %d leaves, %d links, %zu leaf vertices\n",
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
         std::vector<double> superpose, regather;
         for (const char* name : edits) {
             const EditFile e = loadEdit(dir + "/edits/" + name + ".json", r->scene);
-            const auto radiance = editedRadiance(r->scene, e, r->photoRadiance);
+            const auto radiance = editRadiance(*r, e);
             const Image truth = readImage(dir + "/truth/" + name + ".exr");
             const auto maskT = readMask(dir + "/truth/" + name + ".mask.png", w, h);
             const Image out = renderEdit(*r, radiance);
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         // radiances, then the final gather at every vertex (2 threads).
         {
             const EditFile e = loadEdit(dir + "/edits/left_off_right_double.json", r->scene);
-            const auto radiance = editedRadiance(r->scene, e, r->photoRadiance);
+            const auto radiance = editRadiance(*r, e);
             t0 = Clock::now();
             r->solver->setLightRadiances(radiance);
             const double tGather = since(t0);
@@ -110,16 +110,11 @@ int main(int argc, char** argv) {
             const int nv = static_cast<int>(r->mesh->vertices().size());
             std::vector<radiosity::Rgb> H(static_cast<size_t>(nv));
             const radiosity::DirectLight direct(*r->solver);
-            const auto& scene = r->solver->scene();
-            std::vector<double> G(scene.lights.size());
             for (int v = 0; v < nv; ++v) {
                 const int p = r->mesh->vertices()[v].polygon;
-                if (scene.polygons[p].light >= 0) continue;
-                const auto x = r->mesh->insidePoint(v);
-                direct.geometry(p, x, static_cast<uint64_t>(v), G.data());
-                H[v] =
-                    radiosity::finalGatherIndirect(*r->solver, p, x, 4, static_cast<uint64_t>(v));
-                for (size_t l = 0; l < G.size(); ++l) H[v] += scene.lights[l].emittance() * G[l];
+                if (r->solver->scene().polygons[p].light >= 0) continue;
+                H[v] = radiosity::gatheredIrradiance(*r->solver, direct, p, r->mesh->insidePoint(v),
+                                                     static_cast<uint64_t>(v));
             }
             const double tVertex = since(t0);
             // The two paths agree to the solution's convergence tolerance.

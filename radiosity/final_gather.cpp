@@ -141,10 +141,9 @@ void finalGatherResponses(const HierarchicalSolver& solver, const LightResponses
     gatherWeights(solver, polygon, x, partialRays, seed, rays, carries, acc);
 }
 
-Rgb gatheredRadiosity(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,
-                      const Vec3& x, uint64_t seed) {
+Rgb gatheredIrradiance(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,
+                       const Vec3& x, uint64_t seed) {
     const Scene& scene = solver.scene();
-    const Polygon& p = scene.polygons[polygon];
     double G[64];
     std::vector<double> Gheap;
     double* g = G;
@@ -155,7 +154,14 @@ Rgb gatheredRadiosity(const HierarchicalSolver& solver, const DirectLight& direc
     direct.geometry(polygon, x, seed, g);
     Rgb H = finalGatherIndirect(solver, polygon, x, 4, seed);
     for (size_t l = 0; l < scene.lights.size(); ++l) H += scene.lights[l].emittance() * g[l];
-    return scene.emittance(polygon) + p.rho * H;
+    return H;
+}
+
+Rgb gatheredRadiosity(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,
+                      const Vec3& x, uint64_t seed) {
+    const Scene& scene = solver.scene();
+    return scene.emittance(polygon) +
+           scene.polygons[polygon].rho * gatheredIrradiance(solver, direct, polygon, x, seed);
 }
 
 }  // namespace radiosity

@@ -46,9 +46,14 @@ void finalGatherResponses(const HierarchicalSolver& solver, const LightResponses
                           int polygon, const Vec3& x, Rgb* H, int partialRays = 4,
                           uint64_t seed = 0, uint64_t* rays = nullptr);
 
-/// Radiosity at point x of `polygon` by final gather (radiosity units):
-///   B(x) = E + rho (sum_l E_l G_l(x) + H_indirect(x)),
+/// Irradiance at point x of `polygon` by final gather (radiosity units):
+///   H(x) = sum_l E_l G_l(x) + H_indirect(x),
 /// G from `direct` (built on the same solver), H_indirect from finalGatherIndirect().
+Rgb gatheredIrradiance(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,
+                       const Vec3& x, uint64_t seed = 0);
+
+/// Radiosity at point x of `polygon` by final gather (radiosity units):
+///   B(x) = E + rho H(x), H from gatheredIrradiance().
 Rgb gatheredRadiosity(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,
                       const Vec3& x, uint64_t seed = 0);
 

@@ -115,14 +115,8 @@ std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
             out[i] = it->second.scale ? nominal[i] * *it->second.scale : *it->second.radiance;
             continue;
         }
-        // The photo's state, the same rule as SceneFile::setPhotoLightState(), but on the
-        // given nominal radiance, which may be an estimated one.
-        bool on = true;
-        if (!sf.photos.empty()) {
-            const auto& names = sf.photos.front().lightsOn;
-            on = std::find(names.begin(), names.end(), lights[i].name) != names.end();
-        }
-        out[i] = on ? nominal[i] : Rgb{};
+        // The photo's state, applied to the given nominal radiance (maybe an estimated one).
+        out[i] = sf.lightOnInPhoto(i) ? nominal[i] : Rgb{};
     }
     return out;
 }

@@ -18,9 +18,9 @@ double since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// The first photo, linear, checked against the camera; non-finite pixels are an error
-/// (they would spread through every ratio that touches them).
-Image loadPhoto(const SceneFile& sf) {
+}  // namespace
+
+Image loadFirstPhoto(const SceneFile& sf) {
     if (sf.photos.empty())
         throw InputError((sf.dir / "scene.json").string() +
                          ": key \"photos\": the scene has no photo to relight");
@@ -39,21 +39,18 @@ Image loadPhoto(const SceneFile& sf) {
     return photo;
 }
 
-}  // namespace
-
-std::unique_ptr<Relighting> prepareRelighting(const std::filesystem::path& sceneDir,
-                                              const RelightOptions& o) {
+std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& o) {
     auto say = [&](const std::string& m) {
         if (o.progress) o.progress(m);
     };
     auto r = std::make_unique<Relighting>();
-    r->scene = loadScene(sceneDir);
+    r->scene = std::move(scene);
     for (size_t l = 0; l < r->scene.estimateRadiance.size(); ++l)
         if (r->scene.estimateRadiance[l])
-            throw InputError((sceneDir / "scene.json").string() + ": key \"lights[" +
+            throw InputError((r->scene.dir / "scene.json").string() + ": key \"lights[" +
                              std::to_string(l) +
                              "].radiance\": \"estimate\" is not supported yet by relighting");
-    r->photo = loadPhoto(r->scene);
+    r->photo = loadFirstPhoto(r->scene);
     r->photoRadiance.resize(r->scene.scene.lights.size());
     for (size_t l = 0; l < r->photoRadiance.size(); ++l)
         r->photoRadiance[l] = r->scene.scene.lights[l].radiance;  // the photo's state
@@ -108,6 +105,10 @@ std::vector<Rgb> vertexIrradiance(const Relighting& r, std::span<const Rgb> radi
     std::vector<Rgb> B(static_cast<size_t>(n));
     for (int v = 0; v < n; ++v) B[v] = r.vertexLighting.irradiance(v, radiance);
     return B;
+}
+
+std::vector<Rgb> editRadiance(const Relighting& r, const EditFile& edit) {
+    return editedRadiance(r.scene, edit, r.scene.nominalRadiance);
 }
 
 Image renderEdit(const Relighting& r, std::span<const Rgb> radiance) {

@@ -30,6 +30,7 @@
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/light_response.h"
 #include "radiosity/solver.h"
+#include "relight/edit_file.h"
 #include "relight/image.h"
 #include "relight/item_buffer.h"
 #include "relight/ratio_display.h"
@@ -65,16 +66,26 @@ struct Relighting {
     PrepareTimes times;
 };
 
-/// Loads the scene and runs the pipeline above. Throws InputError for bad input (photo
-/// missing, unreadable, of the wrong size, with NaN/Inf pixels; no photo at all).
-std::unique_ptr<Relighting> prepareRelighting(const std::filesystem::path& sceneDir,
-                                              const RelightOptions& options);
+/// The scene's first photo, linear (sRGB decoded when the scene says so), checked against
+/// the camera's size; a non-finite pixel is an error naming it (it would spread through
+/// every ratio that touches it). Throws InputError naming the file; also without photos.
+Image loadFirstPhoto(const SceneFile& scene);
+
+/// Runs the pipeline above on a loaded scene (loadScene). Throws InputError for bad
+/// input (photo missing, unreadable, of the wrong size, with NaN/Inf pixels; no photo at
+/// all; a light whose radiance is "estimate").
+std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& options);
 
 /// Per-vertex radiosity B for the lights' radiances (one per light; photo units):
 /// the vertex's irradiance by superposition (vertex reflectance cancels in B/D and is
 /// left out: B and D here are irradiances of the same vertex).
 std::vector<radiosity::Rgb> vertexIrradiance(const Relighting& r,
                                              std::span<const radiosity::Rgb> radiance);
+
+/// The real lights' radiances after `edit`: scene.json's radiance scaled or replaced for the
+/// lights it names, the photo's state for the others (a light off in the photo that an edit
+/// switches on gets its scene.json radiance, not the photo's zero).
+std::vector<radiosity::Rgb> editRadiance(const Relighting& r, const EditFile& edit);
 
 /// The relit photo for the lights' radiances (superposition path).
 Image renderEdit(const Relighting& r, std::span<const radiosity::Rgb> radiance);

@@ -282,14 +282,14 @@ PhotoSpec::Encoding encodingFromExtension(const fs::path& file, bool& known) {
 void SceneFile::setPhotoLightState() {
     // Spec, "Edit": a light that is not in the first photo's lights_on is off in that photo.
     // Without a photo there is nothing to match: every light is on.
-    for (size_t i = 0; i < scene.lights.size() && i < nominalRadiance.size(); ++i) {
-        bool on = true;
-        if (!photos.empty()) {
-            const auto& names = photos.front().lightsOn;
-            on = std::find(names.begin(), names.end(), scene.lights[i].name) != names.end();
-        }
-        scene.lights[i].radiance = on ? nominalRadiance[i] : Rgb{};
-    }
+    for (size_t i = 0; i < scene.lights.size() && i < nominalRadiance.size(); ++i)
+        scene.lights[i].radiance = lightOnInPhoto(i) ? nominalRadiance[i] : Rgb{};
+}
+
+bool SceneFile::lightOnInPhoto(size_t i) const {
+    if (photos.empty()) return true;
+    const auto& names = photos.front().lightsOn;
+    return std::find(names.begin(), names.end(), scene.lights.at(i).name) != names.end();
 }
 
 SceneFile loadScene(const fs::path& dir) {

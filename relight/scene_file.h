@@ -62,6 +62,9 @@ struct SceneFile {
     /// nominalRadiance[i] when the light is in photos[0].lightsOn (or when there is no
     /// photo), zero otherwise. loadScene() leaves the scene in this state.
     void setPhotoLightState();
+    /// Whether light `i` is on in the first photo (in its lights_on; every light is on
+    /// when there is no photo).
+    bool lightOnInPhoto(size_t i) const;
 };
 
 /// Loads <dir>/scene.json and the files it names. Reflectance of each polygon: the

@@ -19,16 +19,16 @@ int runRender(const RenderArgs& a) {
     std::fprintf(stderr, "relight render %s\n", a.scene.c_str());
     // The edit is read (and checked against the scene) before the long preparation, so a
     // bad edit fails at once.
-    const SceneFile sf = loadScene(a.scene);
+    SceneFile sf = loadScene(a.scene);
     EditFile edit;
     if (!a.edit.empty()) {
         edit = loadEdit(a.edit, sf);
         requireLightsOnly(edit);
     }
     auto t0 = Clock::now();
-    const auto r = prepareRelighting(a.scene, o);
+    const auto r = prepareRelighting(std::move(sf), o);
     const double tPrepare = since(t0);
-    const auto radiance = editedRadiance(r->scene, edit, r->photoRadiance);
+    const auto radiance = editRadiance(*r, edit);
     t0 = Clock::now();
     const Image img = renderEdit(*r, radiance);
     const double tEdit = since(t0);

@@ -13,6 +13,7 @@
 #include "relight/item_buffer.h"
 #include "relight/lighting_buffer.h"
 #include "relight/reflectance.h"
+#include "relight/relighting.h"
 #include "relight/scene_file.h"
 
 namespace relight::cli {
@@ -58,13 +59,7 @@ int runSolve(const SolveArgs& a) {
     if (a.photoReflectance && !sf.photos.empty()) {
         const auto t0 = Clock::now();
         const PhotoSpec& ph = sf.photos.front();
-        Image photo = readImage(ph.file, ph.encoding == PhotoSpec::Encoding::srgb);
-        if (photo.width != sf.camera.width || photo.height != sf.camera.height) {
-            throw InputError(ph.file.string() + ": photo is " + std::to_string(photo.width) + "x" +
-                             std::to_string(photo.height) + " but the camera is " +
-                             std::to_string(sf.camera.width) + "x" +
-                             std::to_string(sf.camera.height));
-        }
+        const Image photo = loadFirstPhoto(sf);
         needItems();
         solver.solve();
         needLighting();

@@ -2,8 +2,12 @@
 // (relight/relighting.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 #include "relight/edit_file.h"
 #include "relight/ratio_display.h"
@@ -75,7 +79,7 @@ const Relighting& room() {
         o.epsilon = 1e-3;
         o.spp = 4;
         o.reflectanceRounds = 3;
-        return prepareRelighting(RELIGHT_DATA_DIR "/room", o);
+        return prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
     }();
     return *r;
 }
@@ -142,7 +146,7 @@ TEST(Relighting, DoublingEveryLightDoublesTheSurfaces) {
 TEST(Relighting, RealEditsLoadAndRender) {
     const Relighting& r = room();
     const EditFile e = loadEdit(RELIGHT_DATA_DIR "/room/edits/back_off.json", r.scene);
-    const auto radiance = editedRadiance(r.scene, e, r.photoRadiance);
+    const auto radiance = editRadiance(r, e);
     const Image out = renderEdit(r, radiance);
     EXPECT_EQ(out.width, r.photo.width);
     EXPECT_EQ(out.height, r.photo.height);
@@ -163,7 +167,7 @@ std::string roomWithPhoto(const relight::test::TempDir& dir, const Image& photo)
 
 std::string prepareError(const std::string& sceneDir) {
     try {
-        prepareRelighting(sceneDir, {});
+        prepareRelighting(loadScene(sceneDir), {});
     } catch (const InputError& e) {
         return e.what();
     }
@@ -187,4 +191,47 @@ TEST(Relighting, NonFinitePixelIsAnErrorNamingThePixel) {
     const std::string msg = prepareError(roomWithPhoto(dir, photo));
     EXPECT_NE(msg.find("photo.exr: pixel (17, 5) is not a finite number"), std::string::npos)
         << msg;
+}
+
+TEST(Relighting, LightOffInThePhotoCanBeSwitchedOn) {
+    // The room with lamp D said to be off in its photo (the photo itself is unchanged: only
+    // the bookkeeping matters here). An edit "D": {"scale": 1} must bring D in at its
+    // scene.json radiance, and the relit image must brighten where D shines: the vertex
+    // irradiance gains exactly D's response (superposition), so no vertex gets darker and
+    // the image's total rises.
+    namespace fs = std::filesystem;
+    relight::test::TempDir dir("relight_off_test");
+    const fs::path src = RELIGHT_DATA_DIR "/room";
+    for (const char* f : {"room.obj", "photo.exr", "photo.mask.png"})
+        fs::copy_file(src / f, dir.path() / f);
+    nlohmann::json scene;
+    std::ifstream(src / "scene.json") >> scene;
+    auto& on = scene["photos"][0]["lights_on"];
+    on.erase(std::remove(on.begin(), on.end(), "D"), on.end());
+    dir.write("scene.json", scene.dump());
+    RelightOptions o;
+    o.epsilon = 1e-3;
+    o.spp = 1;
+    o.reflectanceRounds = 1;
+    const auto r = prepareRelighting(loadScene(dir.path()), o);
+    const int d = r->scene.scene.findLight("D");
+    ASSERT_GE(d, 0);
+    EXPECT_EQ(r->photoRadiance[d], Rgb{});
+    const EditFile e = loadEdit(dir.write("on.json", R"({"format":"relight-edit/1",
+        "lights":{"D":{"scale":1}}})"),
+                                r->scene);
+    const auto radiance = editRadiance(*r, e);
+    EXPECT_EQ(radiance[d], r->scene.nominalRadiance[d]);
+    ASSERT_GT(radiance[d].maxComponent(), 0.0);
+    const auto before = vertexIrradiance(*r, r->photoRadiance);
+    const auto after = vertexIrradiance(*r, radiance);
+    for (size_t v = 0; v < before.size(); ++v)
+        for (int c = 0; c < 3; ++c) ASSERT_GE(after[v][c], before[v][c]);
+    const Image lit = renderEdit(*r, radiance), same = renderEdit(*r, r->photoRadiance);
+    double sumLit = 0, sumSame = 0;
+    for (size_t i = 0; i < lit.rgb.size(); ++i) {
+        sumLit += static_cast<double>(lit.rgb[i]);
+        sumSame += static_cast<double>(same.rgb[i]);
+    }
+    EXPECT_GT(sumLit, 1.05 * sumSame);
 }
