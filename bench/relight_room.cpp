@@ -59,8 +59,8 @@ int main(int argc, char** argv) {
         std::printf(
             "   item buffer %.3f, solve %.3f, reflectance %.3f, responses %.3f, vertex lighting "
             "%.3f, display map %.3f s\n",
-            r->times.itemBuffer, r->times.solve, r->times.reflectance, r->times.responses,
-            r->times.vertexLighting, r->times.displayMap);
+            r->prepared.times.itemBuffer, r->prepared.times.solve, r->prepared.times.reflectance, r->prepared.times.responses,
+            r->prepared.times.vertexLighting, r->prepared.times.displayMap);
 
         int w = 0, h = 0;
         const auto maskP = readMask(dir + "/photo.mask.png", w, h);
@@ -73,12 +73,12 @@ int main(int argc, char** argv) {
         std::vector<double> superpose, regather;
         for (const char* name : edits) {
             const EditFile e = loadEdit(dir + "/edits/" + name + ".json", r->scene);
-            const auto radiance = editRadiance(*r, e);
+            const auto radiance = editRadiance(r->scene, e);
             const Image truth = readImage(dir + "/truth/" + name + ".exr");
             const auto maskT = readMask(dir + "/truth/" + name + ".mask.png", w, h);
-            const Image out = renderEdit(*r, radiance);
-            const Score sPhoto = scoreImage(r->photo, truth, r->photo, maskT, maskP);
-            const Score sRatio = scoreImage(out, truth, r->photo, maskT, maskP);
+            const Image out = renderEdit(r->prepared, radiance);
+            const Score sPhoto = scoreImage(r->prepared.photo, truth, r->prepared.photo, maskT, maskP);
+            const Score sRatio = scoreImage(out, truth, r->prepared.photo, maskT, maskP);
             auto changed = [](const Score& s) { return s.hasChanged ? s.changedRelRmse : 0.0; };
             std::printf("   %-24s %10.4f %10.4f %10.4f %10.4f\n", name, sPhoto.relRmse,
                         changed(sPhoto), sRatio.relRmse, changed(sRatio));
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
                 std::vector<double> t;
                 for (int i = 0; i < 50; ++i) {
                     const auto t1 = Clock::now();
-                    const Image img = renderEdit(*r, radiance);
+                    const Image img = renderEdit(r->prepared, radiance);
                     t.push_back(since(t1));
                 }
                 std::nth_element(t.begin(), t.begin() + 25, t.end());
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         // radiances, then the final gather at every vertex (2 threads).
         {
             const EditFile e = loadEdit(dir + "/edits/left_off_right_double.json", r->scene);
-            const auto radiance = editRadiance(*r, e);
+            const auto radiance = editRadiance(r->scene, e);
             t0 = Clock::now();
             r->solver->setLightRadiances(radiance);
             const double tGather = since(t0);
@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
             }
             const double tVertex = since(t0);
             // The two paths agree to the solution's convergence tolerance.
-            const auto Hsum = vertexIrradiance(*r, radiance);
+            const auto Hsum = vertexIrradiance(r->prepared, radiance);
             double maxH = 0, maxDiff = 0;
             for (int v = 0; v < nv; ++v) {
                 maxH = std::max(maxH, Hsum[v].maxComponent());
@@ -128,12 +128,12 @@ int main(int argc, char** argv) {
             std::printf(
                 "\n   gather path vs superposition at the vertices: max difference %.2e of max H\n",
                 maxH > 0 ? maxDiff / maxH : 0.0);
-            r->solver->setLightRadiances(r->photoRadiance);
+            r->solver->setLightRadiances(r->prepared.photoRadiance);
             std::printf(
                 "\n== light edit at %dx%d\n   superposition (1 thread): median %.3f ms (worst "
                 "edit's median)\n   gather/push-pull on the links: %.3f s, then the vertex "
                 "irradiance by final gather %.3f s (1 thread)\n",
-                r->photo.width, r->photo.height, worstEditTime * 1e3, tGather, tVertex);
+                r->prepared.photo.width, r->prepared.photo.height, worstEditTime * 1e3, tGather, tVertex);
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

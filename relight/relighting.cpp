@@ -45,15 +45,16 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     };
     auto r = std::make_unique<Relighting>();
     r->scene = std::move(scene);
+    PreparedImage& P = r->prepared;
     for (size_t l = 0; l < r->scene.estimateRadiance.size(); ++l)
         if (r->scene.estimateRadiance[l])
             throw InputError((r->scene.dir / "scene.json").string() + ": key \"lights[" +
                              std::to_string(l) +
                              "].radiance\": \"estimate\" is not supported yet by relighting");
-    r->photo = loadFirstPhoto(r->scene);
-    r->photoRadiance.resize(r->scene.scene.lights.size());
-    for (size_t l = 0; l < r->photoRadiance.size(); ++l)
-        r->photoRadiance[l] = r->scene.scene.lights[l].radiance;  // the photo's state
+    P.photo = loadFirstPhoto(r->scene);
+    P.photoRadiance.resize(r->scene.scene.lights.size());
+    for (size_t l = 0; l < P.photoRadiance.size(); ++l)
+        P.photoRadiance[l] = r->scene.scene.lights[l].radiance;  // the photo's state
 
     radiosity::SolverOptions so;
     so.epsilon = o.epsilon;
@@ -64,12 +65,12 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     r->solver = std::make_unique<radiosity::HierarchicalSolver>(r->scene.scene, so);
     say("item buffer");
     r->items = castItemBuffer(r->scene.camera, r->solver->scene(), r->solver->visibility(), o.spp);
-    r->times.itemBuffer = since(t0);
+    P.times.itemBuffer = since(t0);
 
     t0 = Clock::now();
     say("radiosity solution of the photo's lights");
     r->solver->solve();
-    r->times.solve = since(t0);
+    P.times.solve = since(t0);
 
     t0 = Clock::now();
     say("reflectance from the photo");
@@ -77,44 +78,35 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     dlo.minRays = o.minRays;
     dlo.maxRays = o.maxRays;
     const LightingBuffer lighting = computeLightingBuffer(r->items, *r->solver, dlo);
-    estimatePolygonReflectance(*r->solver, r->scene, r->items, lighting, r->photo,
+    estimatePolygonReflectance(*r->solver, r->scene, r->items, lighting, P.photo,
                                o.reflectanceRounds);
-    r->times.reflectance = since(t0);
+    P.times.reflectance = since(t0);
 
     t0 = Clock::now();
     say("per-light responses");
     r->responses = std::make_unique<radiosity::LightResponses>(*r->solver);
-    r->times.responses = since(t0);
+    P.times.responses = since(t0);
 
     t0 = Clock::now();
     r->mesh = std::make_unique<radiosity::LeafMesh>(r->solver->hierarchy());
     say("lighting at " + std::to_string(r->mesh->vertices().size()) + " leaf vertices");
-    r->vertexLighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo);
-    r->times.vertexLighting = since(t0);
+    P.lighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo);
+    P.times.vertexLighting = since(t0);
 
     t0 = Clock::now();
-    r->display = buildDisplayMap(r->items, *r->mesh, r->solver->scene());
+    P.display = buildDisplayMap(r->items, *r->mesh, r->solver->scene());
     // D: the photo's own lighting, so that the unedited display is the photo (B/D = 1).
-    r->D = vertexIrradiance(*r, r->photoRadiance);
-    r->times.displayMap = since(t0);
+    P.D = vertexIrradiance(P, P.photoRadiance);
+    P.textureFactor.assign(P.D.size(), Rgb::gray(1.0));
+    P.times.displayMap = since(t0);
+    const auto st = r->solver->stats();
+    P.leaves = st.leaves;
+    P.links = st.links;
     return r;
 }
 
-std::vector<Rgb> vertexIrradiance(const Relighting& r, std::span<const Rgb> radiance) {
-    const int n = static_cast<int>(r.vertexLighting.vertexCount());
-    std::vector<Rgb> B(static_cast<size_t>(n));
-    for (int v = 0; v < n; ++v) B[v] = r.vertexLighting.irradiance(v, radiance);
-    return B;
-}
-
-std::vector<Rgb> editRadiance(const Relighting& r, const EditFile& edit) {
-    return editedRadiance(r.scene, edit, r.scene.nominalRadiance);
-}
-
-Image renderEdit(const Relighting& r, std::span<const Rgb> radiance) {
-    const auto B = vertexIrradiance(r, radiance);
-    const auto ratio = displayRatio(B, r.D);
-    return renderRatio(r.display, r.photo, ratio, radiance, r.photoRadiance);
+std::vector<Rgb> editRadiance(const SceneFile& scene, const EditFile& edit) {
+    return editedRadiance(scene, edit, scene.nominalRadiance);
 }
 
 }  // namespace relight

@@ -33,6 +33,7 @@
 #include "relight/edit_file.h"
 #include "relight/image.h"
 #include "relight/item_buffer.h"
+#include "relight/prepared.h"
 #include "relight/ratio_display.h"
 #include "relight/scene_file.h"
 #include "relight/vertex_lighting.h"
@@ -47,23 +48,15 @@ struct RelightOptions {
     std::function<void(const std::string&)> progress;  ///< one line per step (may be empty)
 };
 
-struct PrepareTimes {
-    double itemBuffer = 0, solve = 0, reflectance = 0, responses = 0, vertexLighting = 0,
-           displayMap = 0;  ///< seconds
-};
-
+/// The whole prepared state: what rendering needs (`prepared`, cacheable) and the solver
+/// state behind it (for the gather path, edits that change geometry, and debug views).
 struct Relighting {
     SceneFile scene;
-    Image photo;  ///< T: the first photo, linear
+    PreparedImage prepared;
     std::unique_ptr<radiosity::HierarchicalSolver> solver;
     ItemBuffer items;
     std::unique_ptr<radiosity::LeafMesh> mesh;
     std::unique_ptr<radiosity::LightResponses> responses;
-    VertexLighting vertexLighting;
-    DisplayMap display;
-    std::vector<radiosity::Rgb> photoRadiance;  ///< per light: its radiance in the photo
-    std::vector<radiosity::Rgb> D;              ///< per vertex: display correction factor
-    PrepareTimes times;
 };
 
 /// The scene's first photo, linear (sRGB decoded when the scene says so), checked against
@@ -76,18 +69,9 @@ Image loadFirstPhoto(const SceneFile& scene);
 /// all; a light whose radiance is "estimate").
 std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& options);
 
-/// Per-vertex radiosity B for the lights' radiances (one per light; photo units):
-/// the vertex's irradiance by superposition (vertex reflectance cancels in B/D and is
-/// left out: B and D here are irradiances of the same vertex).
-std::vector<radiosity::Rgb> vertexIrradiance(const Relighting& r,
-                                             std::span<const radiosity::Rgb> radiance);
-
 /// The real lights' radiances after `edit`: scene.json's radiance scaled or replaced for the
 /// lights it names, the photo's state for the others (a light off in the photo that an edit
 /// switches on gets its scene.json radiance, not the photo's zero).
-std::vector<radiosity::Rgb> editRadiance(const Relighting& r, const EditFile& edit);
-
-/// The relit photo for the lights' radiances (superposition path).
-Image renderEdit(const Relighting& r, std::span<const radiosity::Rgb> radiance);
+std::vector<radiosity::Rgb> editRadiance(const SceneFile& scene, const EditFile& edit);
 
 }  // namespace relight

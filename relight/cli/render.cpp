@@ -28,9 +28,9 @@ int runRender(const RenderArgs& a) {
     auto t0 = Clock::now();
     const auto r = prepareRelighting(std::move(sf), o);
     const double tPrepare = since(t0);
-    const auto radiance = editRadiance(*r, edit);
+    const auto radiance = editRadiance(r->scene, edit);
     t0 = Clock::now();
-    const Image img = renderEdit(*r, radiance);
+    const Image img = renderEdit(r->prepared, radiance);
     const double tEdit = since(t0);
     writeImage(a.output, img, a.exposure);
     const auto st = r->solver->stats();
@@ -39,8 +39,8 @@ int runRender(const RenderArgs& a) {
     std::printf(
         "time: prepare %.3f s (item buffer %.3f, solve %.3f, reflectance %.3f, responses %.3f, "
         "vertex lighting %.3f, display map %.3f); edit %.4f s\n",
-        tPrepare, r->times.itemBuffer, r->times.solve, r->times.reflectance, r->times.responses,
-        r->times.vertexLighting, r->times.displayMap, tEdit);
+        tPrepare, r->prepared.times.itemBuffer, r->prepared.times.solve, r->prepared.times.reflectance, r->prepared.times.responses,
+        r->prepared.times.vertexLighting, r->prepared.times.displayMap, tEdit);
     std::printf("wrote %s (%dx%d)\n", a.output.c_str(), img.width, img.height);
     if (!a.report.empty()) {
         nlohmann::json lights = nlohmann::json::object();
@@ -55,12 +55,12 @@ int runRender(const RenderArgs& a) {
                                   {"leaf_vertices", r->mesh->vertices().size()},
                                   {"lights", lights},
                                   {"time_s",
-                                   {{"item_buffer", r->times.itemBuffer},
-                                    {"solve", r->times.solve},
-                                    {"reflectance", r->times.reflectance},
-                                    {"responses", r->times.responses},
-                                    {"vertex_lighting", r->times.vertexLighting},
-                                    {"display_map", r->times.displayMap},
+                                   {{"item_buffer", r->prepared.times.itemBuffer},
+                                    {"solve", r->prepared.times.solve},
+                                    {"reflectance", r->prepared.times.reflectance},
+                                    {"responses", r->prepared.times.responses},
+                                    {"vertex_lighting", r->prepared.times.vertexLighting},
+                                    {"display_map", r->prepared.times.displayMap},
                                     {"prepare", tPrepare},
                                     {"edit", tEdit},
                                     {"total", since(tAll)}}}};

@@ -92,14 +92,14 @@ TEST(Relighting, UneditedLightsReproduceThePhoto) {
     // Pixels that see a light's emitting face show its radiance instead (spec) and are
     // left out.
     const Relighting& r = room();
-    const Image out = renderEdit(r, r.photoRadiance);
+    const Image out = renderEdit(r.prepared, r.prepared.photoRadiance);
     double worst = 0;
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x)
             for (int c = 0; c < 3; ++c) {
                 const int px = y * out.width + x;
-                if (r.display.emitterStart[px] != r.display.emitterStart[px + 1]) continue;
-                const double t = r.photo.at(x, y)[c], o = out.at(x, y)[c];
+                if (r.prepared.display.emitterStart[px] != r.prepared.display.emitterStart[px + 1]) continue;
+                const double t = r.prepared.photo.at(x, y)[c], o = out.at(x, y)[c];
                 worst = std::max(worst, std::abs(o - t) / std::max(std::abs(t), 1e-3));
             }
     EXPECT_LT(worst, 1e-5);
@@ -110,12 +110,12 @@ TEST(Relighting, AllLightsOffLeavesOnlyDarkness) {
     // go black, up to the guard: at most kRatioFloor x mean D / D of the photo, which over
     // the image is far below 1 % of the photo's mean.
     const Relighting& r = room();
-    const std::vector<Rgb> off(r.photoRadiance.size());
-    const Image out = renderEdit(r, off);
+    const std::vector<Rgb> off(r.prepared.photoRadiance.size());
+    const Image out = renderEdit(r.prepared, off);
     double sumOut = 0, sumPhoto = 0;
     for (size_t i = 0; i < out.rgb.size(); ++i) {
         sumOut += static_cast<double>(out.rgb[i]);
-        sumPhoto += static_cast<double>(r.photo.rgb[i]);
+        sumPhoto += static_cast<double>(r.prepared.photo.rgb[i]);
     }
     EXPECT_LT(sumOut, 0.01 * sumPhoto);
 }
@@ -125,14 +125,14 @@ TEST(Relighting, DoublingEveryLightDoublesTheSurfaces) {
     // within delta / D = kRatioFloor x mean D / D: below 1 % wherever D is above 1 % of its
     // mean, i.e. everywhere but in deep umbra, whose pixels are dark (skipped below 1e-3).
     const Relighting& r = room();
-    std::vector<Rgb> twice = r.photoRadiance;
+    std::vector<Rgb> twice = r.prepared.photoRadiance;
     for (Rgb& L : twice) L = L * 2.0;
-    const Image out = renderEdit(r, twice);
-    const Image same = renderEdit(r, r.photoRadiance);
+    const Image out = renderEdit(r.prepared, twice);
+    const Image same = renderEdit(r.prepared, r.prepared.photoRadiance);
     int checked = 0;
-    for (int px = 0; px < r.display.width * r.display.height; ++px) {
-        if (r.display.emitterStart[px] != r.display.emitterStart[px + 1]) continue;
-        if (r.display.unshaded[px] > 0) continue;
+    for (int px = 0; px < r.prepared.display.width * r.prepared.display.height; ++px) {
+        if (r.prepared.display.emitterStart[px] != r.prepared.display.emitterStart[px + 1]) continue;
+        if (r.prepared.display.unshaded[px] > 0) continue;
         for (int c = 0; c < 3; ++c) {
             const double a = out.rgb[px * 3 + c], b = same.rgb[px * 3 + c];
             if (b < 1e-3) continue;  // dark pixels: the guard's share is not negligible
@@ -146,10 +146,10 @@ TEST(Relighting, DoublingEveryLightDoublesTheSurfaces) {
 TEST(Relighting, RealEditsLoadAndRender) {
     const Relighting& r = room();
     const EditFile e = loadEdit(RELIGHT_DATA_DIR "/room/edits/back_off.json", r.scene);
-    const auto radiance = editRadiance(r, e);
-    const Image out = renderEdit(r, radiance);
-    EXPECT_EQ(out.width, r.photo.width);
-    EXPECT_EQ(out.height, r.photo.height);
+    const auto radiance = editRadiance(r.scene, e);
+    const Image out = renderEdit(r.prepared, radiance);
+    EXPECT_EQ(out.width, r.prepared.photo.width);
+    EXPECT_EQ(out.height, r.prepared.photo.height);
     for (float v : out.rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0);
 }
 
@@ -186,7 +186,7 @@ TEST(Relighting, PhotoOfTheWrongSizeIsAnError) {
 
 TEST(Relighting, NonFinitePixelIsAnErrorNamingThePixel) {
     relight::test::TempDir dir("relight_photo_test");
-    Image photo = room().photo;
+    Image photo = room().prepared.photo;
     photo.at(17, 5)[1] = std::numeric_limits<float>::quiet_NaN();
     const std::string msg = prepareError(roomWithPhoto(dir, photo));
     EXPECT_NE(msg.find("photo.exr: pixel (17, 5) is not a finite number"), std::string::npos)
@@ -216,18 +216,18 @@ TEST(Relighting, LightOffInThePhotoCanBeSwitchedOn) {
     const auto r = prepareRelighting(loadScene(dir.path()), o);
     const int d = r->scene.scene.findLight("D");
     ASSERT_GE(d, 0);
-    EXPECT_EQ(r->photoRadiance[d], Rgb{});
+    EXPECT_EQ(r->prepared.photoRadiance[d], Rgb{});
     const EditFile e = loadEdit(dir.write("on.json", R"({"format":"relight-edit/1",
         "lights":{"D":{"scale":1}}})"),
                                 r->scene);
-    const auto radiance = editRadiance(*r, e);
+    const auto radiance = editRadiance(r->scene, e);
     EXPECT_EQ(radiance[d], r->scene.nominalRadiance[d]);
     ASSERT_GT(radiance[d].maxComponent(), 0.0);
-    const auto before = vertexIrradiance(*r, r->photoRadiance);
-    const auto after = vertexIrradiance(*r, radiance);
+    const auto before = vertexIrradiance(r->prepared, r->prepared.photoRadiance);
+    const auto after = vertexIrradiance(r->prepared, radiance);
     for (size_t v = 0; v < before.size(); ++v)
         for (int c = 0; c < 3; ++c) ASSERT_GE(after[v][c], before[v][c]);
-    const Image lit = renderEdit(*r, radiance), same = renderEdit(*r, r->photoRadiance);
+    const Image lit = renderEdit(r->prepared, radiance), same = renderEdit(r->prepared, r->prepared.photoRadiance);
     double sumLit = 0, sumSame = 0;
     for (size_t i = 0; i < lit.rgb.size(); ++i) {
         sumLit += static_cast<double>(lit.rgb[i]);

@@ -1,0 +1,23 @@
+#include "relight/prepared.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+
+std::vector<Rgb> vertexIrradiance(const PreparedImage& p, std::span<const Rgb> radiance) {
+    const int n = static_cast<int>(p.lighting.vertexCount());
+    std::vector<Rgb> B(static_cast<size_t>(n));
+    for (int v = 0; v < n; ++v) B[v] = p.lighting.irradiance(v, radiance);
+    return B;
+}
+
+Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance) {
+    const auto B = vertexIrradiance(p, radiance);
+    auto ratio = displayRatio(B, p.D);
+    if (p.textureFactor.size() == ratio.size())
+        for (size_t v = 0; v < ratio.size(); ++v)
+            for (int c = 0; c < 3; ++c) ratio[v][c] *= p.textureFactor[v][c];
+    return renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance);
+}
+
+}  // namespace relight
