@@ -28,7 +28,8 @@ bool DirectLight::shaftClear(int leaf, int q) const {
     return found;
 }
 
-void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G) const {
+void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
+                           double* unoccluded) const {
     const Scene& scene = solver_.scene();
     const Polygon& p = scene.polygons[polygon];
     const int leaf = solver_.hierarchy().locateLeaf(polygon, x);
@@ -37,12 +38,13 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G)
     const int k = strataSide(maxRays);
     uint64_t rays = 0;
     for (size_t l = 0; l < scene.lights.size(); ++l) {
-        double g = 0;
+        double g = 0, g0 = 0;
         for (int qi : scene.lights[l].polygons) {
             if (qi == polygon) continue;  // an emitting face does not light itself
             const Polygon& q = scene.polygons[qi];
             const double F = pointToPolygon(x, p.normal, q.v.data(), q.vertexCount, q.normal);
             if (!(F > 0)) continue;
+            g0 += F;
             if (shaftClear(leaf, qi)) {
                 g += F;
                 continue;
@@ -72,6 +74,7 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G)
             g += F * static_cast<double>(visible) / cast;
         }
         G[l] = g;
+        if (unoccluded) unoccluded[l] = g0;
     }
     rays_.fetch_add(rays, std::memory_order_relaxed);
 }

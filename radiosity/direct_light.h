@@ -36,8 +36,11 @@ class DirectLight {
     explicit DirectLight(const HierarchicalSolver& solver, DirectLightOptions options = {});
 
     /// G_l(x) for every light l of the scene (G.size() == scene.lights.size()), lights that
-    /// are off included. `seed` selects the shadow rays.
-    void geometry(int polygon, const Vec3& x, uint64_t seed, double* G) const;
+    /// are off included. `seed` selects the shadow rays. When `unoccluded` is given it gets
+    /// sum_q F(x -> q) without visibility (the light a point would get with no blocker:
+    /// Loscos et al. 2000, Eq. (8) per point).
+    void geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
+                  double* unoccluded = nullptr) const;
 
     int lightCount() const { return static_cast<int>(solver_.scene().lights.size()); }
     uint64_t raysCast() const { return rays_; }

@@ -145,6 +145,17 @@ void Hierarchy::initElement(Node& e, const Polygon& p, int polygonIndex) {
     finishGeometry(e);
 }
 
+bool Hierarchy::unsubdivide(int node) {
+    Node& n = nodes[node];
+    if (n.childCount != 4 || n.firstChild + 4 != static_cast<int>(nodes.size())) return false;
+    for (int k = 0; k < 4; ++k)
+        if (!nodes[n.firstChild + k].isLeaf()) return false;
+    nodes.resize(nodes.size() - 4);
+    n.firstChild = -1;
+    n.childCount = 0;
+    return true;
+}
+
 bool Hierarchy::subdivide(int node) {
     if (nodes[node].isCluster() || !nodes[node].isLeaf()) return false;
     const Node parent = nodes[node];  // copy: push_back below may reallocate
@@ -215,7 +226,6 @@ Vec3 Hierarchy::samplePoint(int node, double u, double v, double w, Vec3* normal
     return pointOnPolygon(p, u, v);
 }
 
-namespace {
 bool elementContains(const Node& e, const Vec3& x, double tol) {
     for (int i = 0; i < e.vertexCount; ++i) {
         const Vec3& a = e.v[i];
@@ -224,7 +234,29 @@ bool elementContains(const Node& e, const Vec3& x, double tol) {
     }
     return true;
 }
-}  // namespace
+
+std::vector<int> Hierarchy::edgeNeighbours(int leaf) const {
+    std::vector<int> out;
+    const Node& e = nodes[leaf];
+    const Node& root = nodes[polygonRoot[e.polygon]];
+    const double step = 1e-4 * e.radius;  // well inside any neighbour, far above rounding
+    for (int i = 0; i < e.vertexCount; ++i) {
+        const Vec3& a = e.v[i];
+        const Vec3& b = e.v[(i + 1) % e.vertexCount];
+        const Vec3 edge = b - a;
+        const double len = glm::length(edge);
+        if (!(len > 0)) continue;  // degenerate edge
+        // Counter-clockwise corners: edge x normal points out of the element.
+        const Vec3 out_dir = glm::cross(edge, e.normal) * (1.0 / len);
+        for (double t : {0.25, 0.5, 0.75}) {
+            const Vec3 x = a + t * edge + step * out_dir;
+            if (!elementContains(root, x, 0.0)) continue;  // across the polygon's boundary
+            const int n = locateLeaf(e.polygon, x);
+            if (n != leaf && std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+        }
+    }
+    return out;
+}
 
 int Hierarchy::locateLeaf(int polygon, const Vec3& x) const {
     int node = polygonRoot[polygon];

@@ -65,6 +65,9 @@ class Hierarchy {
 
     /// Splits a leaf element into 4 children (returns false for clusters and non-leaves).
     bool subdivide(int node);
+    /// Undoes subdivide(node) when its 4 children are the newest nodes and leaves
+    /// (returns false otherwise, changing nothing).
+    bool unsubdivide(int node);
 
     /// Re-reads emittance from `scene` (after a light edit) and updates `emitting` and the
     /// clusters' mean E.
@@ -77,6 +80,12 @@ class Hierarchy {
 
     /// The leaf element of `polygon` that contains x (a point on the polygon).
     int locateLeaf(int polygon, const Vec3& x) const;
+
+    /// The leaf elements of the same polygon that share part of an edge with leaf `leaf`.
+    /// Found by probing just outside each edge at 1/4, 1/2 and 3/4 of its length: a leaf
+    /// finds every neighbour at least as large as itself across each edge, and a smaller
+    /// one finds it: the union over both sides is the full relation.
+    std::vector<int> edgeNeighbours(int leaf) const;
 
     /// Pull: recomputes cluster/parent B, rho, E, area-weighted from the leaves.
     void pullAverages(int node);
@@ -92,6 +101,10 @@ class Hierarchy {
     int clusterCount_ = 0;
     std::vector<Polygon> polygons_;  // corners for point sampling in clusters
 };
+
+/// Whether point x (on the element's plane) lies in element e, edges included to within
+/// tol x edge length.
+bool elementContains(const Node& e, const Vec3& x, double tol);
 
 /// Point on element `e` for (u, v) in [0, 1]^2: bilinear on a quad; for a triangle the
 /// area-preserving square-to-triangle map (sqrt warp).

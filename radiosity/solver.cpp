@@ -206,6 +206,7 @@ void HierarchicalSolver::buildReceiverIndex() {
 }
 
 std::span<const Link> HierarchicalSolver::linksOf(int node) const {
+    if (indexDirty_) throw std::logic_error("linksOf: call finishSplits() after splitForLights");
     if (node < 0 || node >= static_cast<int>(receiverSlot_.size()) || receiverSlot_[node] < 0)
         return {};
     const int i = receiverSlot_[node];
@@ -235,6 +236,7 @@ void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
 }
 
 double HierarchicalSolver::sweep() {
+    if (indexDirty_) finishSplits();
     auto t0 = Clock::now();
     for (Node& n : h_.nodes) n.H = Rgb{};
     // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
@@ -417,6 +419,110 @@ SolverStats HierarchicalSolver::stats() const {
     };
     Walk{h_, s}(Hierarchy::kRoot, Rgb{});
     return s;
+}
+
+void HierarchicalSolver::setElementReflectance(int leaf, const Rgb& rho) {
+    Node& n = h_.nodes.at(leaf);
+    if (n.isCluster() || !n.isLeaf())
+        throw std::invalid_argument("setElementReflectance: not a leaf element");
+    n.rho = rho;
+}
+
+int HierarchicalSolver::lightOfNode(int node) const {
+    const Node& n = h_.nodes[node];
+    return n.isCluster() ? -1 : scene_.polygons[n.polygon].light;
+}
+
+std::vector<HierarchicalSolver::LightExchange> HierarchicalSolver::lightExchange(int node) const {
+    std::vector<LightExchange> out(scene_.lights.size());
+    for (const Link& l : linksOf(node)) {
+        const int light = lightOfNode(l.source);
+        if (light < 0) continue;
+        out[light].F += l.F;
+        out[light].FV += l.F * static_cast<double>(l.V);
+    }
+    return out;
+}
+
+bool HierarchicalSolver::splitForLights(int leaf,
+                                        std::vector<std::vector<LightExchange>>* children) {
+    const Node& n = h_.nodes.at(leaf);
+    if (n.isCluster() || !n.isLeaf() || !canSplit(leaf)) return false;
+    // The leaf's links from lights leave the active list (order kept: the gather sums
+    // each receiver's links in list order, so results stay independent of threads).
+    SplitRecord rec;
+    rec.leaf = leaf;
+    std::vector<Link> kept;
+    kept.reserve(links_.size());
+    for (size_t i = 0; i < links_.size(); ++i) {
+        const Link& l = links_[i];
+        if (l.receiver == leaf && lightOfNode(l.source) >= 0) {
+            rec.removed.push_back(l);
+            rec.at.push_back(i);
+        } else {
+            kept.push_back(l);
+        }
+    }
+    links_.swap(kept);
+    h_.subdivide(leaf);
+    const Node& parent = h_.nodes[leaf];
+    if (children) children->assign(4, std::vector<LightExchange>(scene_.lights.size()));
+    for (const Link& old : rec.removed) {
+        passive_.push_back(old);
+        for (int k = 0; k < parent.childCount; ++k) {
+            const int rc = parent.firstChild + k;
+            if (!transfer_->facing(rc, old.source)) continue;
+            Link c = makeLink(rc, old.source);
+            if (old.shaftEmpty) {  // no occluder between the parent and the light
+                c.shaftEmpty = true;
+                c.type = VisibilityType::visible;
+                c.V = 1;
+            } else {
+                transfer_->visibility(c);
+            }
+            links_.push_back(c);
+            if (children) {
+                LightExchange& e = (*children)[k][lightOfNode(old.source)];
+                e.F += c.F;
+                e.FV += c.F * static_cast<double>(c.V);
+            }
+        }
+    }
+    lastSplit_ = std::move(rec);
+    indexDirty_ = true;
+    return true;
+}
+
+void HierarchicalSolver::unsplit(int leaf) {
+    const Node& n = h_.nodes.at(leaf);
+    if (lastSplit_.leaf != leaf || n.childCount != 4 ||
+        n.firstChild + 4 != static_cast<int>(h_.nodes.size()))
+        throw std::logic_error("unsplit: only the last splitForLights can be cancelled");
+    const int first = n.firstChild;
+    std::erase_if(links_, [&](const Link& l) { return l.receiver >= first; });
+    passive_.resize(passive_.size() - lastSplit_.removed.size());
+    for (size_t k = 0; k < lastSplit_.removed.size(); ++k)  // ascending indices
+        links_.insert(links_.begin() + static_cast<std::ptrdiff_t>(lastSplit_.at[k]),
+                      lastSplit_.removed[k]);
+    h_.unsubdivide(leaf);
+    lastSplit_ = {};
+    indexDirty_ = true;
+}
+
+void HierarchicalSolver::finishSplits() {
+    buildReceiverIndex();
+    indexDirty_ = false;
+}
+
+void HierarchicalSolver::scaleLightLinks(int node, double c) {
+    if (indexDirty_) finishSplits();
+    if (!(c >= 0) || !std::isfinite(c))
+        throw std::invalid_argument("scaleLightLinks: the correction must be finite and >= 0");
+    if (node < 0 || node >= static_cast<int>(receiverSlot_.size()) || receiverSlot_[node] < 0)
+        return;
+    const int i = receiverSlot_[node];
+    for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k)
+        if (lightOfNode(links_[k].source) >= 0) links_[k].V = static_cast<float>(static_cast<double>(links_[k].V) * c);
 }
 
 }  // namespace radiosity

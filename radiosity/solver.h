@@ -96,6 +96,40 @@ class HierarchicalSolver {
     /// Reflectance edit of one polygon: updates its elements (links are kept); call
     /// solve() or gatherPushPull() after a batch of edits.
     void setReflectance(int polygon, const Rgb& rho);
+    /// Reflectance edit of one leaf element (per-element reflectance estimated from its
+    /// texture, Loscos et al. 2000, §4.4); call pullReflectance() after a batch of them.
+    void setElementReflectance(int leaf, const Rgb& rho);
+    void pullReflectance() { h_.pullAverages(Hierarchy::kRoot); }
+
+    /// Light exchanged by `node` with each light (scene order): the sums of F and F V over
+    /// the active links it gathers from that light's emitting elements. With the light
+    /// links at the leaves (forceLightLinksToLeaves), F V / F is the leaf's visibility of
+    /// the light (Loscos et al. 2000, §4.2-4.3).
+    struct LightExchange {
+        double F = 0, FV = 0;
+    };
+    std::vector<LightExchange> lightExchange(int node) const;
+
+    /// Texture-based refinement (Loscos et al. 2000, §4.2, Fig. 12): splits leaf element
+    /// `leaf` into 4 and moves its links from lights to the children, each with its own
+    /// form factor and visibility (the leaf's light links become passive). Links it
+    /// gathers from other nodes stay on it: indirect light is gathered higher up and
+    /// pushed down. Fills `children` with each child's lightExchange. Returns false (and
+    /// changes nothing) for a cluster, a non-leaf, or a leaf at the minimum area.
+    /// The receiver index is rebuilt at the next gather (or by finishSplits()).
+    bool splitForLights(int leaf, std::vector<std::vector<LightExchange>>* children = nullptr);
+    /// Cancels the last splitForLights(leaf): the children (the newest nodes) and their
+    /// links go, the leaf's light links come back at their places in the link list (the
+    /// list is then the one before the split, unless finishSplits() sorted a list that was
+    /// not sorted). Throws std::logic_error otherwise.
+    void unsplit(int leaf);
+    /// Rebuilds the receiver index after splits (linksOf needs it).
+    void finishSplits();
+
+    /// Link correction of real-shadow removal (Loscos et al. 2000, Eq. (14)-(15)):
+    /// multiplies V of the links `node` gathers from lights by c >= 0, so that they carry
+    /// C_link V F E (V may then exceed 1). Call gatherPushPull() after a batch.
+    void scaleLightLinks(int node, double c);
 
     const Scene& scene() const { return scene_; }
     const Hierarchy& hierarchy() const { return h_; }
@@ -113,6 +147,7 @@ class HierarchicalSolver {
     void refineLink(const Link& link, std::vector<Link>& out);
     bool refineAll();
     void pushLightLinksToLeaves();
+    int lightOfNode(int node) const;
     void addLinksFromSource(int node);
     void buildReceiverIndex();
     void pushPull(int node, const Rgb& Hdown);
@@ -133,6 +168,12 @@ class HierarchicalSolver {
     double powerThreshold_ = 0;  ///< epsilon * emitted power (max channel)
     bool started_ = false;
     bool changedInRefine_ = false;
+    bool indexDirty_ = false;  ///< links_ changed since buildReceiverIndex
+    struct SplitRecord {
+        int leaf = -1;
+        std::vector<Link> removed;  ///< the leaf's light links, moved to passive_
+        std::vector<size_t> at;     ///< their indices in links_ before the split
+    } lastSplit_;
     SolverStats timing_;
 };
 

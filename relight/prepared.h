@@ -28,9 +28,9 @@ struct PrepareTimes {
 };
 
 struct PreparedImage {
-    Image photo;                 ///< T_orig: the first photo, linear
-    DisplayMap display;          ///< per pixel: vertices and weights, emitting faces
-    VertexLighting lighting;     ///< per vertex and light: h_l(v), per unit radiance
+    Image photo;                                ///< T_orig: the first photo, linear
+    DisplayMap display;                         ///< per pixel: vertices and weights, emitting faces
+    VertexLighting lighting;                    ///< per vertex and light: h_l(v), per unit radiance
     std::vector<radiosity::Rgb> D;              ///< per vertex: display correction factor
     std::vector<radiosity::Rgb> textureFactor;  ///< per vertex: k = T_final / T_orig
     std::vector<radiosity::Rgb> photoRadiance;  ///< per light: its radiance in the photo

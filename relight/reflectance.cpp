@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "radiosity/final_gather.h"
+#include "relight/leaf_texture.h"
 
 namespace relight {
 
@@ -22,36 +23,8 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
     ReflectanceReport report;
     const radiosity::Scene& scene = solver.scene();
     const int np = static_cast<int>(scene.polygons.size());
-    // Usable pixels: finite, every sample on the same reflecting polygon (a pixel across
-    // an edge mixes two surfaces), and no emitting face within one pixel (a lamp is tens
-    // of times brighter than what it lights: a sliver of it in a pixel ruins the ratio).
     const int w = items.width, hgt = items.height;
-    std::vector<uint8_t> usable(static_cast<size_t>(w) * hgt, 0),
-        nearEmitter(static_cast<size_t>(w) * hgt, 0);
-    for (int y = 0; y < hgt; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int s = 0; s < items.spp; ++s) {
-                const int p = items.polygon[items.sampleIndex(x, y, s)];
-                if (p >= 0 && scene.polygons[p].light >= 0)
-                    for (int dy = -1; dy <= 1; ++dy)
-                        for (int dx = -1; dx <= 1; ++dx) {
-                            const int xx = x + dx, yy = y + dy;
-                            if (xx >= 0 && yy >= 0 && xx < w && yy < hgt)
-                                nearEmitter[static_cast<size_t>(yy) * w + xx] = 1;
-                        }
-            }
-    for (int y = 0; y < hgt; ++y) {
-        for (int x = 0; x < w; ++x) {
-            const float* px = photo.at(x, y);
-            if (!std::isfinite(px[0]) || !std::isfinite(px[1]) || !std::isfinite(px[2])) continue;
-            if (nearEmitter[static_cast<size_t>(y) * w + x]) continue;
-            const int p0 = items.polygon[items.sampleIndex(x, y, 0)];
-            bool pure = p0 >= 0;
-            for (int s = 1; s < items.spp && pure; ++s)
-                pure = items.polygon[items.sampleIndex(x, y, s)] == p0;
-            usable[static_cast<size_t>(y) * w + x] = pure ? 1 : 0;
-        }
-    }
+    const std::vector<uint8_t> usable = usablePixels(items, scene, photo);
     // What does not change between rounds: per polygon, the photo's sum and the direct
     // light's sum over the usable samples (direct light depends on the lights only).
     std::vector<Rgb> sumL(np), sumDirect(np);

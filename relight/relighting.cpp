@@ -83,6 +83,22 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     P.times.reflectance = since(t0);
 
     t0 = Clock::now();
+    r->texture =
+        std::make_unique<LeafTexture>(r->solver->hierarchy(), r->solver->scene(), r->items, P.photo,
+                                      usablePixels(r->items, r->solver->scene(), P.photo));
+    if (o.shadowRefinement) {
+        say("texture-based refinement of shadow boundaries");
+        ShadowRefinementOptions ro = o.refinement;
+        ro.progress = o.progress;
+        r->refinement = refineShadowBoundaries(*r->solver, *r->texture, ro);
+        say("  " + std::to_string(r->refinement.splitSameColour) + " + " +
+            std::to_string(r->refinement.splitDifferentColour) + " splits kept, " +
+            std::to_string(r->refinement.undone) + " undone; " +
+            std::to_string(r->refinement.leavesAfter) + " leaves");
+    }
+    P.times.refinement = since(t0);
+
+    t0 = Clock::now();
     say("per-light responses");
     r->responses = std::make_unique<radiosity::LightResponses>(*r->solver);
     P.times.responses = since(t0);
@@ -90,14 +106,32 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     t0 = Clock::now();
     r->mesh = std::make_unique<radiosity::LeafMesh>(r->solver->hierarchy());
     say("lighting at " + std::to_string(r->mesh->vertices().size()) + " leaf vertices");
-    P.lighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo);
+    P.lighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, &r->direct);
     P.times.vertexLighting = since(t0);
 
     t0 = Clock::now();
+    if (o.shadowRemoval) {
+        say("real-shadow removal");
+        r->removal = removeRealShadows(*r->solver, *r->mesh, *r->texture, P.photoRadiance,
+                                       r->direct, r->responses, dlo, o.removal);
+        say("  " + std::to_string(r->removal.occluded) + " occluded leaves, " +
+            std::to_string(r->removal.frontier) + " on the frontier, " +
+            std::to_string(r->removal.referenced) + " with a reference; " +
+            std::to_string(r->removal.partialVertices) + " vertices with C_link, " +
+            std::to_string(r->removal.umbraVertices) + " with C_umbra");
+        P.lighting = r->removal.lighting;
+        P.D = r->removal.D;
+        P.textureFactor = r->removal.kFinal;
+    } else {
+        // The 1997 method: D is the photo's own lighting, so the unedited display is the
+        // photo (B/D = 1).
+        P.D = vertexIrradiance(P, P.photoRadiance);
+        P.textureFactor.assign(P.D.size(), Rgb::gray(1.0));
+    }
+    P.times.shadowRemoval = since(t0);
+
+    t0 = Clock::now();
     P.display = buildDisplayMap(r->items, *r->mesh, r->solver->scene());
-    // D: the photo's own lighting, so that the unedited display is the photo (B/D = 1).
-    P.D = vertexIrradiance(P, P.photoRadiance);
-    P.textureFactor.assign(P.D.size(), Rgb::gray(1.0));
     P.times.displayMap = since(t0);
     const auto st = r->solver->stats();
     P.leaves = st.leaves;

@@ -36,6 +36,8 @@
 #include "relight/prepared.h"
 #include "relight/ratio_display.h"
 #include "relight/scene_file.h"
+#include "relight/shadow_refinement.h"
+#include "relight/shadow_removal.h"
 #include "relight/vertex_lighting.h"
 
 namespace relight {
@@ -45,6 +47,10 @@ struct RelightOptions {
     int spp = 16;           ///< item-buffer samples per pixel
     int minRays = 4, maxRays = 16;
     int reflectanceRounds = 12;
+    bool shadowRefinement = true;  ///< texture-based refinement (relight/shadow_refinement.h)
+    ShadowRefinementOptions refinement;
+    bool shadowRemoval = true;  ///< real-shadow removal (relight/shadow_removal.h)
+    ShadowRemovalOptions removal;
     std::function<void(const std::string&)> progress;  ///< one line per step (may be empty)
 };
 
@@ -57,6 +63,10 @@ struct Relighting {
     ItemBuffer items;
     std::unique_ptr<radiosity::LeafMesh> mesh;
     std::unique_ptr<radiosity::LightResponses> responses;
+    std::unique_ptr<LeafTexture> texture;  ///< the photo per leaf
+    ShadowRefinementReport refinement;
+    VertexDirect direct;    ///< direct light per vertex and light, with and without blockers
+    ShadowRemoval removal;  ///< empty when options.shadowRemoval is off
 };
 
 /// The scene's first photo, linear (sRGB decoded when the scene says so), checked against

@@ -33,11 +33,25 @@ struct VertexLighting {
     radiosity::Rgb irradiance(int v, std::span<const radiosity::Rgb> radiance) const;
 };
 
+/// Direct light alone at every vertex, per unit radiance of each light ([v * lights + l]):
+/// with the blockers (pi G_l(v)) and without them (pi G0_l(v)). Their difference per light
+/// is the blocked irradiance of Loscos et al. 2000, Eq. (8), at the vertex.
+struct VertexDirect {
+    int lights = 0;
+    std::vector<double> visible, unoccluded;
+};
+
 /// Evaluates h_l at every vertex of `mesh` (built on `solver`'s hierarchy), in parallel,
-/// deterministically (each vertex draws its rays from its own index).
+/// deterministically (each vertex draws its rays from its own index). With `directOut`,
+/// also the direct light alone; with `direct` given, the direct light is taken from it
+/// (scaled per vertex by `directScale`, one per vertex and channel, when not empty: the
+/// link correction C_link of shadow removal) and only the indirect part is gathered.
 VertexLighting computeVertexLighting(const radiosity::HierarchicalSolver& solver,
                                      const radiosity::LeafMesh& mesh,
                                      const radiosity::LightResponses& responses,
-                                     radiosity::DirectLightOptions options = {});
+                                     radiosity::DirectLightOptions options = {},
+                                     VertexDirect* directOut = nullptr,
+                                     const VertexDirect* direct = nullptr,
+                                     const std::vector<radiosity::Rgb>* directScale = nullptr);
 
 }  // namespace relight

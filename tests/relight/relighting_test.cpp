@@ -12,6 +12,7 @@
 #include "relight/edit_file.h"
 #include "relight/ratio_display.h"
 #include "relight/relighting.h"
+#include "relight/shadow_removal.h"
 #include "temp_dir.h"
 
 using namespace relight;
@@ -87,8 +88,9 @@ const Relighting& room() {
 }  // namespace
 
 TEST(Relighting, UneditedLightsReproduceThePhoto) {
-    // B = D at every vertex, so B/D = 1 exactly and each pixel is T times the sum of its
-    // interpolation weights (1 up to float rounding of the weights: 1e-5 relative).
+    // With real-shadow removal the texture factor is k = (D + delta) / (B + delta) at
+    // every vertex (delta the display's floor), so k B/D = 1 to rounding and each pixel is
+    // T times the sum of its interpolation weights (1 up to float rounding: 1e-5 relative).
     // Pixels that see a light's emitting face show its radiance instead (spec) and are
     // left out.
     const Relighting& r = room();
@@ -98,7 +100,8 @@ TEST(Relighting, UneditedLightsReproduceThePhoto) {
         for (int x = 0; x < out.width; ++x)
             for (int c = 0; c < 3; ++c) {
                 const int px = y * out.width + x;
-                if (r.prepared.display.emitterStart[px] != r.prepared.display.emitterStart[px + 1]) continue;
+                if (r.prepared.display.emitterStart[px] != r.prepared.display.emitterStart[px + 1])
+                    continue;
                 const double t = r.prepared.photo.at(x, y)[c], o = out.at(x, y)[c];
                 worst = std::max(worst, std::abs(o - t) / std::max(std::abs(t), 1e-3));
             }
@@ -131,7 +134,8 @@ TEST(Relighting, DoublingEveryLightDoublesTheSurfaces) {
     const Image same = renderEdit(r.prepared, r.prepared.photoRadiance);
     int checked = 0;
     for (int px = 0; px < r.prepared.display.width * r.prepared.display.height; ++px) {
-        if (r.prepared.display.emitterStart[px] != r.prepared.display.emitterStart[px + 1]) continue;
+        if (r.prepared.display.emitterStart[px] != r.prepared.display.emitterStart[px + 1])
+            continue;
         if (r.prepared.display.unshaded[px] > 0) continue;
         for (int c = 0; c < 3; ++c) {
             const double a = out.rgb[px * 3 + c], b = same.rgb[px * 3 + c];
@@ -227,11 +231,54 @@ TEST(Relighting, LightOffInThePhotoCanBeSwitchedOn) {
     const auto after = vertexIrradiance(r->prepared, radiance);
     for (size_t v = 0; v < before.size(); ++v)
         for (int c = 0; c < 3; ++c) ASSERT_GE(after[v][c], before[v][c]);
-    const Image lit = renderEdit(r->prepared, radiance), same = renderEdit(r->prepared, r->prepared.photoRadiance);
+    const Image lit = renderEdit(r->prepared, radiance),
+                same = renderEdit(r->prepared, r->prepared.photoRadiance);
     double sumLit = 0, sumSame = 0;
     for (size_t i = 0; i < lit.rgb.size(); ++i) {
         sumLit += static_cast<double>(lit.rgb[i]);
         sumSame += static_cast<double>(same.rgb[i]);
     }
     EXPECT_GT(sumLit, 1.05 * sumSame);
+}
+
+TEST(ShadowRemoval, RegionsFrontierAndReferencesFollowThePaper) {
+    // §4.3-4.4 on the room (three lamps, furniture casting shadows): the classes, the
+    // frontier and the reference choice obey their definitions, and the corrections their
+    // bounds.
+    const Relighting& r = room();
+    const ShadowRemoval& sr = r.removal;
+    const auto& h = r.solver->hierarchy();
+    ASSERT_GT(sr.occluded, 0);
+    ASSERT_GT(sr.frontier, 0);
+    int frontier = 0;
+    for (int n = 0; n < static_cast<int>(h.nodes.size()); ++n) {
+        if (sr.leafClass[n] == LeafShadowClass::frontier) {
+            ++frontier;  // a lit leaf with an occluded edge neighbour (Fig. 14(a))
+            const auto nb = h.edgeNeighbours(n);
+            EXPECT_TRUE(std::any_of(nb.begin(), nb.end(), [&](int m) {
+                return sr.leafClass[m] == LeafShadowClass::occluded;
+            }));
+        }
+        const int ref = sr.reference[n];
+        if (ref < 0 || ref == n) continue;
+        // Fig. 15 / Eq. (10): the reference is on the frontier and brighter in every
+        // channel; Eq. (11): the correction never darkens.
+        EXPECT_EQ(sr.leafClass[n], LeafShadowClass::occluded);
+        EXPECT_EQ(sr.leafClass[ref], LeafShadowClass::frontier);
+        const Rgb ci = r.texture->colour(n), cr = r.texture->colour(ref);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_LT(ci[c], cr[c]);
+            EXPECT_GE(sr.rhoRatio[n][c], 1.0);
+        }
+    }
+    EXPECT_EQ(frontier, sr.frontier);
+    const size_t nv = sr.blocked.size();
+    ASSERT_EQ(nv, r.mesh->vertices().size());
+    for (size_t v = 0; v < nv; ++v)
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_GE(sr.blocked[v][c], 0.0);         // Eq. (8): blocked light is not negative
+            EXPECT_GE(sr.linkCorrection[v][c], 0.0);  // Eq. (15), clamped to [0, D0 / Dv]
+            EXPECT_GE(sr.D[v][c], 0.0);
+            EXPECT_TRUE(std::isfinite(sr.kFinal[v][c]) && sr.kFinal[v][c] > 0);
+        }
 }
