@@ -1,7 +1,9 @@
 // relight: the command line. Subcommands (relight/cli/):
-//   relight solve  <scene_dir> [--epsilon E] [--report out.json] [-o radiosity.exr|png]
-//   relight render <scene_dir> [--edit edit.json] -o out.exr|png [--report r.json]
-//   relight eval   <scene_dir> <edit_name> <image> [--error-map file]
+//   relight solve   <scene_dir> [--epsilon E] [--report out.json] [-o radiosity.exr|png]
+//   relight prepare <scene_dir> [--epsilon E] [--spp N] [--cache FILE] [--force]
+//   relight render  <scene_dir> [--edit edit.json] -o out.exr|png [--report r.json]
+//                   [--cache FILE | --no-cache]
+//   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
 // Errors in the input print one clear line naming the file and line or key, exit code 2.
 #include <CLI/CLI.hpp>
 
@@ -63,6 +65,22 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     render->add_option("--spp", ra.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     render->add_option("--exposure", ra.exposure, "exposure in stops for 8-bit output");
+    auto* renderCache =
+        render->add_option("--cache", ra.cache.file,
+                           "prepared-state cache (default <scene_dir>/.relight/prepared.bin)");
+    render->add_flag("!--no-cache", ra.cache.use, "prepare without reading or writing a cache")
+        ->excludes(renderCache);
+
+    cli::PrepareArgs pa;
+    auto* prepare = app.add_subcommand(
+        "prepare", "prepare a scene for rendering once and cache the prepared state on disk");
+    prepare->add_option("scene_dir", pa.scene, "scene folder holding scene.json")->required();
+    prepare->add_option("--epsilon", pa.epsilon, "BF refinement threshold")
+        ->check(CLI::PositiveNumber);
+    prepare->add_option("--spp", pa.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
+    prepare->add_option("--cache", pa.cache.file,
+                        "where to write it (default <scene_dir>/.relight/prepared.bin)");
+    prepare->add_flag("--force", pa.cache.force, "prepare again even when the cache is valid");
 
     CLI11_PARSE(app, argc, argv);
     try {
@@ -71,6 +89,7 @@ int main(int argc, char** argv) {
             return cli::runSolve(sa);
         }
         if (*render) return cli::runRender(ra);
+        if (*prepare) return cli::runPrepare(pa);
         if (*eval) return cli::runEval(evScene, evEdit, evImage, evErrorMap);
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

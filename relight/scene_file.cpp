@@ -371,6 +371,7 @@ SceneFile loadScene(const fs::path& dir) {
         std::error_code ec;
         if (!fs::exists(objPath, ec))
             r.fail(gPath, "OBJ file \"" + objPath.string() + "\" not found");
+        sf.geometryFiles.push_back(objPath);
         const ObjFile obj = readObj(objPath);
         sf.warnings.insert(sf.warnings.end(), obj.warnings.begin(), obj.warnings.end());
         std::vector<int> globalObject;

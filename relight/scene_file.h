@@ -57,6 +57,9 @@ struct SceneFile {
     /// Per light: true when scene.json says "radiance": "estimate".
     std::vector<bool> estimateRadiance;
     std::vector<std::string> warnings;  ///< documented repairs, with file and line
+    /// The OBJ files of "geometry", in scene.json's order (dir / name): with scene.json and
+    /// the photos, the files the scene's content comes from (relight/prepared_cache.h).
+    std::vector<std::filesystem::path> geometryFiles;
 
     /// Lights' on/off state in the first photo: scene.lights[i].radiance is
     /// nominalRadiance[i] when the light is in photos[0].lightsOn (or when there is no

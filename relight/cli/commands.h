@@ -2,7 +2,12 @@
 // Each returns the process exit code and throws InputError for bad input.
 #pragma once
 
+#include <filesystem>
 #include <string>
+
+#include "relight/prepared.h"
+#include "relight/relighting.h"
+#include "relight/scene_file.h"
 
 namespace relight::cli {
 
@@ -25,13 +30,49 @@ int runSolve(const SolveArgs& a);
 int runEval(const std::string& sceneDir, const std::string& edit, const std::string& image,
             const std::string& errorMapFile);
 
+/// Where the prepared state comes from (`prepare`, `render`): the cache file (empty: the
+/// default, <scene_dir>/.relight/prepared.bin), whether to use it at all, and whether to
+/// prepare again even when it is valid.
+struct CacheArgs {
+    std::string file;
+    bool use = true;
+    bool force = false;
+};
+
 /// `relight render`: the relit photo for an edit.
 struct RenderArgs {
     std::string scene, edit, output, report;
     double epsilon = 1e-4;
     int spp = 16;
     double exposure = 0;
+    CacheArgs cache;
 };
 int runRender(const RenderArgs& a);
+
+/// `relight prepare`: prepares a scene once and writes the prepared state's cache.
+struct PrepareArgs {
+    std::string scene;
+    double epsilon = 1e-4;
+    int spp = 16;
+    CacheArgs cache;
+};
+int runPrepare(const PrepareArgs& a);
+
+/// The prepared state from the cache when it is valid, else prepared (with progress on
+/// stderr) and written to the cache. Says on stdout which it was, and why it prepared.
+struct PreparedState {
+    PreparedImage image;
+    std::string cache;           ///< for reports: "hit", "rebuilt: <why>" or "disabled"
+    std::filesystem::path file;  ///< the cache file (empty when disabled)
+    bool written = false;        ///< the cache was (re)written
+    double seconds = 0;          ///< time to load or to prepare and write
+};
+/// "item buffer 0.019, solve 0.013, ...": the time of each preparation step, in seconds.
+std::string stepTimes(const PrepareTimes& t);
+
+/// `writeMustSucceed`: a cache that cannot be written is an error (prepare) rather than a
+/// warning on stderr (render: rendering goes on without it).
+PreparedState loadOrPrepare(const SceneFile& scene, const RelightOptions& options,
+                            const CacheArgs& cache, bool writeMustSucceed);
 
 }  // namespace relight::cli

@@ -1,4 +1,5 @@
 // relight render <scene_dir> [--edit edit.json] -o out.exr|out.png [--report r.json]
+//                [--cache FILE | --no-cache]
 #include <cstdio>
 #include <filesystem>
 
@@ -19,49 +20,54 @@ int runRender(const RenderArgs& a) {
     std::fprintf(stderr, "relight render %s\n", a.scene.c_str());
     // The edit is read (and checked against the scene) before the long preparation, so a
     // bad edit fails at once.
-    SceneFile sf = loadScene(a.scene);
+    const SceneFile sf = loadScene(a.scene);
     EditFile edit;
     if (!a.edit.empty()) {
         edit = loadEdit(a.edit, sf);
         requireLightsOnly(edit);
     }
+    const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false);
+    const PreparedImage& p = s.image;
+    const double tPrepare = s.seconds;
+    const auto radiance = editRadiance(sf, edit);
     auto t0 = Clock::now();
-    const auto r = prepareRelighting(std::move(sf), o);
-    const double tPrepare = since(t0);
-    const auto radiance = editRadiance(r->scene, edit);
-    t0 = Clock::now();
-    const Image img = renderEdit(r->prepared, radiance);
+    const Image img = renderEdit(p, radiance);
     const double tEdit = since(t0);
     writeImage(a.output, img, a.exposure);
-    const auto st = r->solver->stats();
-    std::printf("leaves %d, links %d, leaf vertices %zu\n", st.leaves, st.links,
-                r->mesh->vertices().size());
-    std::printf(
-        "time: prepare %.3f s (item buffer %.3f, solve %.3f, reflectance %.3f, responses %.3f, "
-        "vertex lighting %.3f, display map %.3f); edit %.4f s\n",
-        tPrepare, r->prepared.times.itemBuffer, r->prepared.times.solve, r->prepared.times.reflectance, r->prepared.times.responses,
-        r->prepared.times.vertexLighting, r->prepared.times.displayMap, tEdit);
+    std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
+    if (s.cache == "hit")
+        std::printf("time: load cache %.3f s (its preparation took: %s); edit %.4f s\n", tPrepare,
+                    stepTimes(p.times).c_str(), tEdit);
+    else
+        std::printf("time: prepare %.3f s (%s); edit %.4f s\n", tPrepare,
+                    stepTimes(p.times).c_str(), tEdit);
     std::printf("wrote %s (%dx%d)\n", a.output.c_str(), img.width, img.height);
+    if (s.written) std::printf("wrote cache %s\n", s.file.string().c_str());
     if (!a.report.empty()) {
         nlohmann::json lights = nlohmann::json::object();
         for (size_t l = 0; l < radiance.size(); ++l)
-            lights[r->scene.scene.lights[l].name] = rgbJson(radiance[l]);
+            lights[sf.scene.lights[l].name] = rgbJson(radiance[l]);
         const nlohmann::json j = {{"scene", a.scene},
                                   {"edit", a.edit},
                                   {"output", a.output},
                                   {"epsilon", a.epsilon},
-                                  {"leaves", st.leaves},
-                                  {"links", st.links},
-                                  {"leaf_vertices", r->mesh->vertices().size()},
+                                  {"cache", s.cache},
+                                  {"cache_file", s.file.empty() ? nlohmann::json(nullptr)
+                                                                : nlohmann::json(s.file.string())},
+                                  {"leaves", p.leaves},
+                                  {"links", p.links},
+                                  {"leaf_vertices", p.vertexCount()},
                                   {"lights", lights},
                                   {"time_s",
-                                   {{"item_buffer", r->prepared.times.itemBuffer},
-                                    {"solve", r->prepared.times.solve},
-                                    {"reflectance", r->prepared.times.reflectance},
-                                    {"responses", r->prepared.times.responses},
-                                    {"vertex_lighting", r->prepared.times.vertexLighting},
-                                    {"display_map", r->prepared.times.displayMap},
-                                    {"prepare", tPrepare},
+                                   {{"item_buffer", p.times.itemBuffer},
+                                    {"solve", p.times.solve},
+                                    {"reflectance", p.times.reflectance},
+                                    {"refinement", p.times.refinement},
+                                    {"responses", p.times.responses},
+                                    {"vertex_lighting", p.times.vertexLighting},
+                                    {"shadow_removal", p.times.shadowRemoval},
+                                    {"display_map", p.times.displayMap},
+                                    {"prepare", tPrepare},  // or the cache's loading
                                     {"edit", tEdit},
                                     {"total", since(tAll)}}}};
         writeJsonAtomic(a.report, j);

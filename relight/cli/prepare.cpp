@@ -1,0 +1,110 @@
+// relight prepare <scene_dir> [--epsilon E] [--spp N] [--cache FILE] [--force]
+// and the cache logic that render shares with it (loadOrPrepare).
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "relight/cli/commands.h"
+#include "relight/cli/util.h"
+#include "relight/prepared_cache.h"
+#include "relight/relighting.h"
+
+namespace relight::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A valid cache made from these inputs fits the scene; checked anyway, as the key could
+/// only miss this by a hash collision.
+std::string fitsScene(const PreparedImage& p, const SceneFile& sf) {
+    if (p.photoRadiance.size() != sf.scene.lights.size())
+        return "cache does not fit the scene: " + std::to_string(p.photoRadiance.size()) +
+               " lights, the scene has " + std::to_string(sf.scene.lights.size());
+    if (p.photo.width != sf.camera.width || p.photo.height != sf.camera.height)
+        return "cache does not fit the scene: the photo's size differs from the camera's";
+    return {};
+}
+
+}  // namespace
+
+std::string stepTimes(const PrepareTimes& t) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "item buffer %.3f, solve %.3f, reflectance %.3f, refinement %.3f, responses "
+                  "%.3f, vertex lighting %.3f, shadow removal %.3f, display map %.3f",
+                  t.itemBuffer, t.solve, t.reflectance, t.refinement, t.responses, t.vertexLighting,
+                  t.shadowRemoval, t.displayMap);
+    return text;
+}
+
+PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const CacheArgs& c,
+                            bool writeMustSucceed) {
+    PreparedState s;
+    const auto t0 = Clock::now();
+    if (!c.use) {
+        s.image = std::move(prepareRelighting(sf, o)->prepared);
+        s.cache = "disabled";
+        s.seconds = since(t0);
+        return s;
+    }
+    s.file = c.file.empty() ? defaultCachePath(sf.dir) : fs::path(c.file);
+    const uint64_t key = preparationKey(sf, o);
+    std::string why;
+    if (c.force) {
+        why = "forced (--force)";
+    } else if (auto p = readPreparedCache(s.file, key, &why)) {
+        why = fitsScene(*p, sf);
+        if (why.empty()) {
+            s.image = std::move(*p);
+            s.cache = "hit";
+            s.seconds = since(t0);
+            std::printf("using cache %s\n", s.file.string().c_str());
+            std::fflush(stdout);
+            return s;
+        }
+    }
+    std::printf("%s; preparing\n", why.c_str());
+    std::fflush(stdout);
+    s.image = std::move(prepareRelighting(sf, o)->prepared);
+    s.cache = "rebuilt: " + why;
+    try {
+        writePreparedCache(s.file, s.image, key);
+        s.written = true;
+    } catch (const std::exception& e) {
+        if (writeMustSucceed) throw;
+        std::fprintf(stderr, "warning: %s; going on without it\n", e.what());
+    }
+    s.seconds = since(t0);
+    return s;
+}
+
+int runPrepare(const PrepareArgs& a) {
+    RelightOptions o;
+    o.epsilon = a.epsilon;
+    o.spp = a.spp;
+    o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
+    std::fprintf(stderr, "relight prepare %s\n", a.scene.c_str());
+    const SceneFile sf = loadScene(a.scene);
+    for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    CacheArgs cache = a.cache;
+    cache.use = true;
+    const PreparedState s = loadOrPrepare(sf, o, cache, /*writeMustSucceed=*/true);
+    const PreparedImage& p = s.image;
+    std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
+    if (s.written)
+        std::printf("time: prepare %.3f s (%s)\n", s.seconds, stepTimes(p.times).c_str());
+    else
+        std::printf("time: load %.3f s (its preparation took: %s)\n", s.seconds,
+                    stepTimes(p.times).c_str());
+    std::error_code ec;
+    const auto bytes = fs::file_size(s.file, ec);
+    if (s.written)
+        std::printf("wrote cache %s (%.1f MB)\n", s.file.string().c_str(),
+                    ec ? 0.0 : static_cast<double>(bytes) / 1e6);
+    else
+        std::printf("cache up to date: %s (--force prepares again)\n", s.file.string().c_str());
+    return 0;
+}
+
+}  // namespace relight::cli

@@ -1,0 +1,106 @@
+# End to end through the `relight` binary: prepare writes the cache, render uses it, a
+# changed option or a corrupt file makes render prepare again, a cache that cannot be
+# written does not stop render. Run by ctest (tests/CMakeLists.txt):
+#   cmake -DRELIGHT=<relight binary> -DSCENE=<data/room> -DWORK=<scratch folder> -P this
+cmake_minimum_required(VERSION 3.25)
+foreach(var RELIGHT SCENE WORK)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "define ${var}")
+  endif()
+endforeach()
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}/room")
+foreach(f scene.json room.obj photo.exr photo.mask.png)
+  file(COPY_FILE "${SCENE}/${f}" "${WORK}/room/${f}")
+endforeach()
+set(room "${WORK}/room")
+set(cache "${room}/.relight/prepared.bin")
+# Cheap settings: the test checks the cache, not the picture.
+set(cheap --epsilon 1e-3 --spp 4)
+
+# Runs relight with the arguments after `expected_rc`; its stdout and stderr go to `out`.
+function(relight out expected_rc)
+  execute_process(COMMAND "${RELIGHT}" ${ARGN} OUTPUT_VARIABLE o ERROR_VARIABLE e
+                  RESULT_VARIABLE rc)
+  if(NOT rc EQUAL expected_rc)
+    message(FATAL_ERROR "relight ${ARGN}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
+  endif()
+  set(${out} "${o}${e}" PARENT_SCOPE)
+endfunction()
+
+function(expect text regex what)
+  if(NOT text MATCHES "${regex}")
+    message(FATAL_ERROR "${what}: expected /${regex}/ in:\n${text}")
+  endif()
+endfunction()
+
+function(expect_not text regex what)
+  if(text MATCHES "${regex}")
+    message(FATAL_ERROR "${what}: did not expect /${regex}/ in:\n${text}")
+  endif()
+endfunction()
+
+function(report_cache file out)
+  file(READ "${file}" json)
+  string(JSON value GET "${json}" cache)
+  set(${out} "${value}" PARENT_SCOPE)
+endfunction()
+
+# prepare: no cache yet, so it prepares and writes one.
+relight(out 0 prepare "${room}" ${cheap})
+expect("${out}" "no cache at" "first prepare")
+expect("${out}" "wrote cache [^\n]*prepared\\.bin" "first prepare")
+expect("${out}" "leaves [0-9]+, links [0-9]+, leaf vertices [0-9]+" "first prepare")
+if(NOT EXISTS "${cache}")
+  message(FATAL_ERROR "prepare wrote no ${cache}")
+endif()
+# prepare again: nothing to do.
+relight(out 0 prepare "${room}" ${cheap})
+expect("${out}" "cache up to date" "second prepare")
+
+# render with the same options: a hit.
+relight(out 0 render "${room}" ${cheap} -o "${WORK}/a.png" --report "${WORK}/a.json")
+expect("${out}" "using cache [^\n]*prepared\\.bin" "render after prepare")
+report_cache("${WORK}/a.json" c)
+expect("${c}" "^hit$" "report of a hit")
+
+# Another option: stale, prepared again; then the second render uses the new cache.
+relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 -o "${WORK}/b.png" --report "${WORK}/b.json")
+expect("${out}" "cache stale: inputs changed" "render with another --spp")
+report_cache("${WORK}/b.json" c)
+expect("${c}" "^rebuilt: cache stale" "report of a rebuild")
+relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 -o "${WORK}/c.exr")
+expect("${out}" "using cache" "second render with another --spp")
+
+# A corrupt cache: rebuilt, never trusted.
+file(WRITE "${cache}" "RLPREP\r\n garbage")
+relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 -o "${WORK}/d.png")
+expect("${out}" "cache (truncated|corrupt)" "render with a corrupt cache")
+relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 -o "${WORK}/d.png")
+expect("${out}" "using cache" "render after the corrupt cache was rebuilt")
+
+# A cache that cannot be written: render warns and goes on; prepare fails naming it.
+file(WRITE "${WORK}/blocker" "a file where a folder should be")
+set(unwritable "${WORK}/blocker/prepared.bin")
+relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 --cache "${unwritable}" -o "${WORK}/e.png")
+expect("${out}" "warning: [^\n]*blocker/prepared\\.bin: cannot write the cache" "unwritable cache")
+if(NOT EXISTS "${WORK}/e.png")
+  message(FATAL_ERROR "render wrote no image when the cache could not be written")
+endif()
+relight(out 2 prepare "${room}" --epsilon 1e-3 --spp 2 --cache "${unwritable}")
+expect("${out}" "error: [^\n]*blocker/prepared\\.bin: cannot write the cache" "prepare, unwritable")
+
+# --no-cache: neither read nor written.
+relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 --no-cache -o "${WORK}/f.png"
+        --report "${WORK}/f.json")
+expect_not("${out}" "using cache" "--no-cache")
+report_cache("${WORK}/f.json" c)
+expect("${c}" "^disabled$" "report with --no-cache")
+
+# A bad edit fails at once, before any preparation, naming the file.
+relight(out 2 render "${room}" --edit "${WORK}/missing-edit.json" -o "${WORK}/g.png")
+expect("${out}" "missing-edit\\.json" "bad edit")
+expect_not("${out}" "preparing|using cache" "bad edit")
+
+file(REMOVE_RECURSE "${WORK}")
