@@ -522,7 +522,8 @@ void HierarchicalSolver::scaleLightLinks(int node, double c) {
         return;
     const int i = receiverSlot_[node];
     for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k)
-        if (lightOfNode(links_[k].source) >= 0) links_[k].V = static_cast<float>(static_cast<double>(links_[k].V) * c);
+        if (lightOfNode(links_[k].source) >= 0)
+            links_[k].V = static_cast<float>(static_cast<double>(links_[k].V) * c);
 }
 
 }  // namespace radiosity

@@ -113,7 +113,7 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     if (o.shadowRemoval) {
         say("real-shadow removal");
         r->removal = removeRealShadows(*r->solver, *r->mesh, *r->texture, P.photoRadiance,
-                                       r->direct, r->responses, dlo, o.removal);
+                                       P.lighting, r->direct, r->responses, dlo, o.removal);
         say("  " + std::to_string(r->removal.occluded) + " occluded leaves, " +
             std::to_string(r->removal.frontier) + " on the frontier, " +
             std::to_string(r->removal.referenced) + " with a reference; " +

@@ -45,7 +45,8 @@ Rgb clampRho(Rgb r) {
 
 ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
                                 const radiosity::LeafMesh& mesh, const LeafTexture& texture,
-                                std::span<const Rgb> L, const VertexDirect& direct,
+                                std::span<const Rgb> L, const VertexLighting& photoLighting,
+                                const VertexDirect& direct,
                                 std::unique_ptr<radiosity::LightResponses>& responses,
                                 const radiosity::DirectLightOptions& dlo,
                                 const ShadowRemovalOptions& o) {
@@ -61,12 +62,10 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
     auto hasColour = [&](int n) { return texture.samples(n) >= o.minSamples; };
 
     // ---- per vertex: H, visible and unoccluded direct light, blocked irradiance (Eq. 8)
-    VertexLighting lighting =
-        computeVertexLighting(solver, mesh, *responses, dlo, nullptr, &direct, nullptr);
     std::vector<Rgb> H(nv), Dv(nv), D0(nv);
     out.blocked.resize(nv);
     for (int v = 0; v < nv; ++v) {
-        H[v] = lighting.irradiance(v, L);
+        H[v] = photoLighting.irradiance(v, L);
         Dv[v] = weighted(direct.visible, v, L);
         D0[v] = weighted(direct.unoccluded, v, L);
         for (int c = 0; c < 3; ++c) out.blocked[v][c] = std::max(0.0, D0[v][c] - Dv[v][c]);
@@ -185,7 +184,8 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
                           (H[v][c] + out.blocked[v][c] + deltaH[c]);
         setLeafReflectance(f);
     }
-    lighting = computeVertexLighting(solver, mesh, *responses, dlo, nullptr, &direct, nullptr);
+    VertexLighting lighting =
+        computeVertexLighting(solver, mesh, *responses, dlo, nullptr, &direct, nullptr);
     std::vector<Rgb> Iinter(nv), Hinter(nv);
     for (int v = 0; v < nv; ++v) {
         Hinter[v] = lighting.irradiance(v, L);

@@ -73,13 +73,13 @@ struct ShadowRemoval {
 };
 
 /// Runs §4.3-4.4 on a solved, refined solver (light links at the leaves, receiver index
-/// built). `photoRadiance` is each light's radiance in the photo; `direct` the per-vertex
-/// direct light of computeVertexLighting. Changes the solver (element reflectances, light
-/// links' V) and replaces `responses` by the final solution's.
+/// built). `photoRadiance` is each light's radiance in the photo; `lighting` and `direct`
+/// the per-vertex lighting of computeVertexLighting on that solution. Changes the solver (element
+/// reflectances, light links' V) and replaces `responses` by the final solution's.
 ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
                                 const radiosity::LeafMesh& mesh, const LeafTexture& texture,
                                 std::span<const radiosity::Rgb> photoRadiance,
-                                const VertexDirect& direct,
+                                const VertexLighting& lighting, const VertexDirect& direct,
                                 std::unique_ptr<radiosity::LightResponses>& responses,
                                 const radiosity::DirectLightOptions& dlo,
                                 const ShadowRemovalOptions& options = {});
