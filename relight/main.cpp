@@ -1,8 +1,9 @@
 // relight: the command line. Subcommands (relight/cli/):
 //   relight solve   <scene_dir> [--epsilon E] [--report out.json] [-o radiosity.exr|png]
-//   relight prepare <scene_dir> [--epsilon E] [--spp N] [--cache FILE] [--force]
+//   relight prepare <scene_dir> [preparation options] [--cache FILE] [--force]
 //   relight render  <scene_dir> [--edit edit.json] -o out.exr|png [--report r.json]
-//                   [--cache FILE | --no-cache]
+//                   [preparation options] [--cache FILE | --no-cache]
+//   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
 // Errors in the input print one clear line naming the file and line or key, exit code 2.
 #include <CLI/CLI.hpp>
@@ -13,6 +14,20 @@
 #include "relight/scene_file.h"
 
 using namespace relight;
+
+namespace {
+
+/// The options of the preparation, the same for `prepare` and `render`.
+void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
+    app->add_option("--epsilon", p.epsilon, "BF refinement threshold")->check(CLI::PositiveNumber);
+    app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
+    app->add_flag("!--no-refinement", p.shadowRefinement,
+                  "skip the texture-based refinement of shadow boundaries (§4.2)");
+    app->add_flag("!--no-shadow-removal", p.shadowRemoval,
+                  "skip real-shadow removal (§4.3-4.4): the 1997 method, D = B of the photo");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"relight: relight photographs of real rooms (Loscos, Drettakis & Robert 2000)"};
@@ -61,9 +76,7 @@ int main(int argc, char** argv) {
     render->add_option("--edit", ra.edit, "relight-edit/1 JSON file (none: the photo's lights)");
     render->add_option("-o,--output", ra.output, "relit photo: .exr linear, .png sRGB")->required();
     render->add_option("--report", ra.report, "write counts and times as JSON");
-    render->add_option("--epsilon", ra.epsilon, "BF refinement threshold")
-        ->check(CLI::PositiveNumber);
-    render->add_option("--spp", ra.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
+    addPrepareOptions(render, ra.prep);
     render->add_option("--exposure", ra.exposure, "exposure in stops for 8-bit output");
     auto* renderCache =
         render->add_option("--cache", ra.cache.file,
@@ -75,9 +88,7 @@ int main(int argc, char** argv) {
     auto* prepare = app.add_subcommand(
         "prepare", "prepare a scene for rendering once and cache the prepared state on disk");
     prepare->add_option("scene_dir", pa.scene, "scene folder holding scene.json")->required();
-    prepare->add_option("--epsilon", pa.epsilon, "BF refinement threshold")
-        ->check(CLI::PositiveNumber);
-    prepare->add_option("--spp", pa.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
+    addPrepareOptions(prepare, pa.prep);
     prepare->add_option("--cache", pa.cache.file,
                         "where to write it (default <scene_dir>/.relight/prepared.bin)");
     prepare->add_flag("--force", pa.cache.force, "prepare again even when the cache is valid");

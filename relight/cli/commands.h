@@ -39,11 +39,21 @@ struct CacheArgs {
     bool force = false;
 };
 
+/// The preparation options that `prepare` and `render` share (part of the cache's key).
+struct PrepareOptionArgs {
+    double epsilon = 1e-4;
+    int spp = 16;
+    bool shadowRefinement = true;
+    bool shadowRemoval = true;
+
+    /// The pipeline's options, with progress lines on stderr.
+    RelightOptions relightOptions() const;
+};
+
 /// `relight render`: the relit photo for an edit.
 struct RenderArgs {
     std::string scene, edit, output, report;
-    double epsilon = 1e-4;
-    int spp = 16;
+    PrepareOptionArgs prep;
     double exposure = 0;
     CacheArgs cache;
 };
@@ -52,8 +62,7 @@ int runRender(const RenderArgs& a);
 /// `relight prepare`: prepares a scene once and writes the prepared state's cache.
 struct PrepareArgs {
     std::string scene;
-    double epsilon = 1e-4;
-    int spp = 16;
+    PrepareOptionArgs prep;
     CacheArgs cache;
 };
 int runPrepare(const PrepareArgs& a);

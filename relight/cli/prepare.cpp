@@ -1,4 +1,5 @@
-// relight prepare <scene_dir> [--epsilon E] [--spp N] [--cache FILE] [--force]
+// relight prepare <scene_dir> [--epsilon E] [--spp N] [--no-refinement] [--no-shadow-removal]
+//                 [--cache FILE] [--force]
 // and the cache logic that render shares with it (loadOrPrepare).
 #include <cstdio>
 #include <filesystem>
@@ -27,6 +28,16 @@ std::string fitsScene(const PreparedImage& p, const SceneFile& sf) {
 }
 
 }  // namespace
+
+RelightOptions PrepareOptionArgs::relightOptions() const {
+    RelightOptions o;
+    o.epsilon = epsilon;
+    o.spp = spp;
+    o.shadowRefinement = shadowRefinement;
+    o.shadowRemoval = shadowRemoval;
+    o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
+    return o;
+}
 
 std::string stepTimes(const PrepareTimes& t) {
     char text[320];
@@ -80,10 +91,7 @@ PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const 
 }
 
 int runPrepare(const PrepareArgs& a) {
-    RelightOptions o;
-    o.epsilon = a.epsilon;
-    o.spp = a.spp;
-    o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
+    const RelightOptions o = a.prep.relightOptions();
     std::fprintf(stderr, "relight prepare %s\n", a.scene.c_str());
     const SceneFile sf = loadScene(a.scene);
     for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());

@@ -1,5 +1,5 @@
 // relight render <scene_dir> [--edit edit.json] -o out.exr|out.png [--report r.json]
-//                [--cache FILE | --no-cache]
+//                [--cache FILE | --no-cache] (and the preparation options of prepare)
 #include <cstdio>
 #include <filesystem>
 
@@ -13,10 +13,7 @@ namespace relight::cli {
 
 int runRender(const RenderArgs& a) {
     const auto tAll = Clock::now();
-    RelightOptions o;
-    o.epsilon = a.epsilon;
-    o.spp = a.spp;
-    o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
+    const RelightOptions o = a.prep.relightOptions();
     std::fprintf(stderr, "relight render %s\n", a.scene.c_str());
     // The edit is read (and checked against the scene) before the long preparation, so a
     // bad edit fails at once.
@@ -50,7 +47,9 @@ int runRender(const RenderArgs& a) {
         const nlohmann::json j = {{"scene", a.scene},
                                   {"edit", a.edit},
                                   {"output", a.output},
-                                  {"epsilon", a.epsilon},
+                                  {"epsilon", a.prep.epsilon},
+                                  {"shadow_refinement", a.prep.shadowRefinement},
+                                  {"shadow_removal", a.prep.shadowRemoval},
                                   {"cache", s.cache},
                                   {"cache_file", s.file.empty() ? nlohmann::json(nullptr)
                                                                 : nlohmann::json(s.file.string())},

@@ -1,0 +1,113 @@
+# End to end through the `relight` binary: bad input gives exit code 2 and one clear line
+# naming the file and the key, and the output file already there is left as it was (no
+# half-written or replaced picture). Also: the preparation switches --no-refinement and
+# --no-shadow-removal reach the report and the cache key. Run by ctest:
+#   cmake -DRELIGHT=<relight binary> -DSCENE=<data/room> -DWORK=<scratch folder> -P this
+cmake_minimum_required(VERSION 3.25)
+foreach(var RELIGHT SCENE WORK)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "define ${var}")
+  endif()
+endforeach()
+
+file(REMOVE_RECURSE "${WORK}")
+set(room "${WORK}/room")
+# A fresh copy of the room for each case, so one case's damage cannot hide another's.
+function(fresh_room)
+  file(REMOVE_RECURSE "${room}")
+  file(MAKE_DIRECTORY "${room}")
+  foreach(f scene.json room.obj photo.exr photo.mask.png)
+    file(COPY_FILE "${SCENE}/${f}" "${room}/${f}")
+  endforeach()
+endfunction()
+# Cheap settings: the test checks messages and files, not the picture.
+set(cheap --epsilon 1e-3 --spp 2 --no-cache)
+
+function(relight out expected_rc)
+  execute_process(COMMAND "${RELIGHT}" ${ARGN} OUTPUT_VARIABLE o ERROR_VARIABLE e
+                  RESULT_VARIABLE rc)
+  if(NOT rc EQUAL expected_rc)
+    message(FATAL_ERROR "relight ${ARGN}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
+  endif()
+  set(${out} "${o}${e}" PARENT_SCOPE)
+endfunction()
+
+function(expect text regex what)
+  if(NOT text MATCHES "${regex}")
+    message(FATAL_ERROR "${what}: expected /${regex}/ in:\n${text}")
+  endif()
+endfunction()
+
+# The output already there: every failing render below must leave it byte for byte.
+set(output "${WORK}/out.png")
+file(WRITE "${output}" "an earlier picture")
+file(SHA256 "${output}" output_hash)
+
+# Runs a render that must fail with exit code 2 and a message matching `regex`, and
+# checks that the output file is untouched and no temporary file is left beside it.
+function(expect_failure what regex)
+  relight(out 2 render "${room}" ${cheap} ${ARGN} -o "${output}")
+  expect("${out}" "error: ${regex}" "${what}")
+  file(SHA256 "${output}" h)
+  if(NOT h STREQUAL output_hash)
+    message(FATAL_ERROR "${what}: the output file was changed")
+  endif()
+  file(GLOB leftovers "${WORK}/.tmp-*")
+  if(leftovers)
+    message(FATAL_ERROR "${what}: temporary files left: ${leftovers}")
+  endif()
+endfunction()
+
+function(set_scene_json member value)
+  file(READ "${room}/scene.json" json)
+  string(JSON json SET "${json}" ${member} "${value}")
+  file(WRITE "${room}/scene.json" "${json}")
+endfunction()
+
+# The photo: missing, unreadable, of another size than the camera.
+fresh_room()
+file(REMOVE "${room}/photo.exr")
+expect_failure("missing photo" "[^\n]*room/photo\\.exr: file not found")
+fresh_room()
+file(WRITE "${room}/photo.exr" "not an image")
+expect_failure("unreadable photo" "[^\n]*room/photo\\.exr: cannot read image")
+fresh_room()
+set_scene_json("camera;width" "160")
+expect_failure("photo size" "[^\n]*room/photo\\.exr: photo is 320x240 but the camera is 160x240")
+
+# scene.json: a photo naming an unknown light, a negative radiance.
+fresh_room()
+set_scene_json("photos;0;lights_on" "[\"A\", \"Q\"]")
+expect_failure("unknown light in lights_on" "[^\n]*scene\\.json[^\n]*photos\\[0\\]\\.lights_on[^\n]*Q")
+fresh_room()
+set_scene_json("lights;1;radiance" "[1, -2, 1]")
+expect_failure("negative radiance" "[^\n]*scene\\.json[^\n]*lights\\[1\\]\\.radiance")
+
+# Edits: an unknown light, an unknown key, a missing file.
+fresh_room()
+file(WRITE "${WORK}/unknown_light.json"
+     "{\"format\": \"relight-edit/1\", \"lights\": {\"Z\": {\"on\": false}}}")
+expect_failure("edit naming an unknown light" "[^\n]*unknown_light\\.json: key \"lights\\.Z\"[^\n]*unknown light"
+               --edit "${WORK}/unknown_light.json")
+file(WRITE "${WORK}/unknown_key.json"
+     "{\"format\": \"relight-edit/1\", \"lights\": {\"A\": {\"scale\": 2, \"hue\": 1}}}")
+expect_failure("edit with an unknown key" "[^\n]*unknown_key\\.json[^\n]*hue"
+               --edit "${WORK}/unknown_key.json")
+expect_failure("missing edit" "[^\n]*missing\\.json" --edit "${WORK}/missing.json")
+
+# The preparation switches: in the report, and a different cache key (so a cache prepared
+# with the full method is never used for the 1997 method).
+fresh_room()
+set(fast --epsilon 1e-3 --spp 2)
+relight(out 0 prepare "${room}" ${fast})
+relight(out 0 render "${room}" ${fast} --no-refinement --no-shadow-removal -o "${WORK}/a.png"
+        --report "${WORK}/a.json")
+expect("${out}" "cache stale: inputs changed" "render with --no-shadow-removal after prepare")
+file(READ "${WORK}/a.json" json)
+string(JSON removal GET "${json}" shadow_removal)
+string(JSON refinement GET "${json}" shadow_refinement)
+if(NOT removal STREQUAL "OFF" OR NOT refinement STREQUAL "OFF")
+  message(FATAL_ERROR "report: shadow_removal ${removal}, shadow_refinement ${refinement}")
+endif()
+
+file(REMOVE_RECURSE "${WORK}")
