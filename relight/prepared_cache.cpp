@@ -92,6 +92,8 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.i64(o.minRays);
     h.i64(o.maxRays);
     h.i64(o.reflectanceRounds);
+    h.i64(o.leafReflectance ? 1 : 0);
+    h.i64(o.leafReflectanceSamples);
     h.i64(o.shadowRefinement ? 1 : 0);
     hashOptions(h, o.refinement);
     h.i64(o.shadowRemoval ? 1 : 0);

@@ -19,7 +19,6 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const LightingBuffer& lighting, const Image& photo,
                                              int rounds, int minSamples, double tolerance) {
-    constexpr double kMaxRho = 0.98;
     ReflectanceReport report;
     const radiosity::Scene& scene = solver.scene();
     const int np = static_cast<int>(scene.polygons.size());
@@ -84,7 +83,7 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
                 // Guard: a polygon in total darkness (H = 0) tells nothing of its colour.
                 rho[p][c] = sumH[p][c] > 0 ? std::numbers::pi * sumL[p][c] / sumH[p][c]
                                            : scene.polygons[p].rho[c];
-                rho[p][c] = std::clamp(rho[p][c], 0.0, kMaxRho);
+                rho[p][c] = std::clamp(rho[p][c], 0.0, kMaxReflectance);
             }
             seen[p] = true;
             ++report.polygonsSeen;
@@ -119,6 +118,38 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         if (round > 0 && report.lastChange < tolerance) break;
     }
     return report;
+}
+
+bool leafReflectanceFromTexture(const radiosity::Hierarchy& h, const radiosity::LeafMesh& mesh,
+                                const LeafTexture& texture, std::span<const Rgb> H, int leaf,
+                                int minSamples, Rgb* rho) {
+    if (texture.samples(leaf) < minSamples) return false;
+    const int k = h.nodes[leaf].vertexCount;
+    Rgb Hn;
+    for (int i = 0; i < k; ++i) Hn += H[mesh.corners(leaf)[i]];
+    Hn = Hn * (1.0 / k);
+    if (!(Hn.minComponent() > 0)) return false;
+    const Rgb c = texture.colour(leaf);
+    for (int ch = 0; ch < 3; ++ch) (*rho)[ch] = std::numbers::pi * c[ch] / Hn[ch];
+    return true;
+}
+
+int estimateLeafReflectance(radiosity::HierarchicalSolver& solver, const radiosity::LeafMesh& mesh,
+                            const LeafTexture& texture, std::span<const Rgb> H, int minSamples) {
+    const radiosity::Hierarchy& h = solver.hierarchy();
+    const radiosity::Scene& scene = solver.scene();
+    int set = 0;
+    for (int n = 0; n < static_cast<int>(h.nodes.size()); ++n) {
+        const radiosity::Node& node = h.nodes[n];
+        if (node.isCluster() || !node.isLeaf() || scene.polygons[node.polygon].light >= 0) continue;
+        Rgb rho;
+        if (!leafReflectanceFromTexture(h, mesh, texture, H, n, minSamples, &rho)) continue;
+        for (int c = 0; c < 3; ++c) rho[c] = std::clamp(rho[c], 0.0, kMaxReflectance);
+        solver.setElementReflectance(n, rho);
+        ++set;
+    }
+    solver.pullReflectance();
+    return set;
 }
 
 }  // namespace relight

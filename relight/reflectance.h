@@ -10,23 +10,32 @@
 // round for s in [0, 1]. Rounds stop when no reflectance moves by more than `tolerance`.
 //
 // This is the per-polygon version of Loscos et al. 1999, §4 (radiosity-based reflectance
-// from a single image). Per-element estimation on textured surfaces comes with the photo
-// pipeline. Polygons the photo does not see keep the object's `reflectance` from
-// scene.json, or else take the area-weighted mean of the estimated ones. Estimates are
-// clamped to [0, 0.98]: a reflectance of 1 or more would make the radiosity system
-// singular (B = E / (1 - rho)).
+// from a single image). Polygons the photo does not see keep the object's `reflectance`
+// from scene.json, or else take the area-weighted mean of the estimated ones. Estimates
+// are clamped to [0, kMaxReflectance]: a reflectance of 1 or more would make the radiosity
+// system singular (B = E / (1 - rho)).
+//
+// Once the hierarchy is refined, each leaf element takes its own reflectance from its
+// texture (Loscos et al. 2000, §4.2: "at the end of the refinement process, we set up all
+// the necessary parameters: the reflectance, ..."): estimateLeafReflectance().
 #pragma once
 
 #include <functional>
+#include <span>
 #include <string>
 
+#include "radiosity/leaf_mesh.h"
 #include "radiosity/solver.h"
 #include "relight/image.h"
 #include "relight/item_buffer.h"
+#include "relight/leaf_texture.h"
 #include "relight/lighting_buffer.h"
 #include "relight/scene_file.h"
 
 namespace relight {
+
+/// Upper bound of every estimated reflectance: rho < 1 keeps B = E / (1 - rho) finite.
+constexpr double kMaxReflectance = 0.98;
 
 struct ReflectanceReport {
     int rounds = 0;
@@ -45,5 +54,22 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
                                              const LightingBuffer& lighting, const Image& photo,
                                              int rounds = 12, int minSamples = 16,
                                              double tolerance = 1e-3);
+
+/// A leaf's reflectance from its texture, rho = pi c / H (Lambertian: the photo shows
+/// L = rho H / pi), with c the mean photo colour of the leaf's samples and H the mean of the
+/// irradiance at its corners (`H` per vertex of `mesh`, radiosity units; the display
+/// interpolates between the same corners). Not clamped. False, and `rho` untouched, where the
+/// leaf has fewer than `minSamples` samples or no light in some channel (guard: H = 0 tells
+/// nothing of its colour).
+bool leafReflectanceFromTexture(const radiosity::Hierarchy& h, const radiosity::LeafMesh& mesh,
+                                const LeafTexture& texture, std::span<const radiosity::Rgb> H,
+                                int leaf, int minSamples, radiosity::Rgb* rho);
+
+/// Sets the reflectance of every leaf of a reflecting polygon that leafReflectanceFromTexture
+/// can estimate, clamped to [0, kMaxReflectance]; the others keep their polygon's. Pulls the
+/// clusters' averages; the caller runs the radiosity step. Returns the leaves set.
+int estimateLeafReflectance(radiosity::HierarchicalSolver& solver, const radiosity::LeafMesh& mesh,
+                            const LeafTexture& texture, std::span<const radiosity::Rgb> H,
+                            int minSamples);
 
 }  // namespace relight

@@ -109,6 +109,22 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     P.lighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, &r->direct);
     P.times.vertexLighting = since(t0);
 
+    if (o.leafReflectance) {
+        // The reflectance of each element from its texture, against the irradiance at its
+        // corners; then a radiosity step, and the lighting again (its indirect part changed;
+        // the direct part, and its rays, are kept).
+        t0 = Clock::now();
+        const std::vector<Rgb> H = vertexIrradiance(P, P.photoRadiance);
+        const int set =
+            estimateLeafReflectance(*r->solver, *r->mesh, *r->texture, H, o.leafReflectanceSamples);
+        say("reflectance of " + std::to_string(set) + " leaf elements from their texture");
+        r->solver->gatherPushPull();
+        r->responses = std::make_unique<radiosity::LightResponses>(*r->solver);
+        P.lighting =
+            computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, nullptr, &r->direct);
+        P.times.reflectance += since(t0);
+    }
+
     t0 = Clock::now();
     if (o.shadowRemoval) {
         say("real-shadow removal");

@@ -47,6 +47,10 @@ struct RelightOptions {
     int spp = 16;           ///< item-buffer samples per pixel
     int minRays = 4, maxRays = 16;
     int reflectanceRounds = 12;
+    /// Reflectance per leaf element from its texture after refinement (relight/reflectance.h),
+    /// for leaves with at least leafReflectanceSamples photo samples; off: per polygon.
+    bool leafReflectance = true;
+    int leafReflectanceSamples = 32;
     bool shadowRefinement = true;  ///< texture-based refinement (relight/shadow_refinement.h)
     ShadowRefinementOptions refinement;
     bool shadowRemoval = true;  ///< real-shadow removal (relight/shadow_removal.h)

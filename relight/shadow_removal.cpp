@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "relight/ratio_display.h"
+#include "relight/reflectance.h"
 
 namespace relight {
 
@@ -13,7 +13,6 @@ using radiosity::Rgb;
 
 namespace {
 
-constexpr double kMaxRho = 0.98;            // as relight/reflectance.h: rho < 1 keeps B finite
 constexpr double kFullyVisible = 1 - 1e-3;  // V above this: the light is not blocked
 
 /// sum_l L_l a[v * L + l] (per channel).
@@ -37,7 +36,7 @@ Rgb floorOf(const std::vector<Rgb>& x) {
 }
 
 Rgb clampRho(Rgb r) {
-    for (int c = 0; c < 3; ++c) r[c] = std::clamp(r[c], 0.0, kMaxRho);
+    for (int c = 0; c < 3; ++c) r[c] = std::clamp(r[c], 0.0, kMaxReflectance);
     return r;
 }
 
@@ -112,10 +111,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
     for (int n = 0; n < nNodes; ++n) {
         if (out.leafClass[n] == LeafShadowClass::none || !hasColour(n)) continue;
         colour[n] = texture.colour(n);
-        const Rgb Hn = meanOverCorners(n, H);
-        if (!(Hn.minComponent() > 0)) continue;  // guard: no light, no reflectance
-        for (int c = 0; c < 3; ++c) rho[n][c] = std::numbers::pi * colour[n][c] / Hn[c];
-        hasRho[n] = true;
+        hasRho[n] = leafReflectanceFromTexture(h, mesh, texture, H, n, o.minSamples, &rho[n]);
     }
 
     // ---- §4.4.1 Step 1: reference patches (Fig. 15, Eq. 10-11) and k_inter (Eq. 12-13)

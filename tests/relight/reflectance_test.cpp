@@ -1,10 +1,16 @@
-// Reflectance from a photo: recovering known reflectances from a synthetic photo.
+// Reflectance from a photo: recovering known reflectances from a synthetic photo, per
+// polygon and per leaf element.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
 
 #include "relight/item_buffer.h"
 #include "relight/lighting_buffer.h"
 #include "relight/reflectance.h"
+#include "relight/relighting.h"
 #include "relight/scene_file.h"
+#include "temp_dir.h"
 
 using namespace relight;
 using radiosity::Rgb;
@@ -61,4 +67,81 @@ TEST(Reflectance, RecoversKnownReflectancesFromASyntheticPhoto) {
         ++checked;
     }
     EXPECT_GE(checked, 10);
+}
+
+TEST(Reflectance, EachLeafTakesTheReflectanceOfItsOwnTexture) {
+    // A two-tone floor: the room's photo with every floor pixel on the side x < x_mid of the
+    // floor at half its value, as if half the floor were painted darker. One reflectance
+    // per polygon cannot show this; per leaf (Loscos et al. 2000, §4.2: the reflectance is
+    // set up per element after refinement) the leaves wholly on the dark side get half
+    // the reflectance of those wholly on the other side. Tolerance 0.05 on the ratio of
+    // the two sides' mean reflectance: rho = pi c / H uses H interpolated between a leaf's
+    // corners, and H itself changes a little (the dark half reflects less light onto the
+    // rest), but both sides see the same lamps, so these errors largely cancel in the ratio.
+    const std::filesystem::path room = RELIGHT_DATA_DIR "/room";
+    test::TempDir dir;
+    for (const char* f : {"scene.json", "room.obj", "photo.mask.png"})
+        std::filesystem::copy_file(room / f, dir.path() / f);
+    SceneFile sf = loadScene(room);
+    const radiosity::Scene& scene = sf.scene;
+    int floorObject = -1;
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+        if (scene.objects[i] == "floor") floorObject = static_cast<int>(i);
+    ASSERT_GE(floorObject, 0);
+    double xmin = 1e30, xmax = -1e30;
+    for (const auto& poly : scene.polygons)
+        if (poly.object == floorObject)
+            for (int i = 0; i < poly.vertexCount; ++i) {
+                xmin = std::min(xmin, poly.v[i].x);
+                xmax = std::max(xmax, poly.v[i].x);
+            }
+    const double xmid = 0.5 * (xmin + xmax);
+    auto onFloor = [&](int p) { return p >= 0 && scene.polygons[p].object == floorObject; };
+
+    Image photo = loadFirstPhoto(sf);
+    {
+        radiosity::HierarchicalSolver s(scene, {});
+        const ItemBuffer items = castItemBuffer(sf.camera, s.scene(), s.visibility(), 4);
+        for (int y = 0; y < items.height; ++y)
+            for (int x = 0; x < items.width; ++x) {
+                bool dark = true;
+                for (int k = 0; k < items.spp && dark; ++k) {
+                    const int idx = items.sampleIndex(x, y, k);
+                    dark = onFloor(items.polygon[idx]) && items.point[idx].x < xmid;
+                }
+                if (dark)
+                    for (int c = 0; c < 3; ++c) photo.at(x, y)[c] *= 0.5f;
+            }
+    }
+    writeImage(dir.path() / "photo.exr", photo);
+
+    RelightOptions o;
+    o.epsilon = 1e-3;
+    o.spp = 4;
+    o.reflectanceRounds = 3;
+    o.shadowRemoval = false;  // removal changes the reflectance in shadows: not the subject
+    const auto r = prepareRelighting(loadScene(dir.path()), o);
+    const auto& h = r->solver->hierarchy();
+    Rgb sum[2];
+    int count[2] = {0, 0};
+    for (int n = 0; n < static_cast<int>(h.nodes.size()); ++n) {
+        const auto& node = h.nodes[n];
+        if (node.isCluster() || !node.isLeaf() || !onFloor(node.polygon)) continue;
+        if (r->texture->samples(n) < o.leafReflectanceSamples) continue;
+        bool left = true, right = true;
+        for (int i = 0; i < node.vertexCount; ++i) {
+            const double x = r->mesh->vertices()[r->mesh->corners(n)[i]].position.x;
+            left = left && x < xmid;
+            right = right && x > xmid;
+        }
+        if (!left && !right) continue;
+        sum[left ? 0 : 1] += node.rho;
+        ++count[left ? 0 : 1];
+    }
+    ASSERT_GE(count[0], 10);
+    ASSERT_GE(count[1], 10);
+    for (int c = 0; c < 3; ++c) {
+        const double ratio = (sum[0][c] / count[0]) / (sum[1][c] / count[1]);
+        EXPECT_NEAR(ratio, 0.5, 0.05) << "channel " << c;
+    }
 }

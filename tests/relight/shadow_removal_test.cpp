@@ -74,9 +74,9 @@ TEST(ShadowRemoval, DeeperPhotoShadowGivesSmallerLinkCorrection) {
             for (int k = 0; k < items.spp && occluded; ++k) {
                 const int idx = items.sampleIndex(x, y, k);
                 const int p = items.polygon[idx];
-                occluded = p >= 0 && b->solver->scene().polygons[p].light < 0 &&
-                           ra.leafClass[h.locateLeaf(p, items.point[idx])] ==
-                               LeafShadowClass::occluded;
+                occluded =
+                    p >= 0 && b->solver->scene().polygons[p].light < 0 &&
+                    ra.leafClass[h.locateLeaf(p, items.point[idx])] == LeafShadowClass::occluded;
             }
             if (!occluded) continue;
             for (int c = 0; c < 3; ++c) darker.at(x, y)[c] *= s;
@@ -96,9 +96,8 @@ TEST(ShadowRemoval, DeeperPhotoShadowGivesSmallerLinkCorrection) {
         ratio.push_back((cb[0] + cb[1] + cb[2]) / (ca[0] + ca[1] + ca[2]));
     }
     ASSERT_GT(ratio.size(), 50u);
-    const auto notGrown = std::count_if(ratio.begin(), ratio.end(), [](double q) {
-        return q <= 1 + 1e-9;
-    });
+    const auto notGrown =
+        std::count_if(ratio.begin(), ratio.end(), [](double q) { return q <= 1 + 1e-9; });
     EXPECT_GE(static_cast<double>(notGrown), 0.9 * static_cast<double>(ratio.size()));
     std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
     const double median = ratio[ratio.size() / 2];
