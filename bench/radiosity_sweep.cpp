@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "plot.h"
 #include "radiosity/final_gather.h"
 #include "radiosity/leaf_mesh.h"
@@ -36,12 +37,10 @@
 #include "relight/scene_file.h"
 
 using namespace radiosity;
-using Clock = std::chrono::steady_clock;
+using bench::Clock;
+using bench::since;
 
 namespace {
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 struct Row {
     double eps;

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "radiosity/final_gather.h"
 #include "relight/edit_file.h"
 #include "relight/image.h"
@@ -32,13 +33,8 @@
 #include "relight/vertex_lighting.h"
 
 using namespace relight;
-using Clock = std::chrono::steady_clock;
-
-namespace {
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-}  // namespace
+using bench::Clock;
+using bench::since;
 
 int main(int argc, char** argv) {
     if (argc < 2) {

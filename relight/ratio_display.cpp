@@ -73,6 +73,27 @@ DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& m
     return m;
 }
 
+int trustPhotoAtEmitters(DisplayMap& m, const Image& photo, std::span<const Rgb> radianceInPhoto) {
+    int changed = 0;
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x) {
+            const int px = y * m.width + x;
+            Rgb expected;
+            for (int k = m.emitterStart[px]; k < m.emitterStart[px + 1]; ++k)
+                expected += radianceInPhoto[m.emitterLight[k]] * m.emitterFraction[k];
+            const float* t = photo.at(x, y);
+            const double shown = std::max({t[0], t[1], t[2]});
+            if (!(expected.maxComponent() > 0) || shown >= 0.5 * expected.maxComponent()) continue;
+            for (int k = m.emitterStart[px]; k < m.emitterStart[px + 1]; ++k) {
+                if (!(radianceInPhoto[m.emitterLight[k]].maxComponent() > 0)) continue;
+                m.unshaded[px] += m.emitterFraction[k];
+                m.emitterFraction[k] = 0;
+            }
+            ++changed;
+        }
+    return changed;
+}
+
 std::vector<Rgb> displayRatio(std::span<const Rgb> B, std::span<const Rgb> D) {
     Rgb mean;
     for (const Rgb& d : D) mean += d;

@@ -35,6 +35,17 @@ struct DisplayMap {
 DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
                            const radiosity::Scene& scene);
 
+/// Where the photo contradicts the model about a lamp: a pixel the item buffer puts (partly)
+/// on light e's emitting face, with e on in the photo, but whose photo value is below half
+/// of what those samples would show (sum_e f_e L_e(photo), brightest channel). The lamp is
+/// then not where the model has it (calibration error): painting its face there would put
+/// a lamp-shaped patch beside the real one, even in the unedited display. Those samples are
+/// kept as in the photo instead (moved to `unshaded`). The half is the midpoint between a
+/// pixel that shows the face (>= f L: the face plus a surface) and one that shows none of
+/// it (a surface, far darker than a lamp). Returns the number of pixels changed.
+int trustPhotoAtEmitters(DisplayMap& map, const Image& photo,
+                         std::span<const radiosity::Rgb> radianceInPhoto);
+
 /// Per-vertex display ratio r = B/D, channel by channel, guarded where D vanishes (umbra,
 /// surfaces no light reaches): r = (B + delta) / (D + delta) with delta = kRatioFloor
 /// times the mean of D over the vertices (per channel). Where D >> delta this is B/D to

@@ -148,6 +148,10 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
 
     t0 = Clock::now();
     P.display = buildDisplayMap(r->items, *r->mesh, r->solver->scene());
+    if (const int n = trustPhotoAtEmitters(P.display, P.photo, P.photoRadiance); n > 0)
+        say("warning: " + std::to_string(n) +
+            " pixels on a lamp's emitting face do not show the lamp in the photo (is the lamp "
+            "where scene.json says?); they are kept as in the photo");
     P.times.displayMap = since(t0);
     const auto st = r->solver->stats();
     P.leaves = st.leaves;

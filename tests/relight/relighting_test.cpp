@@ -71,6 +71,36 @@ TEST(RenderRatio, EmittersShowTheirCurrentRadianceAndSurfacesTheModulatedPhoto) 
     EXPECT_NEAR(out.at(2, 0)[2], 0.3 * 1.0 + 1.5, 1e-6);
 }
 
+TEST(RenderRatio, PixelsWhereThePhotoShowsNoLampAreKeptAsInThePhoto) {
+    // The model puts light 0's face (radiance 5 in the photo) on four pixels; the photo
+    // shows it on the first (5), half of it on the second (2.6 = 0.5 * 5 + a surface), and
+    // none of it on the last two (0.3 and 2.4, both below half of 5: a misplaced lamp).
+    DisplayMap m;
+    m.width = 4;
+    m.height = 1;
+    m.start = {0, 0, 0, 0, 0};
+    m.unshaded = {0, 0, 0, 0};
+    m.emitterStart = {0, 1, 2, 3, 4};
+    m.emitterLight = {0, 0, 0, 0};
+    m.emitterFraction = {1.0f, 1.0f, 1.0f, 1.0f};
+    Image photo(4, 1);
+    const float shown[4] = {5.0f, 2.6f, 0.3f, 2.4f};
+    for (int x = 0; x < 4; ++x)
+        for (int c = 0; c < 3; ++c) photo.at(x, 0)[c] = shown[x];
+    const std::vector<Rgb> inPhoto = {Rgb::gray(5)}, now = {Rgb::gray(1)};
+    EXPECT_EQ(trustPhotoAtEmitters(m, photo, inPhoto), 2);
+    const Image out = renderRatio(m, photo, {}, now, inPhoto);
+    EXPECT_FLOAT_EQ(out.at(0, 0)[0], 1.0f);  // the lamp: its current radiance
+    EXPECT_FLOAT_EQ(out.at(1, 0)[0], 1.0f);  // enough of the lamp shows: still the lamp
+    EXPECT_FLOAT_EQ(out.at(2, 0)[0], 0.3f);  // no lamp in the photo: the photo, unchanged
+    EXPECT_FLOAT_EQ(out.at(3, 0)[0], 2.4f);
+    // A light off in the photo shows nothing there to compare with: its face is kept.
+    DisplayMap off = m;
+    off.emitterFraction = {1.0f, 1.0f, 1.0f, 1.0f};
+    off.unshaded = {0, 0, 0, 0};
+    EXPECT_EQ(trustPhotoAtEmitters(off, photo, std::vector<Rgb>{Rgb{}}), 0);
+}
+
 namespace {
 
 const Relighting& room() {
