@@ -2,7 +2,7 @@
 //   relight solve   <scene_dir> [--epsilon E] [--report out.json] [-o radiosity.exr|png]
 //   relight prepare <scene_dir> [preparation options] [--cache FILE] [--force]
 //   relight render  <scene_dir> [--edit edit.json] -o out.exr|png [--report r.json]
-//                   [preparation options] [--cache FILE | --no-cache]
+//                   [preparation options] [--cache FILE | --no-cache] [--debug-views DIR]
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
 // Errors in the input print one clear line naming the file and line or key, exit code 2.
@@ -83,6 +83,9 @@ int main(int argc, char** argv) {
                            "prepared-state cache (default <scene_dir>/.relight/prepared.bin)");
     render->add_flag("!--no-cache", ra.cache.use, "prepare without reading or writing a cache")
         ->excludes(renderCache);
+    render->add_option("--debug-views", ra.debugViews,
+                       "write the pipeline's intermediate images (B, D, textures, mesh, shadow "
+                       "frontier) and an index.json into this folder");
 
     cli::PrepareArgs pa;
     auto* prepare = app.add_subcommand(

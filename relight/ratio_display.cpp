@@ -9,6 +9,18 @@ namespace relight {
 
 using radiosity::Rgb;
 
+SampleHit locateSample(const ItemBuffer& items, const radiosity::Hierarchy& h,
+                       const radiosity::Scene& scene, int index) {
+    SampleHit hit;
+    const int p = items.polygon[index];
+    if (p < 0) return hit;
+    if (const int light = scene.polygons[p].light; light >= 0)
+        hit.light = light;
+    else
+        hit.leaf = h.locateLeaf(p, items.point[index]);
+    return hit;
+}
+
 DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
                            const radiosity::Scene& scene) {
     DisplayMap m;
@@ -28,21 +40,21 @@ DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& m
             double unshaded = 0;
             for (int s = 0; s < items.spp; ++s) {
                 const int idx = items.sampleIndex(x, y, s);
-                const int p = items.polygon[idx];
-                if (p < 0) {
-                    unshaded += perSample;
-                    continue;
-                }
-                if (const int light = scene.polygons[p].light; light >= 0) {
+                const SampleHit hit = locateSample(items, mesh.hierarchy(), scene, idx);
+                if (hit.light >= 0) {
                     auto it = std::find_if(emitters.begin(), emitters.end(),
-                                           [&](const auto& e) { return e.first == light; });
+                                           [&](const auto& e) { return e.first == hit.light; });
                     if (it == emitters.end())
-                        emitters.push_back({light, perSample});
+                        emitters.push_back({hit.light, perSample});
                     else
                         it->second += perSample;
                     continue;
                 }
-                const int leaf = mesh.hierarchy().locateLeaf(p, items.point[idx]);
+                if (!hit.surface()) {
+                    unshaded += perSample;
+                    continue;
+                }
+                const int leaf = hit.leaf;
                 const auto w = mesh.weights(leaf, items.point[idx]);
                 const auto& c = mesh.corners(leaf);
                 for (int i = 0; i < mesh.hierarchy().nodes[leaf].vertexCount; ++i) {

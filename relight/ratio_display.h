@@ -31,6 +31,17 @@ struct DisplayMap {
     std::vector<float> emitterFraction;
 };
 
+/// What one sample of the item buffer shows, as the display reads it: nothing (kept as in
+/// the photo), the emitting face of light `light`, or a point on the leaf element `leaf`.
+struct SampleHit {
+    int leaf = -1;   ///< leaf element (node id), or -1
+    int light = -1;  ///< light whose emitting face the sample sees, or -1
+    bool surface() const { return leaf >= 0; }
+};
+/// Locates sample `index` (ItemBuffer::sampleIndex) in the hierarchy's leaves.
+SampleHit locateSample(const ItemBuffer& items, const radiosity::Hierarchy& h,
+                       const radiosity::Scene& scene, int index);
+
 /// Builds the map from the item buffer and the leaf mesh (locates each sample's leaf).
 DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
                            const radiosity::Scene& scene);

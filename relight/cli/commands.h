@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "relight/prepared.h"
@@ -54,6 +55,7 @@ struct PrepareOptionArgs {
 struct RenderArgs {
     std::string scene, edit, output, report;
     PrepareOptionArgs prep;
+    std::string debugViews;  ///< folder for the pipeline's intermediate images (empty: none)
     double exposure = 0;
     CacheArgs cache;
 };
@@ -81,7 +83,11 @@ std::string stepTimes(const PrepareTimes& t);
 
 /// `writeMustSucceed`: a cache that cannot be written is an error (prepare) rather than a
 /// warning on stderr (render: rendering goes on without it).
+/// `solverState`: when given, the whole prepared state is wanted (debug views), which the
+/// cache does not hold: the scene is prepared whatever the cache, *solverState gets the
+/// state and `image` a copy of its PreparedImage, and the cache is written as when stale.
 PreparedState loadOrPrepare(const SceneFile& scene, const RelightOptions& options,
-                            const CacheArgs& cache, bool writeMustSucceed);
+                            const CacheArgs& cache, bool writeMustSucceed,
+                            std::unique_ptr<Relighting>* solverState = nullptr);
 
 }  // namespace relight::cli

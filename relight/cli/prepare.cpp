@@ -50,11 +50,20 @@ std::string stepTimes(const PrepareTimes& t) {
 }
 
 PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const CacheArgs& c,
-                            bool writeMustSucceed) {
+                            bool writeMustSucceed, std::unique_ptr<Relighting>* solverState) {
     PreparedState s;
     const auto t0 = Clock::now();
+    auto prepare = [&] {
+        auto r = prepareRelighting(sf, o);
+        if (!solverState) {
+            s.image = std::move(r->prepared);
+            return;
+        }
+        s.image = r->prepared;  // a copy: milliseconds next to the preparation
+        *solverState = std::move(r);
+    };
     if (!c.use) {
-        s.image = std::move(prepareRelighting(sf, o)->prepared);
+        prepare();
         s.cache = "disabled";
         s.seconds = since(t0);
         return s;
@@ -62,7 +71,9 @@ PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const 
     s.file = c.file.empty() ? defaultCachePath(sf.dir) : fs::path(c.file);
     const uint64_t key = preparationKey(sf, o);
     std::string why;
-    if (c.force) {
+    if (solverState) {
+        why = "the solver state is needed, which the cache does not hold";
+    } else if (c.force) {
         why = "forced (--force)";
     } else if (auto p = readPreparedCache(s.file, key, &why)) {
         why = fitsScene(*p, sf);
@@ -77,7 +88,7 @@ PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const 
     }
     std::printf("%s; preparing\n", why.c_str());
     std::fflush(stdout);
-    s.image = std::move(prepareRelighting(sf, o)->prepared);
+    prepare();
     s.cache = "rebuilt: " + why;
     try {
         writePreparedCache(s.file, s.image, key);

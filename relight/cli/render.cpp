@@ -1,10 +1,17 @@
 // relight render <scene_dir> [--edit edit.json] -o out.exr|out.png [--report r.json]
-//                [--cache FILE | --no-cache] (and the preparation options of prepare)
+//                [--cache FILE | --no-cache] [--debug-views DIR] (and the preparation
+//                options of prepare)
+// With --debug-views the scene is prepared in memory (the views need the solver state,
+// which the cache does not hold; the cache is still written) and the pipeline's
+// intermediate images go to DIR (relight/debug_views.h). The relit image is the same as
+// without it.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "relight/cli/commands.h"
 #include "relight/cli/util.h"
+#include "relight/debug_views.h"
 #include "relight/edit_file.h"
 #include "relight/image.h"
 #include "relight/relighting.h"
@@ -23,7 +30,11 @@ int runRender(const RenderArgs& a) {
         edit = loadEdit(a.edit, sf);
         requireLightsOnly(edit);
     }
-    const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false);
+    // A folder that cannot be made fails at once too, not after the preparation.
+    if (!a.debugViews.empty()) createDebugViewsFolder(a.debugViews);
+    std::unique_ptr<Relighting> full;
+    const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false,
+                                          a.debugViews.empty() ? nullptr : &full);
     const PreparedImage& p = s.image;
     const double tPrepare = s.seconds;
     const auto radiance = editRadiance(sf, edit);
@@ -31,6 +42,13 @@ int runRender(const RenderArgs& a) {
     const Image img = renderEdit(p, radiance);
     const double tEdit = since(t0);
     writeImage(a.output, img, a.exposure);
+    double tViews = 0;
+    size_t viewFiles = 0;
+    if (full) {
+        t0 = Clock::now();
+        viewFiles = writeDebugViews(*full, radiance, a.debugViews).size();
+        tViews = since(t0);
+    }
     std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
     if (s.cache == "hit")
         std::printf("time: load cache %.3f s (its preparation took: %s); edit %.4f s\n", tPrepare,
@@ -40,10 +58,15 @@ int runRender(const RenderArgs& a) {
                     stepTimes(p.times).c_str(), tEdit);
     std::printf("wrote %s (%dx%d)\n", a.output.c_str(), img.width, img.height);
     if (s.written) std::printf("wrote cache %s\n", s.file.string().c_str());
+    if (full)
+        std::printf("wrote debug views %s (%zu files, %.3f s)\n", a.debugViews.c_str(), viewFiles,
+                    tViews);
     if (!a.report.empty()) {
         nlohmann::json lights = nlohmann::json::object();
         for (size_t l = 0; l < radiance.size(); ++l)
             lights[sf.scene.lights[l].name] = rgbJson(radiance[l]);
+        const nlohmann::json views =
+            a.debugViews.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.debugViews);
         const nlohmann::json j = {{"scene", a.scene},
                                   {"edit", a.edit},
                                   {"output", a.output},
@@ -53,6 +76,7 @@ int runRender(const RenderArgs& a) {
                                   {"cache", s.cache},
                                   {"cache_file", s.file.empty() ? nlohmann::json(nullptr)
                                                                 : nlohmann::json(s.file.string())},
+                                  {"debug_views", views},
                                   {"leaves", p.leaves},
                                   {"links", p.links},
                                   {"leaf_vertices", p.vertexCount()},
@@ -68,6 +92,7 @@ int runRender(const RenderArgs& a) {
                                     {"display_map", p.times.displayMap},
                                     {"prepare", tPrepare},  // or the cache's loading
                                     {"edit", tEdit},
+                                    {"debug_views", tViews},
                                     {"total", since(tAll)}}}};
         writeJsonAtomic(a.report, j);
         std::printf("wrote %s\n", a.report.c_str());

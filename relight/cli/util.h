@@ -2,13 +2,11 @@
 #pragma once
 
 #include <chrono>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <stdexcept>
 #include <string>
 
 #include "radiosity/rgb.h"
+#include "relight/json_file.h"
 
 namespace relight::cli {
 
@@ -21,18 +19,6 @@ inline nlohmann::json rgbJson(const radiosity::Rgb& c) {
     return {c.r, c.g, c.b};
 }
 
-/// Writes `j` to `path` through a temporary file renamed over it: a failed write never
-/// leaves a half-written report.
-inline void writeJsonAtomic(const std::string& path, const nlohmann::json& j) {
-    namespace fs = std::filesystem;
-    const fs::path tmp =
-        fs::path(path).parent_path() / (".tmp-" + fs::path(path).filename().string());
-    {
-        std::ofstream out(tmp);
-        out << j.dump(2) << "\n";
-        if (!out) throw std::runtime_error(path + ": cannot write report");
-    }
-    fs::rename(tmp, path);
-}
+using relight::writeJsonAtomic;  // relight/json_file.h
 
 }  // namespace relight::cli
