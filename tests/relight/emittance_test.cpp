@@ -13,6 +13,8 @@
 
 #include "radiosity/visibility.h"
 #include "relight/emittance.h"
+#include "relight/metric.h"
+#include "relight/prepared_cache.h"
 #include "relight/relighting.h"
 #include "temp_dir.h"
 
@@ -302,7 +304,30 @@ fs::path roomCopy(const relight::test::TempDir& dir, const std::vector<std::stri
     return dir.path();
 }
 
+RelightOptions coarse() {
+    // The settings of relighting_test.cpp's room: fast, and the comparisons below hold at
+    // any setting (both preparations use the same).
+    RelightOptions o;
+    o.epsilon = 1e-3;
+    o.spp = 4;
+    o.reflectanceRounds = 3;
+    return o;
+}
+
 }  // namespace
+
+TEST(Emittance, LightOffInThePhotoThatSaysEstimateIsAnErrorNamingTheKey) {
+    relight::test::TempDir dir("relight_emittance_test");
+    const fs::path scene = roomCopy(dir, {"A"}, std::vector<std::string>{"B", "C", "D"});
+    std::string msg;
+    try {
+        prepareRelighting(loadScene(scene), coarse());
+    } catch (const InputError& e) {
+        msg = e.what();
+    }
+    EXPECT_NE(msg.find("scene.json: key \"lights[0].radiance\""), std::string::npos) << msg;
+    EXPECT_NE(msg.find("off in the first photo"), std::string::npos) << msg;
+}
 
 TEST(Emittance, RoomLightsThePhotoSeesAreReadToWithinTheRenderersError) {
     // data/room/README.md: pixels that see an emitter read its radiance (max relative
@@ -329,5 +354,78 @@ TEST(Emittance, RoomLightsThePhotoSeesAreReadToWithinTheRenderersError) {
         EXPECT_EQ(r.lights[l].method, LightEmittance::Method::photo) << name;
         EXPECT_GE(r.lights[l].pixels, 4) << name;
         expectRgbNear(r.lights[l].radiance, given.nominalRadiance[l], 1e-4, "light " + name);
+    }
+}
+
+TEST(Emittance, RoomWithEstimatedLightsRelightsLikeTheGivenOnes) {
+    // A, C and D say "estimate" (the photo sees their faces), B is given. Estimated from
+    // the photo they differ from scene.json's values only by the EXR's float rounding, so
+    // the preparation and every edit must match the one with the given radiances: the
+    // edit's radiances to 1e-4 (the test above), and rel_rmse against the truth to 1e-3,
+    // a tenth of the data's noise floor (0.0097), far below what a wrong nominal radiance
+    // does: with scene.json's 0 as the nominal of the estimated lights (the fresh scene's
+    // editRadiance(scene, edit), without the prepared photo radiance) they go dark, a
+    // rel_rmse of 0.6 to 1.1 on these edits.
+    relight::test::TempDir dir("relight_emittance_test");
+    const fs::path copy = roomCopy(dir, {"A", "C", "D"});
+    std::vector<std::string> progress;
+    RelightOptions o = coarse();
+    o.progress = [&](const std::string& m) { progress.push_back(m); };
+    const auto est = prepareRelighting(loadScene(copy), o);
+    const auto ref = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), coarse());
+
+    // Reported through the progress callback and in the Relighting.
+    const bool said = std::any_of(progress.begin(), progress.end(), [](const std::string& m) {
+        return m.find("light \"A\"") != std::string::npos &&
+               m.find("photo pixels") != std::string::npos;
+    });
+    EXPECT_TRUE(said);
+    ASSERT_EQ(est->emittance.lights.size(), 4u);
+    EXPECT_EQ(est->emittance.lights[1].method, LightEmittance::Method::given);
+    for (size_t l : {0u, 2u, 3u}) {
+        EXPECT_EQ(est->emittance.lights[l].method, LightEmittance::Method::photo);
+        expectRgbNear(est->prepared.photoRadiance[l], ref->prepared.photoRadiance[l], 1e-4,
+                      "photo radiance " + std::to_string(l));
+        expectRgbNear(est->scene.nominalRadiance[l], ref->scene.nominalRadiance[l], 1e-4,
+                      "nominal radiance " + std::to_string(l));
+    }
+
+    // The render command's path: a freshly loaded scene and the PreparedImage read back
+    // from a cache.
+    const SceneFile fresh = loadScene(copy);
+    const fs::path cacheFile = dir.path() / "prepared.bin";
+    writePreparedCache(cacheFile, est->prepared, 42);
+    std::string why;
+    const auto cached = readPreparedCache(cacheFile, 42, &why);
+    ASSERT_TRUE(cached) << why;
+
+    const fs::path truth = RELIGHT_DATA_DIR "/room/truth";
+    int w = 0, h = 0;
+    const auto maskP = readMask(RELIGHT_DATA_DIR "/room/photo.mask.png", w, h);
+    const Image photo = loadFirstPhoto(fresh);
+    for (const char* name : {"right_off_left_double", "left_off_right_double", "back_off"}) {
+        SCOPED_TRACE(name);
+        const fs::path editFile =
+            fs::path(RELIGHT_DATA_DIR "/room/edits") / (name + std::string(".json"));
+        const EditFile eEst = loadEdit(editFile, fresh);
+        const EditFile eRef = loadEdit(editFile, ref->scene);
+        const auto radEst = editRadiance(est->scene, eEst);
+        const auto radFresh = editRadiance(fresh, eEst, cached->photoRadiance);
+        const auto radRef = editRadiance(ref->scene, eRef);
+        ASSERT_EQ(radEst.size(), 4u);
+        for (size_t l = 0; l < 4; ++l) {
+            EXPECT_EQ(radFresh[l], radEst[l]) << l;
+            expectRgbNear(radEst[l], radRef[l], 1e-4, "edited radiance " + std::to_string(l));
+        }
+        const Image T = readImage(truth / (name + std::string(".exr")));
+        const auto maskT = readMask(truth / (name + std::string(".mask.png")), w, h);
+        const Score sEst = scoreImage(renderEdit(*cached, radFresh), T, photo, maskT, maskP);
+        const Score sRef = scoreImage(renderEdit(ref->prepared, radRef), T, photo, maskT, maskP);
+        const Score sWrong =
+            scoreImage(renderEdit(*cached, editRadiance(fresh, eEst)), T, photo, maskT, maskP);
+        std::printf("  %s: rel_rmse estimated %.5f, given %.5f, nominal 0 %.5f\n", name,
+                    sEst.relRmse, sRef.relRmse, sWrong.relRmse);
+        EXPECT_NEAR(sEst.relRmse, sRef.relRmse, 1e-3);
+        EXPECT_GT(sWrong.relRmse, sEst.relRmse + 0.1);
     }
 }
