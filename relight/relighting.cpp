@@ -1,7 +1,9 @@
 #include "relight/relighting.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "relight/lighting_buffer.h"
@@ -46,15 +48,8 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     auto r = std::make_unique<Relighting>();
     r->scene = std::move(scene);
     PreparedImage& P = r->prepared;
-    for (size_t l = 0; l < r->scene.estimateRadiance.size(); ++l)
-        if (r->scene.estimateRadiance[l])
-            throw InputError((r->scene.dir / "scene.json").string() + ": key \"lights[" +
-                             std::to_string(l) +
-                             "].radiance\": \"estimate\" is not supported yet by relighting");
+    checkEstimableLights(r->scene);  // before the long work: an "estimate" light off in the photo
     P.photo = loadFirstPhoto(r->scene);
-    P.photoRadiance.resize(r->scene.scene.lights.size());
-    for (size_t l = 0; l < P.photoRadiance.size(); ++l)
-        P.photoRadiance[l] = r->scene.scene.lights[l].radiance;  // the photo's state
 
     radiosity::SolverOptions so;
     so.epsilon = o.epsilon;
@@ -66,6 +61,29 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     say("item buffer");
     r->items = castItemBuffer(r->scene.camera, r->solver->scene(), r->solver->visibility(), o.spp);
     P.times.itemBuffer = since(t0);
+
+    // Lights whose radiance is "estimate": estimated before the solve, which needs their
+    // emittance; from here on they are lights of known radiance (nominal = estimate).
+    if (std::find(r->scene.estimateRadiance.begin(), r->scene.estimateRadiance.end(), true) !=
+        r->scene.estimateRadiance.end()) {
+        say("emittance of the \"estimate\" lights");
+        r->emittance = estimateEmittance(r->scene, r->solver->scene(), r->items, P.photo);
+        for (const std::string& w : r->emittance.warnings) say("  warning: " + w);
+        for (const std::string& line : r->emittance.summary()) say("  " + line);
+        std::vector<Rgb> radiance(r->scene.scene.lights.size());
+        for (size_t l = 0; l < radiance.size(); ++l) {
+            if (r->scene.estimateRadiance[l]) {
+                // On in the photo (checkEstimableLights), so the photo's state is the estimate.
+                r->scene.nominalRadiance[l] = r->emittance.lights[l].radiance;
+                r->scene.scene.lights[l].radiance = r->emittance.lights[l].radiance;
+            }
+            radiance[l] = r->scene.scene.lights[l].radiance;
+        }
+        r->solver->setLightRadiances(radiance);  // not solved yet: sets the emittance only
+    }
+    P.photoRadiance.resize(r->scene.scene.lights.size());
+    for (size_t l = 0; l < P.photoRadiance.size(); ++l)
+        P.photoRadiance[l] = r->scene.scene.lights[l].radiance;  // the photo's state
 
     t0 = Clock::now();
     say("radiosity solution of the photo's lights");
@@ -161,6 +179,19 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
 
 std::vector<Rgb> editRadiance(const SceneFile& scene, const EditFile& edit) {
     return editedRadiance(scene, edit, scene.nominalRadiance);
+}
+
+std::vector<Rgb> editRadiance(const SceneFile& scene, const EditFile& edit,
+                              std::span<const Rgb> photoRadiance) {
+    if (photoRadiance.size() != scene.nominalRadiance.size() ||
+        scene.estimateRadiance.size() != scene.nominalRadiance.size())
+        throw std::invalid_argument("editRadiance: " + std::to_string(photoRadiance.size()) +
+                                    " photo radiances for " +
+                                    std::to_string(scene.nominalRadiance.size()) + " lights");
+    std::vector<Rgb> nominal = scene.nominalRadiance;
+    for (size_t l = 0; l < nominal.size(); ++l)
+        if (scene.estimateRadiance[l]) nominal[l] = photoRadiance[l];
+    return editedRadiance(scene, edit, nominal);
 }
 
 }  // namespace relight

@@ -3,21 +3,25 @@
 // prepareRelighting() runs the pipeline once (Loscos et al. 2000, Fig. 5):
 //   1. photo and camera: the first photo (sRGB decoded when the scene says so), checked
 //      against the camera; the item buffer (polygon and point per sample, Embree);
-//   2. the radiosity solution of the photo's lights, and reflectance from the photo
-//      (relight/reflectance.h);
-//   3. per-light responses of the solution (radiosity/light_response.h) and the
+//   2. the emittance of the lights whose radiance is "estimate" (relight/emittance.h:
+//      from the photo's pixels on the light's emitting face, else the power balance of
+//      Eq. (1)-(2)); from then on the estimate stands for the light's scene.json radiance:
+//      in the solution, in photoRadiance, and as the nominal radiance of edits;
+//   3. the radiosity solution of the photo's lights, and reflectance from the photo
+//      (relight/reflectance.h); texture-based refinement of shadow boundaries (§4.2,
+//      relight/shadow_refinement.h);
+//   4. per-light responses of the solution (radiosity/light_response.h) and the
 //      irradiance per light at every leaf vertex (relight/vertex_lighting.h);
-//   4. the display map (relight/ratio_display.h) and the display correction factor D at
-//      the vertices: the radiosity of the photo's own lighting, so that the unedited
-//      display B/D is 1 and reproduces the photo.
+//   5. real-shadow removal (§4.3-4.4, relight/shadow_removal.h): the display correction
+//      factor D and the texture factor at the vertices, so that the unedited display is
+//      the photo;
+//   6. the display map (relight/ratio_display.h).
 // renderEdit() then renders any setting of the real lights' radiances by superposition:
 //   B(v) = rho sum_l L_l h_l(v),  pixel = T * B/D  (Eq. (3)),
 // a weighted sum per vertex and one multiply-add per (pixel, vertex) pair.
-//
-// Not yet here (the later steps): texture-based refinement of shadow boundaries
-// (§4.2), shadow regions and real-shadow removal (§4.3-4.4), and emittance estimation for
-// lights whose radiance is "estimate". Without shadow removal this is the 1997 method
-// (Drettakis et al. 1997, the paper's Fig. 9(c)): B/D at the vertices, D = B_orig.
+// With shadowRefinement and shadowRemoval off this is the 1997 method (Drettakis et al.
+// 1997, the paper's Fig. 9(c)): B/D at the vertices, D = B_orig, the radiosity of the
+// photo's own lighting.
 #pragma once
 
 #include <filesystem>
@@ -31,6 +35,7 @@
 #include "radiosity/light_response.h"
 #include "radiosity/solver.h"
 #include "relight/edit_file.h"
+#include "relight/emittance.h"
 #include "relight/image.h"
 #include "relight/item_buffer.h"
 #include "relight/prepared.h"
@@ -61,7 +66,11 @@ struct RelightOptions {
 /// The whole prepared state: what rendering needs (`prepared`, cacheable) and the solver
 /// state behind it (for the gather path, edits that change geometry, and debug views).
 struct Relighting {
+    /// The scene as loaded, except that the lights whose radiance is "estimate" (still
+    /// flagged in estimateRadiance) have their estimate in nominalRadiance and
+    /// scene.lights: editRadiance(scene, edit) gives their edits.
     SceneFile scene;
+    EmittanceReport emittance;  ///< what was estimated and how (empty lights: nothing to do)
     PreparedImage prepared;
     std::unique_ptr<radiosity::HierarchicalSolver> solver;
     ItemBuffer items;
@@ -80,12 +89,22 @@ Image loadFirstPhoto(const SceneFile& scene);
 
 /// Runs the pipeline above on a loaded scene (loadScene). Throws InputError for bad
 /// input (photo missing, unreadable, of the wrong size, with NaN/Inf pixels; no photo at
-/// all; a light whose radiance is "estimate").
+/// all; a light whose radiance is "estimate" but that is off in the photo, or that cannot
+/// be estimated: relight/emittance.h). Estimates and warnings are reported through
+/// options.progress.
 std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& options);
 
 /// The real lights' radiances after `edit`: scene.json's radiance scaled or replaced for the
 /// lights it names, the photo's state for the others (a light off in the photo that an edit
 /// switches on gets its scene.json radiance, not the photo's zero).
+/// `scene.nominalRadiance` is the nominal radiance: use it with Relighting::scene, where the
+/// estimated lights have theirs, or with a scene without "estimate" lights.
 std::vector<radiosity::Rgb> editRadiance(const SceneFile& scene, const EditFile& edit);
+/// The same for a scene as loaded (loadScene) and a PreparedImage made from it, maybe read
+/// from a cache: the nominal radiance of an "estimate" light is its estimate, the photo's
+/// radiance of that light (`photoRadiance`, it is on in the photo). Throws
+/// std::invalid_argument when photoRadiance has the wrong size.
+std::vector<radiosity::Rgb> editRadiance(const SceneFile& scene, const EditFile& edit,
+                                         std::span<const radiosity::Rgb> photoRadiance);
 
 }  // namespace relight

@@ -37,7 +37,8 @@ int runRender(const RenderArgs& a) {
                                           a.debugViews.empty() ? nullptr : &full);
     const PreparedImage& p = s.image;
     const double tPrepare = s.seconds;
-    const auto radiance = editRadiance(sf, edit);
+    // The PreparedImage's photo radiance holds the estimates of "estimate" lights.
+    const auto radiance = editRadiance(sf, edit, p.photoRadiance);
     auto t0 = Clock::now();
     const Image img = renderEdit(p, radiance);
     const double tEdit = since(t0);

@@ -1,6 +1,7 @@
 // relight solve <scene_dir> [--epsilon E] [--report out.json] [-o radiosity.exr|png]
 #include "relight/cli/commands.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,7 @@
 
 #include "radiosity/solver.h"
 #include "relight/cli/util.h"
+#include "relight/emittance.h"
 #include "relight/image.h"
 #include "relight/item_buffer.h"
 #include "relight/lighting_buffer.h"
@@ -38,6 +40,20 @@ int runSolve(const SolveArgs& a) {
             items = castItemBuffer(sf.camera, solver.scene(), solver.visibility(), a.spp);
         haveItems = true;
     };
+    // Lights whose radiance is "estimate": estimated from the first photo before anything is
+    // solved, as the preparation does (relight/emittance.h).
+    if (std::find(sf.estimateRadiance.begin(), sf.estimateRadiance.end(), true) !=
+        sf.estimateRadiance.end()) {
+        checkEstimableLights(sf);
+        const Image photo = loadFirstPhoto(sf);
+        needItems();
+        const EmittanceReport rep = estimateEmittance(sf, solver.scene(), items, photo);
+        for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+        for (const auto& line : rep.summary()) std::fprintf(stderr, "  %s\n", line.c_str());
+        std::vector<radiosity::Rgb> radiance;
+        for (const LightEmittance& l : rep.lights) radiance.push_back(l.radiance);
+        solver.setLightRadiances(radiance);  // not solved yet: sets the emittance only
+    }
     LightingBuffer lighting;
     bool haveLighting = false;
     double tLighting = 0;
