@@ -16,7 +16,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -49,14 +48,9 @@ SceneFile withLampsMoved(SceneFile sf, double delta) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: %s <data_dir> [--epsilon E]\n", argv[0]);
-        return 2;
-    }
-    const std::string data = argv[1];
+    std::string data;
     RelightOptions o;
-    if (argc > 3 && std::strcmp(argv[2], "--epsilon") == 0) o.epsilon = std::atof(argv[3]);
-    std::printf("command: %s %s --epsilon %g\n", argv[0], data.c_str(), o.epsilon);
+    if (!bench::parseDataAndEpsilon(argc, argv, data, o.epsilon)) return 2;
     try {
         const std::string dir = data + "/room";
         tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);

@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -37,14 +36,9 @@ using bench::Clock;
 using bench::since;
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: %s <data_dir> [--epsilon E]\n", argv[0]);
-        return 2;
-    }
-    const std::string data = argv[1];
+    std::string data;
     RelightOptions o;
-    if (argc > 3 && std::strcmp(argv[2], "--epsilon") == 0) o.epsilon = std::atof(argv[3]);
-    std::printf("command: %s %s --epsilon %g\n", argv[0], data.c_str(), o.epsilon);
+    if (!bench::parseDataAndEpsilon(argc, argv, data, o.epsilon)) return 2;
     try {
         const std::string dir = data + "/room";
         tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);

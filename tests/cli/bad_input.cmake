@@ -3,40 +3,16 @@
 # half-written or replaced picture). Also: the preparation switches --no-refinement and
 # --no-shadow-removal reach the report and the cache key. Run by ctest:
 #   cmake -DRELIGHT=<relight binary> -DSCENE=<data/room> -DWORK=<scratch folder> -P this
-cmake_minimum_required(VERSION 3.25)
-foreach(var RELIGHT SCENE WORK)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "define ${var}")
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/common.cmake")
 
 file(REMOVE_RECURSE "${WORK}")
 set(room "${WORK}/room")
 # A fresh copy of the room for each case, so one case's damage cannot hide another's.
 function(fresh_room)
-  file(REMOVE_RECURSE "${room}")
-  file(MAKE_DIRECTORY "${room}")
-  foreach(f scene.json room.obj photo.exr photo.mask.png)
-    file(COPY_FILE "${SCENE}/${f}" "${room}/${f}")
-  endforeach()
+  copy_room("${room}")
 endfunction()
 # Cheap settings: the test checks messages and files, not the picture.
 set(cheap --epsilon 1e-3 --spp 2 --no-cache)
-
-function(relight out expected_rc)
-  execute_process(COMMAND "${RELIGHT}" ${ARGN} OUTPUT_VARIABLE o ERROR_VARIABLE e
-                  RESULT_VARIABLE rc)
-  if(NOT rc EQUAL expected_rc)
-    message(FATAL_ERROR "relight ${ARGN}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
-  endif()
-  set(${out} "${o}${e}" PARENT_SCOPE)
-endfunction()
-
-function(expect text regex what)
-  if(NOT text MATCHES "${regex}")
-    message(FATAL_ERROR "${what}: expected /${regex}/ in:\n${text}")
-  endif()
-endfunction()
 
 # The output already there: every failing render below must leave it byte for byte.
 set(output "${WORK}/out.png")

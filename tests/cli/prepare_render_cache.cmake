@@ -2,44 +2,14 @@
 # changed option or a corrupt file makes render prepare again, a cache that cannot be
 # written does not stop render. Run by ctest (tests/CMakeLists.txt):
 #   cmake -DRELIGHT=<relight binary> -DSCENE=<data/room> -DWORK=<scratch folder> -P this
-cmake_minimum_required(VERSION 3.25)
-foreach(var RELIGHT SCENE WORK)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "define ${var}")
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/common.cmake")
 
 file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}/room")
-foreach(f scene.json room.obj photo.exr photo.mask.png)
-  file(COPY_FILE "${SCENE}/${f}" "${WORK}/room/${f}")
-endforeach()
 set(room "${WORK}/room")
+copy_room("${room}")
 set(cache "${room}/.relight/prepared.bin")
 # Cheap settings: the test checks the cache, not the picture.
 set(cheap --epsilon 1e-3 --spp 4)
-
-# Runs relight with the arguments after `expected_rc`; its stdout and stderr go to `out`.
-function(relight out expected_rc)
-  execute_process(COMMAND "${RELIGHT}" ${ARGN} OUTPUT_VARIABLE o ERROR_VARIABLE e
-                  RESULT_VARIABLE rc)
-  if(NOT rc EQUAL expected_rc)
-    message(FATAL_ERROR "relight ${ARGN}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
-  endif()
-  set(${out} "${o}${e}" PARENT_SCOPE)
-endfunction()
-
-function(expect text regex what)
-  if(NOT text MATCHES "${regex}")
-    message(FATAL_ERROR "${what}: expected /${regex}/ in:\n${text}")
-  endif()
-endfunction()
-
-function(expect_not text regex what)
-  if(text MATCHES "${regex}")
-    message(FATAL_ERROR "${what}: did not expect /${regex}/ in:\n${text}")
-  endif()
-endfunction()
 
 function(report_cache file out)
   file(READ "${file}" json)

@@ -13,6 +13,7 @@
 #include "relight/edit_file.h"
 #include "relight/ratio_display.h"
 #include "relight/relighting.h"
+#include "room_fixture.h"
 #include "temp_dir.h"
 
 using namespace relight;
@@ -21,19 +22,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The room, prepared once for the suite; coarse settings keep it fast (what is checked
-/// holds at any setting).
-RelightOptions coarse() {
-    RelightOptions o;
-    o.epsilon = 1e-3;
-    o.spp = 4;
-    o.reflectanceRounds = 3;
-    return o;
-}
-
+using test::coarseOptions;
 const Relighting& room() {
-    static const auto r = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), coarse());
-    return *r;
+    return test::coarseRoom();
 }
 
 std::vector<Rgb> backOff() {
@@ -271,7 +262,7 @@ TEST(DebugViews, ReflectanceIsTheLeafReflectance) {
 }
 
 TEST(DebugViews, WithoutShadowRemovalTheTextureViewsAreSkipped) {
-    RelightOptions o = coarse();
+    RelightOptions o = coarseOptions();
     o.spp = 1;
     o.reflectanceRounds = 1;
     o.shadowRefinement = false;

@@ -16,6 +16,7 @@
 #include "relight/metric.h"
 #include "relight/prepared_cache.h"
 #include "relight/relighting.h"
+#include "room_fixture.h"
 #include "temp_dir.h"
 
 using namespace relight;
@@ -304,14 +305,9 @@ fs::path roomCopy(const relight::test::TempDir& dir, const std::vector<std::stri
     return dir.path();
 }
 
+// Fast settings; the comparisons below hold at any setting (both preparations use the same).
 RelightOptions coarse() {
-    // The settings of relighting_test.cpp's room: fast, and the comparisons below hold at
-    // any setting (both preparations use the same).
-    RelightOptions o;
-    o.epsilon = 1e-3;
-    o.spp = 4;
-    o.reflectanceRounds = 3;
-    return o;
+    return test::coarseOptions();
 }
 
 }  // namespace

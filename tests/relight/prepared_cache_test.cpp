@@ -15,6 +15,7 @@
 #include "relight/edit_file.h"
 #include "relight/prepared_cache.h"
 #include "relight/relighting.h"
+#include "room_fixture.h"
 #include "temp_dir.h"
 
 using namespace relight;
@@ -24,17 +25,10 @@ namespace fs = std::filesystem;
 namespace {
 
 RelightOptions cheapOptions() {
-    // Coarse settings keep the test fast; what is checked holds at any setting.
-    RelightOptions o;
-    o.epsilon = 1e-3;
-    o.spp = 4;
-    o.reflectanceRounds = 3;
-    return o;
+    return test::coarseOptions();
 }
-
 const Relighting& room() {
-    static const auto r = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), cheapOptions());
-    return *r;
+    return test::coarseRoom();
 }
 
 uint64_t roomKey() {

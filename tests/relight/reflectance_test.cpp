@@ -10,6 +10,7 @@
 #include "relight/reflectance.h"
 #include "relight/relighting.h"
 #include "relight/scene_file.h"
+#include "room_fixture.h"
 #include "temp_dir.h"
 
 using namespace relight;
@@ -115,10 +116,7 @@ TEST(Reflectance, EachLeafTakesTheReflectanceOfItsOwnTexture) {
     }
     writeImage(dir.path() / "photo.exr", photo);
 
-    RelightOptions o;
-    o.epsilon = 1e-3;
-    o.spp = 4;
-    o.reflectanceRounds = 3;
+    RelightOptions o = test::coarseOptions();
     o.shadowRemoval = false;  // removal changes the reflectance in shadows: not the subject
     const auto r = prepareRelighting(loadScene(dir.path()), o);
     const auto& h = r->solver->hierarchy();

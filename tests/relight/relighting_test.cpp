@@ -13,6 +13,7 @@
 #include "relight/ratio_display.h"
 #include "relight/relighting.h"
 #include "relight/shadow_removal.h"
+#include "room_fixture.h"
 #include "temp_dir.h"
 
 using namespace relight;
@@ -104,15 +105,7 @@ TEST(RenderRatio, PixelsWhereThePhotoShowsNoLampAreKeptAsInThePhoto) {
 namespace {
 
 const Relighting& room() {
-    // Coarse settings keep the test fast; what is checked holds at any setting.
-    static const auto r = [] {
-        RelightOptions o;
-        o.epsilon = 1e-3;
-        o.spp = 4;
-        o.reflectanceRounds = 3;
-        return prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
-    }();
-    return *r;
+    return test::coarseRoom();
 }
 
 }  // namespace

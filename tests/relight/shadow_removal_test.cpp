@@ -8,6 +8,7 @@
 
 #include "relight/relighting.h"
 #include "relight/shadow_removal.h"
+#include "room_fixture.h"
 
 using namespace relight;
 using radiosity::Rgb;
@@ -18,10 +19,7 @@ namespace {
 /// from the same inputs have the same leaves and vertices (the pipeline is deterministic)
 /// and removal can be run on each with a different photo texture.
 std::unique_ptr<Relighting> prepareBare() {
-    RelightOptions o;
-    o.epsilon = 1e-3;
-    o.spp = 4;
-    o.reflectanceRounds = 3;
+    RelightOptions o = test::coarseOptions();
     o.shadowRefinement = false;
     o.shadowRemoval = false;
     return prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
