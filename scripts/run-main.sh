@@ -18,7 +18,11 @@ for edit in identity back_off left_off_right_double right_off_left_double colour
     photo=$("$relight" eval data/room "$edit" data/room/photo.exr | awk '/^rel_rmse/ {print $2}')
     printf '%-24s %9s %9s\n' "$edit" "$ours" "$photo" >>out/room-scores.txt
 done
+echo "== relight render data/room --edit data/room/edits/back_off.json --debug-views out/room-debug-views"
+"$relight" render data/room --edit data/room/edits/back_off.json -o out/room-back_off.png \
+    --debug-views out/room-debug-views >/dev/null 2>&1
 echo
 echo "rel_rmse against data/room/truth (spec metric; noise floor of the data about 0.01):"
 cat out/room-scores.txt
-echo "main job done: out/room-<edit>.exr|png, out/room-<edit>.json, out/room-scores.txt"
+echo "main job done: out/room-<edit>.exr|png, out/room-<edit>.json, out/room-scores.txt,"
+echo "  the pipeline's intermediate images for back_off in out/room-debug-views/ (index.json says what each shows)"
