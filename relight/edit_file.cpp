@@ -4,10 +4,13 @@
 #include "relight/edit_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "relight/face_repair.h"
 #include "relight/json_reader.h"
+#include "relight/obj_reader.h"
 
 namespace relight {
 
@@ -56,6 +59,92 @@ LightEdit readLightEdit(const JsonReader& r, const json& entry, const std::strin
     return edit;
 }
 
+VirtualLight readVirtualLight(const JsonReader& r, const json& lj, const std::string& path) {
+    r.checkKeys(lj, path, {"name", "type", "vertices", "radiance"});
+    VirtualLight v;
+    v.name = r.string(r.require(lj, path, "name"), child(path, "name"));
+    if (v.name.empty()) r.fail(child(path, "name"), "empty light name");
+    if (auto t = lj.find("type"); t != lj.end()) {  // optional here: "quad" is the only type
+        const std::string type = r.string(*t, child(path, "type"));
+        if (type != "quad") r.fail(child(path, "type"), "light type " + type + " not supported");
+    }
+    const std::string vPath = child(path, "vertices");
+    const json& vj = r.array(r.require(lj, path, "vertices"), vPath, 0, 3);
+    for (size_t k = 0; k < vj.size(); ++k) v.corners.push_back(r.point(vj[k], element(vPath, k)));
+    const radiosity::PolygonCheck check = radiosity::checkPolygon(v.corners);
+    if (check.status != radiosity::PolygonCheck::Status::ok)
+        r.fail(vPath, "a light must be a planar convex polygon of non-zero area: " + check.message);
+    const std::string radPath = child(path, "radiance");
+    const json& rj = r.require(lj, path, "radiance");
+    if (rj.is_string())
+        r.fail(radPath,
+               "a virtual light's radiance must be given (\"estimate\" needs a photo of it)");
+    v.radiance = r.rgb(rj, radPath);
+    for (int k = 0; k < 3; ++k)
+        if (v.radiance[k] < 0)
+            r.fail(element(radPath, static_cast<size_t>(k)), "radiance must not be negative");
+    return v;
+}
+
+VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::string& path,
+                                const fs::path& editFile, std::vector<std::string>& warnings) {
+    r.checkKeys(oj, path, {"name", "file", "reflectance", "transform"});
+    VirtualObject v;
+    v.name = r.string(r.require(oj, path, "name"), child(path, "name"));
+    if (v.name.empty()) r.fail(child(path, "name"), "empty object name");
+
+    const std::string rPath = child(path, "reflectance");
+    v.reflectance = r.rgb(r.require(oj, path, "reflectance"), rPath);
+    for (int k = 0; k < 3; ++k)
+        if (!(v.reflectance[k] >= 0 && v.reflectance[k] < 1))
+            r.fail(element(rPath, static_cast<size_t>(k)),
+                   "reflectance must be in [0, 1): a surface reflects less than it receives, and "
+                   "1 would make the radiosity system singular");
+
+    const std::string tPath = child(path, "transform");
+    const auto M = r.matrix(r.require(oj, path, "transform"), tPath, 4, 4);
+    for (size_t c = 0; c < 4; ++c)
+        if (std::abs(M[3][c] - (c == 3 ? 1.0 : 0.0)) > 1e-9)
+            r.fail(element(element(tPath, 3), c),
+                   "the last row must be [0, 0, 0, 1] (an affine placement, no projection)");
+    double scale = 0;
+    for (size_t i = 0; i < 3; ++i)
+        for (size_t j = 0; j < 3; ++j) scale = std::max(scale, std::abs(M[i][j]));
+    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    // Relative to the matrix's own scale: a 1 mm-thick flattening of a 1 m box is legal.
+    if (!(std::abs(det) > 1e-9 * scale * scale * scale))
+        r.fail(tPath, "the transform is singular (it flattens the object to a plane or less)");
+    for (size_t i = 0; i < 4; ++i)
+        for (size_t j = 0; j < 4; ++j) v.transform[i][j] = M[i][j];
+
+    const std::string fPath = child(path, "file");
+    const std::string name = r.string(r.require(oj, path, "file"), fPath);
+    if (name.empty()) r.fail(fPath, "empty file name");
+    v.file = editFile.parent_path() / name;
+    std::error_code ec;
+    if (!fs::exists(v.file, ec)) r.fail(fPath, "OBJ file \"" + v.file.string() + "\" not found");
+    ObjFile obj = readObj(v.file);
+    warnings.insert(warnings.end(), obj.warnings.begin(), obj.warnings.end());
+    for (radiosity::Vec3& p : obj.positions)
+        p = radiosity::Vec3(M[0][0] * p.x + M[0][1] * p.y + M[0][2] * p.z + M[0][3],
+                            M[1][0] * p.x + M[1][1] * p.y + M[1][2] * p.z + M[1][3],
+                            M[2][0] * p.x + M[2][1] * p.y + M[2][2] * p.z + M[2][3]);
+    // A mirroring transform turns counter-clockwise faces clockwise: turn them back, so
+    // that each face's front side stays the one the OBJ meant.
+    if (det < 0)
+        for (ObjFace& f : obj.faces) std::reverse(f.vertices.begin(), f.vertices.end());
+    radiosity::Scene faces;
+    faces.objects.push_back(v.name);
+    const std::vector<int> toObject(obj.objects.size(), 0);
+    addObjFaces(
+        obj, toObject, [&](int) { return v.reflectance; }, faces, warnings);
+    if (faces.polygons.empty()) r.fail(fPath, "\"" + v.file.string() + "\" has no usable face");
+    v.polygons = std::move(faces.polygons);
+    return v;
+}
+
 }  // namespace
 
 EditFile loadEdit(const fs::path& file, const SceneFile& sf) {
@@ -84,15 +173,49 @@ EditFile loadEdit(const fs::path& file, const SceneFile& sf) {
         }
     }
 
-    // Virtual lights, virtual objects and removals: only their type is checked here; the
-    // version that renders them reads their content.
-    auto present = [&](const char* key) {
-        auto it = root.find(key);
-        return it != root.end() && !r.array(*it, key, 0).empty();
-    };
-    edit.hasAddLights = present("add_lights");
-    edit.hasAddObjects = present("add_objects");
-    edit.hasRemoveObjects = present("remove_objects");
+    if (auto it = root.find("add_lights"); it != root.end()) {
+        const json& list = r.array(*it, "add_lights", 0);
+        for (size_t i = 0; i < list.size(); ++i) {
+            VirtualLight v = readVirtualLight(r, list[i], element("add_lights", i));
+            const std::string nPath = child(element("add_lights", i), "name");
+            if (sf.scene.findLight(v.name) >= 0)
+                r.fail(nPath, "the scene already has a light \"" + v.name + "\"");
+            for (const VirtualLight& other : edit.addLights)
+                if (other.name == v.name) r.fail(nPath, "duplicate light name \"" + v.name + "\"");
+            edit.addLights.push_back(std::move(v));
+        }
+    }
+    if (auto it = root.find("add_objects"); it != root.end()) {
+        const json& list = r.array(*it, "add_objects", 0);
+        for (size_t i = 0; i < list.size(); ++i) {
+            const std::string path = element("add_objects", i);
+            VirtualObject v = readVirtualObject(r, list[i], path, file, edit.warnings);
+            const std::string nPath = child(path, "name");
+            if (sf.scene.findObject(v.name) >= 0)
+                r.fail(nPath, "the scene already has an object \"" + v.name + "\"");
+            for (const VirtualObject& other : edit.addObjects)
+                if (other.name == v.name) r.fail(nPath, "duplicate object name \"" + v.name + "\"");
+            edit.addObjects.push_back(std::move(v));
+        }
+    }
+    if (auto it = root.find("remove_objects"); it != root.end()) {
+        const json& list = r.array(*it, "remove_objects", 0);
+        for (size_t i = 0; i < list.size(); ++i) {
+            const std::string path = element("remove_objects", i);
+            const std::string name = r.string(list[i], path);
+            const auto settings = sf.objectSettings.find(name);
+            if (sf.scene.findObject(name) < 0 || name.starts_with("light:"))
+                r.fail(path, "the scene has no object \"" + name + "\"");
+            if (settings == sf.objectSettings.end() || !settings->second.removable)
+                r.fail(path, "object \"" + name +
+                                 "\" is not marked \"removable\" in scene.json (removing it needs "
+                                 "the photo behind it to be filled in)");
+            if (std::find(edit.removeObjects.begin(), edit.removeObjects.end(), name) !=
+                edit.removeObjects.end())
+                r.fail(path, "object \"" + name + "\" is removed twice");
+            edit.removeObjects.push_back(name);
+        }
+    }
     return edit;
 }
 
@@ -123,9 +246,9 @@ std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
 
 void requireLightsOnly(const EditFile& edit) {
     std::vector<std::string> parts;
-    if (edit.hasAddLights) parts.push_back("\"add_lights\"");
-    if (edit.hasAddObjects) parts.push_back("\"add_objects\"");
-    if (edit.hasRemoveObjects) parts.push_back("\"remove_objects\"");
+    if (!edit.addLights.empty()) parts.push_back("\"add_lights\"");
+    if (!edit.addObjects.empty()) parts.push_back("\"add_objects\"");
+    if (!edit.removeObjects.empty()) parts.push_back("\"remove_objects\"");
     if (parts.empty()) return;
     std::string list;
     for (size_t i = 0; i < parts.size(); ++i)

@@ -3,11 +3,14 @@
 // An edit is read and validated against the scene it applies to (light names must exist).
 // Every problem is an InputError naming the edit file and the JSON key path, e.g.
 //   edits/x.json: key "lights.Q": unknown light "Q" (the scene has A, B, C, D)
-// This version applies changes to real lights only; add_lights, add_objects and
-// remove_objects are type-checked here (arrays), recorded as present, and refused by
-// requireLightsOnly() until a later version renders them.
+// Every part is read and checked here: real-light changes, virtual lights (their emitting
+// face checked like a scene light's), virtual objects (OBJ read relative to the edit file,
+// faces checked and repaired like the scene's, placed by the transform) and removals
+// (removable objects of the scene). Rendering applies real-light changes only so far:
+// requireLightsOnly() refuses the other parts with a clear message.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -24,18 +27,39 @@ struct LightEdit {
     std::optional<Rgb> radiance;  ///< sets the radiance, every channel >= 0
 };
 
+/// A virtual light ("add_lights": the fields of a scene light; the radiance must be given).
+struct VirtualLight {
+    std::string name;
+    std::vector<radiosity::Vec3> corners;  ///< a planar convex polygon of non-zero area
+    Rgb radiance;                          ///< photo units, >= 0
+};
+
+/// A virtual object ("add_objects"), its faces in world space.
+struct VirtualObject {
+    std::string name;
+    std::filesystem::path file;  ///< the OBJ file, resolved against the edit's folder
+    Rgb reflectance;             ///< every channel in [0, 1)
+    std::array<std::array<double, 4>, 4> transform{};  ///< row-major, as in the file
+    /// Checked, repaired faces after the transform (object index 0, reflectance set).
+    std::vector<radiosity::Polygon> polygons;
+};
+
 struct EditFile {
     std::filesystem::path file;               ///< as given to loadEdit(), for messages
     std::map<std::string, LightEdit> lights;  ///< by real light name (all exist in the scene)
-    bool hasAddLights = false;                ///< "add_lights" present and non-empty
-    bool hasAddObjects = false;               ///< "add_objects" present and non-empty
-    bool hasRemoveObjects = false;            ///< "remove_objects" present and non-empty
+    std::vector<VirtualLight> addLights;
+    std::vector<VirtualObject> addObjects;
+    std::vector<std::string> removeObjects;  ///< removable objects of the scene
+    std::vector<std::string> warnings;       ///< repairs of the virtual objects' faces
 };
 
 /// Reads and validates an edit against the scene. Throws InputError naming the file and
 /// key path (missing file, invalid JSON, duplicate key, wrong "format", unknown keys,
 /// unknown light, a light entry with both or neither of scale/radiance, negative or
-/// non-finite values, add_* / remove_objects that are not arrays).
+/// non-finite values; a virtual light with a duplicate name, a degenerate or zero-area
+/// face or no radiance; a virtual object whose file is missing or has no faces, whose
+/// reflectance is not below 1, whose transform is not affine or is singular; a removal
+/// naming an object the scene lacks or does not mark removable).
 EditFile loadEdit(const std::filesystem::path& file, const SceneFile& sf);
 
 /// Radiance of every real light after the edit (same index as sf.scene.lights), given the

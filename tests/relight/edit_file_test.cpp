@@ -86,7 +86,8 @@ TEST(RoomEdits, LightsOnlyEditsLoadAndAreAccepted) {
     for (const std::string& name : kLightsOnly) {
         SCOPED_TRACE(name);
         const EditFile edit = loadRoomEdit(name);
-        EXPECT_FALSE(edit.hasAddLights || edit.hasAddObjects || edit.hasRemoveObjects);
+        EXPECT_FALSE(!edit.addLights.empty() || !edit.addObjects.empty() ||
+                     !edit.removeObjects.empty());
         EXPECT_NO_THROW(requireLightsOnly(edit));
     }
 }
@@ -95,7 +96,8 @@ TEST(RoomEdits, VirtualAndRemovalEditsLoadButAreNotSupportedYet) {
     for (const std::string& name : kLater) {
         SCOPED_TRACE(name);
         const EditFile edit = loadRoomEdit(name);
-        EXPECT_TRUE(edit.hasAddLights || edit.hasAddObjects || edit.hasRemoveObjects);
+        EXPECT_TRUE(!edit.addLights.empty() || !edit.addObjects.empty() ||
+                    !edit.removeObjects.empty());
         const std::string msg = errorOf([&] { requireLightsOnly(edit); });
         EXPECT_TRUE(contains(msg, edit.file.string() + ": ")) << msg;
         EXPECT_TRUE(contains(msg, "not supported yet")) << msg;
@@ -225,7 +227,8 @@ TEST_F(EditFixture, WithoutAPhotoEveryLightIsOn) {
 TEST_F(EditFixture, EmptyAddAndRemoveListsChangeNothing) {
     const EditFile edit = load(
         R"({"format":"relight-edit/1","lights":{},"add_lights":[],"add_objects":[],"remove_objects":[]})");
-    EXPECT_FALSE(edit.hasAddLights || edit.hasAddObjects || edit.hasRemoveObjects);
+    EXPECT_FALSE(!edit.addLights.empty() || !edit.addObjects.empty() ||
+                 !edit.removeObjects.empty());
     EXPECT_NO_THROW(requireLightsOnly(edit));
 }
 
@@ -362,6 +365,154 @@ TEST_F(EditFixture, AddAndRemovePartsMustBeArrays) {
             msg, editFile() + ": key \"" + std::string(key) + "\": expected an array, got object"))
             << msg;
     }
+}
+
+// ---- virtual lights, virtual objects, removals --------------------------------------------
+
+/// {"format": "relight-edit/1", key: [entry]}
+std::string withList(const char* key, const json& entry) {
+    return json{{"format", "relight-edit/1"}, {key, json::array({entry})}}.dump(1);
+}
+
+json quadLight(const std::string& name) {
+    return {{"name", name},
+            {"type", "quad"},
+            {"vertices", {{0, 0, 2}, {1, 0, 2}, {1, 1, 2}, {0, 1, 2}}},
+            {"radiance", {1, 2, 3}}};
+}
+
+TEST_F(EditFixture, VirtualLightIsRead) {
+    const EditFile edit = load(withList("add_lights", quadLight("V1")));
+    ASSERT_EQ(edit.addLights.size(), 1u);
+    EXPECT_EQ(edit.addLights[0].name, "V1");
+    EXPECT_EQ(edit.addLights[0].corners.size(), 4u);
+    EXPECT_EQ(edit.addLights[0].radiance, Rgb(1, 2, 3));
+    const std::string msg = errorOf([&] { requireLightsOnly(edit); });
+    EXPECT_TRUE(contains(msg, "\"add_lights\" is not supported yet")) << msg;
+}
+
+TEST_F(EditFixture, VirtualLightErrorsNameTheKey) {
+    json zeroArea = quadLight("V1");
+    zeroArea["vertices"] = {{0, 0, 2}, {1, 0, 2}, {2, 0, 2}, {3, 0, 2}};
+    EXPECT_TRUE(
+        contains(loadError(withList("add_lights", zeroArea)),
+                 "key \"add_lights[0].vertices\": a light must be a planar convex polygon"));
+    json estimate = quadLight("V1");
+    estimate["radiance"] = "estimate";
+    EXPECT_TRUE(
+        contains(loadError(withList("add_lights", estimate)),
+                 "key \"add_lights[0].radiance\": a virtual light's radiance must be given"));
+    json negative = quadLight("V1");
+    negative["radiance"] = {1, -1, 1};
+    EXPECT_TRUE(contains(loadError(withList("add_lights", negative)),
+                         "key \"add_lights[0].radiance[1]\": radiance must not be negative"));
+    EXPECT_TRUE(contains(loadError(withList("add_lights", quadLight("L1"))),
+                         "key \"add_lights[0].name\": the scene already has a light \"L1\""));
+    const json twice = {{"format", "relight-edit/1"},
+                        {"add_lights", json::array({quadLight("V"), quadLight("V")})}};
+    EXPECT_TRUE(contains(loadError(twice.dump()),
+                         "key \"add_lights[1].name\": duplicate light name \"V\""));
+    json extra = quadLight("V1");
+    extra["colour"] = 1;
+    EXPECT_TRUE(contains(loadError(withList("add_lights", extra)), "colour")) << "unknown key";
+}
+
+/// A unit cube's six faces as OBJ text (counter-clockwise seen from outside).
+const char* kCube = R"(o cube
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+)";
+
+json boxObject(const json& transform) {
+    return {{"name", "box"},
+            {"file", "cube.obj"},
+            {"reflectance", {0.7, 0.2, 0.2}},
+            {"transform", transform}};
+}
+
+const json kIdentity = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+
+TEST_F(EditFixture, VirtualObjectIsReadRelativeToTheEditAndPlacedByItsTransform) {
+    dir.write("cube.obj", kCube);
+    // Scale 2 on x, then move by (1, 2, 3): the cube spans [1, 3] x [2, 3] x [3, 4].
+    const json t = {{2, 0, 0, 1}, {0, 1, 0, 2}, {0, 0, 1, 3}, {0, 0, 0, 1}};
+    const EditFile edit = load(withList("add_objects", boxObject(t)));
+    ASSERT_EQ(edit.addObjects.size(), 1u);
+    const relight::VirtualObject& box = edit.addObjects[0];
+    EXPECT_EQ(box.file, dir.path() / "cube.obj");
+    ASSERT_EQ(box.polygons.size(), 6u);
+    double area = 0;
+    radiosity::Vec3 lo(1e9), hi(-1e9);
+    for (const auto& p : box.polygons) {
+        area += p.area;
+        EXPECT_EQ(p.rho, Rgb(0.7, 0.2, 0.2));
+        for (int i = 0; i < p.vertexCount; ++i) {
+            lo = glm::min(lo, p.v[i]);
+            hi = glm::max(hi, p.v[i]);
+        }
+        // Outward normals: the face's centre minus the box's centre points along it.
+        EXPECT_GT(glm::dot(p.normal, p.centroid() - radiosity::Vec3(2, 2.5, 3.5)), 0);
+    }
+    EXPECT_NEAR(area, 2 * (2 * 1 + 2 * 1 + 1 * 1), 1e-12);  // 2 (xy + xz + yz)
+    EXPECT_EQ(lo, radiosity::Vec3(1, 2, 3));
+    EXPECT_EQ(hi, radiosity::Vec3(3, 3, 4));
+}
+
+TEST_F(EditFixture, MirroringTransformKeepsTheFacesOutward) {
+    dir.write("cube.obj", kCube);
+    const json mirror = {{-1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+    const EditFile edit = load(withList("add_objects", boxObject(mirror)));
+    ASSERT_EQ(edit.addObjects[0].polygons.size(), 6u);
+    for (const auto& p : edit.addObjects[0].polygons)
+        EXPECT_GT(glm::dot(p.normal, p.centroid() - radiosity::Vec3(-0.5, 0.5, 0.5)), 0);
+}
+
+TEST_F(EditFixture, VirtualObjectErrorsNameTheKey) {
+    EXPECT_TRUE(contains(loadError(withList("add_objects", boxObject(kIdentity))),
+                         "key \"add_objects[0].file\": OBJ file \"" +
+                             (dir.path() / "cube.obj").string() + "\" not found"));
+    dir.write("cube.obj", kCube);
+    json bright = boxObject(kIdentity);
+    bright["reflectance"] = {0.5, 1.0, 0.5};
+    EXPECT_TRUE(contains(loadError(withList("add_objects", bright)),
+                         "key \"add_objects[0].reflectance[1]\": reflectance must be in [0, 1)"));
+    const json flat = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 1}};
+    EXPECT_TRUE(contains(loadError(withList("add_objects", boxObject(flat))),
+                         "key \"add_objects[0].transform\": the transform is singular"));
+    const json projective = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 1, 1}};
+    EXPECT_TRUE(contains(loadError(withList("add_objects", boxObject(projective))),
+                         "key \"add_objects[0].transform[3][2]\": the last row must be"));
+    json nan = boxObject(kIdentity);
+    nan["transform"][0][3] = "x";
+    EXPECT_TRUE(contains(loadError(withList("add_objects", nan)), "add_objects[0].transform"));
+    dir.write("empty.obj", "o nothing\nv 0 0 0\n");
+    json empty = boxObject(kIdentity);
+    empty["file"] = "empty.obj";
+    EXPECT_TRUE(contains(loadError(withList("add_objects", empty)), "has no usable face"));
+}
+
+TEST_F(EditFixture, RemovalsMustNameRemovableObjects) {
+    sf.scene.objects = {"table", "wall", "light:L1"};
+    sf.objectSettings["table"].removable = true;
+    EXPECT_EQ(load(withList("remove_objects", "table")).removeObjects,
+              std::vector<std::string>{"table"});
+    EXPECT_TRUE(contains(loadError(withList("remove_objects", "chair")),
+                         "key \"remove_objects[0]\": the scene has no object \"chair\""));
+    EXPECT_TRUE(contains(loadError(withList("remove_objects", "wall")),
+                         "object \"wall\" is not marked \"removable\""));
+    EXPECT_TRUE(contains(loadError(withList("remove_objects", "light:L1")), "no object"));
 }
 
 }  // namespace
