@@ -90,7 +90,8 @@ int main(int argc, char** argv) {
                 std::printf("   %4.0fcm %-8s", delta * 100, v.name);
                 double sum = 0;
                 for (size_t e = 0; e < edits.size(); ++e) {
-                    const Image img = renderEdit(r->prepared, editRadiance(r->scene, edit[e]));
+                    const Image img = renderEdit(
+                        r->prepared, editRadiance(r->scene, edit[e], r->prepared.photoRadiance));
                     const Score sc = scoreImage(img, truth[e], r->prepared.photo, maskT[e], maskP);
                     std::printf(" %12.4f", sc.relRmse);
                     if (e > 0) sum += sc.relRmse;

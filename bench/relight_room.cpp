@@ -54,16 +54,11 @@ int main(int argc, char** argv) {
         const auto r = prepareRelighting(loadScene(dir), o);
         const double tPrepare = since(t0);
         const auto st = r->solver->stats();
-        const auto& T = r->prepared.times;
         std::printf(
             "\n== prepare (2 threads): %.3f s; %d leaves (%d before shadow refinement), "
             "%d links, %zu leaf vertices\n",
             tPrepare, st.leaves, r->refinement.leavesBefore, st.links, r->mesh->vertices().size());
-        std::printf(
-            "   item buffer %.3f, solve %.3f, reflectance %.3f, shadow refinement %.3f, "
-            "responses %.3f, vertex lighting %.3f, shadow removal %.3f, display map %.3f s\n",
-            T.itemBuffer, T.solve, T.reflectance, T.refinement, T.responses, T.vertexLighting,
-            T.shadowRemoval, T.displayMap);
+        std::printf("   %s s\n", stepTimes(r->prepared.times).c_str());
         std::printf("   refinement: %d splits kept (%d same colour, %d other colour), %d undone\n",
                     r->refinement.splitSameColour + r->refinement.splitDifferentColour,
                     r->refinement.splitSameColour, r->refinement.splitDifferentColour,
@@ -87,7 +82,7 @@ int main(int argc, char** argv) {
         const Image& photo = r->prepared.photo;
         for (const char* name : edits) {
             const EditFile e = loadEdit(dir + "/edits/" + name + ".json", r->scene);
-            const auto radiance = editRadiance(r->scene, e);
+            const auto radiance = editRadiance(r->scene, e, r->prepared.photoRadiance);
             const Image truth = readImage(dir + "/truth/" + name + ".exr");
             const auto maskT = readMask(dir + "/truth/" + name + ".mask.png", w, h);
             std::printf("   %-24s", name);
@@ -120,7 +115,7 @@ int main(int argc, char** argv) {
         // vertex (2 threads).
         {
             const EditFile e = loadEdit(dir + "/edits/left_off_right_double.json", rRefine->scene);
-            const auto radiance = editRadiance(rRefine->scene, e);
+            const auto radiance = editRadiance(rRefine->scene, e, rRefine->prepared.photoRadiance);
             t0 = Clock::now();
             rRefine->solver->setLightRadiances(radiance);
             const double tGather = since(t0);

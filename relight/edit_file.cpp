@@ -10,6 +10,7 @@
 
 #include "relight/face_repair.h"
 #include "relight/json_reader.h"
+#include "relight/light_reader.h"
 #include "relight/obj_reader.h"
 
 namespace relight {
@@ -60,30 +61,8 @@ LightEdit readLightEdit(const JsonReader& r, const json& entry, const std::strin
 }
 
 VirtualLight readVirtualLight(const JsonReader& r, const json& lj, const std::string& path) {
-    r.checkKeys(lj, path, {"name", "type", "vertices", "radiance"});
-    VirtualLight v;
-    v.name = r.string(r.require(lj, path, "name"), child(path, "name"));
-    if (v.name.empty()) r.fail(child(path, "name"), "empty light name");
-    if (auto t = lj.find("type"); t != lj.end()) {  // optional here: "quad" is the only type
-        const std::string type = r.string(*t, child(path, "type"));
-        if (type != "quad") r.fail(child(path, "type"), "light type " + type + " not supported");
-    }
-    const std::string vPath = child(path, "vertices");
-    const json& vj = r.array(r.require(lj, path, "vertices"), vPath, 0, 3);
-    for (size_t k = 0; k < vj.size(); ++k) v.corners.push_back(r.point(vj[k], element(vPath, k)));
-    const radiosity::PolygonCheck check = radiosity::checkPolygon(v.corners);
-    if (check.status != radiosity::PolygonCheck::Status::ok)
-        r.fail(vPath, "a light must be a planar convex polygon of non-zero area: " + check.message);
-    const std::string radPath = child(path, "radiance");
-    const json& rj = r.require(lj, path, "radiance");
-    if (rj.is_string())
-        r.fail(radPath,
-               "a virtual light's radiance must be given (\"estimate\" needs a photo of it)");
-    v.radiance = r.rgb(rj, radPath);
-    for (int k = 0; k < 3; ++k)
-        if (v.radiance[k] < 0)
-            r.fail(element(radPath, static_cast<size_t>(k)), "radiance must not be negative");
-    return v;
+    LightJson l = readLightJson(r, lj, path, /*typeRequired=*/false, /*estimateAllowed=*/false);
+    return {std::move(l.name), std::move(l.corners), l.radiance};
 }
 
 VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::string& path,

@@ -1,5 +1,7 @@
 #include "relight/prepared.h"
 
+#include <cstdio>
+
 namespace relight {
 
 using radiosity::Rgb;
@@ -18,6 +20,16 @@ Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance) {
         for (size_t v = 0; v < ratio.size(); ++v)
             for (int c = 0; c < 3; ++c) ratio[v][c] *= p.textureFactor[v][c];
     return renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance);
+}
+
+std::string stepTimes(const PrepareTimes& t) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "item buffer %.3f, solve %.3f, reflectance %.3f, refinement %.3f, responses "
+                  "%.3f, vertex lighting %.3f, shadow removal %.3f, display map %.3f",
+                  t.itemBuffer, t.solve, t.reflectance, t.refinement, t.responses, t.vertexLighting,
+                  t.shadowRemoval, t.displayMap);
+    return text;
 }
 
 }  // namespace relight

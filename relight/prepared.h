@@ -13,6 +13,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "radiosity/rgb.h"
@@ -26,6 +27,9 @@ struct PrepareTimes {
     double itemBuffer = 0, solve = 0, reflectance = 0, refinement = 0, responses = 0,
            vertexLighting = 0, shadowRemoval = 0, displayMap = 0;  ///< seconds
 };
+
+/// "item buffer 0.019, solve 0.013, ...": the time of each step, in seconds.
+std::string stepTimes(const PrepareTimes& t);
 
 struct PreparedImage {
     Image photo;                                ///< T_orig: the first photo, linear

@@ -106,7 +106,7 @@ int trustPhotoAtEmitters(DisplayMap& m, const Image& photo, std::span<const Rgb>
     return changed;
 }
 
-std::vector<Rgb> displayRatio(std::span<const Rgb> B, std::span<const Rgb> D) {
+Rgb ratioFloor(std::span<const Rgb> D) {
     Rgb mean;
     for (const Rgb& d : D) mean += d;
     if (!D.empty()) mean = mean * (1.0 / static_cast<double>(D.size()));
@@ -114,6 +114,11 @@ std::vector<Rgb> displayRatio(std::span<const Rgb> B, std::span<const Rgb> D) {
     // A scene with no light at all in the photo: every D is 0; delta must stay positive.
     for (int c = 0; c < 3; ++c)
         if (!(delta[c] > 0)) delta[c] = 1e-30;
+    return delta;
+}
+
+std::vector<Rgb> displayRatio(std::span<const Rgb> B, std::span<const Rgb> D) {
+    const Rgb delta = ratioFloor(D);
     std::vector<Rgb> r(D.size());
     for (size_t v = 0; v < D.size(); ++v)
         for (int c = 0; c < 3; ++c)

@@ -63,6 +63,10 @@ int trustPhotoAtEmitters(DisplayMap& map, const Image& photo,
 /// within delta/D; where both vanish it is 1 (nothing changes: the photo is kept); where
 /// only D vanishes it is bounded by B/delta instead of infinite. Dimensionless.
 constexpr double kRatioFloor = 1e-4;
+/// delta above: kRatioFloor times the mean of D over the vertices, per channel (a tiny
+/// positive number where every D is 0, a scene without light). Shadow removal closes its
+/// texture factor with the same floor, so that the unedited display is exact.
+radiosity::Rgb ratioFloor(std::span<const radiosity::Rgb> D);
 std::vector<radiosity::Rgb> displayRatio(std::span<const radiosity::Rgb> B,
                                          std::span<const radiosity::Rgb> D);
 

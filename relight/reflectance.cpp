@@ -79,12 +79,10 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         report.polygonsSeen = 0;
         for (int p = 0; p < np; ++p) {
             if (scene.polygons[p].light >= 0 || count[p] < minSamples) continue;
-            for (int c = 0; c < 3; ++c) {
-                // Guard: a polygon in total darkness (H = 0) tells nothing of its colour.
+            for (int c = 0; c < 3; ++c)  // guard: a polygon in darkness (H = 0) says nothing
                 rho[p][c] = sumH[p][c] > 0 ? std::numbers::pi * sumL[p][c] / sumH[p][c]
                                            : scene.polygons[p].rho[c];
-                rho[p][c] = std::clamp(rho[p][c], 0.0, kMaxReflectance);
-            }
+            rho[p] = clampReflectance(rho[p]);
             seen[p] = true;
             ++report.polygonsSeen;
             meanRho += rho[p] * scene.polygons[p].area;
@@ -144,8 +142,7 @@ int estimateLeafReflectance(radiosity::HierarchicalSolver& solver, const radiosi
         if (node.isCluster() || !node.isLeaf() || scene.polygons[node.polygon].light >= 0) continue;
         Rgb rho;
         if (!leafReflectanceFromTexture(h, mesh, texture, H, n, minSamples, &rho)) continue;
-        for (int c = 0; c < 3; ++c) rho[c] = std::clamp(rho[c], 0.0, kMaxReflectance);
-        solver.setElementReflectance(n, rho);
+        solver.setElementReflectance(n, clampReflectance(rho));
         ++set;
     }
     solver.pullReflectance();

@@ -20,6 +20,7 @@
 // the necessary parameters: the reflectance, ..."): estimateLeafReflectance().
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <span>
 #include <string>
@@ -36,6 +37,11 @@ namespace relight {
 
 /// Upper bound of every estimated reflectance: rho < 1 keeps B = E / (1 - rho) finite.
 constexpr double kMaxReflectance = 0.98;
+/// Each channel clamped to [0, kMaxReflectance].
+inline radiosity::Rgb clampReflectance(radiosity::Rgb rho) {
+    for (int c = 0; c < 3; ++c) rho[c] = std::clamp(rho[c], 0.0, kMaxReflectance);
+    return rho;
+}
 
 struct ReflectanceReport {
     int rounds = 0;

@@ -177,10 +177,6 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     return r;
 }
 
-std::vector<Rgb> editRadiance(const SceneFile& scene, const EditFile& edit) {
-    return editedRadiance(scene, edit, scene.nominalRadiance);
-}
-
 std::vector<Rgb> editRadiance(const SceneFile& scene, const EditFile& edit,
                               std::span<const Rgb> photoRadiance) {
     if (photoRadiance.size() != scene.nominalRadiance.size() ||

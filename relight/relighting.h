@@ -97,13 +97,10 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
 /// The real lights' radiances after `edit`: scene.json's radiance scaled or replaced for the
 /// lights it names, the photo's state for the others (a light off in the photo that an edit
 /// switches on gets its scene.json radiance, not the photo's zero).
-/// `scene.nominalRadiance` is the nominal radiance: use it with Relighting::scene, where the
-/// estimated lights have theirs, or with a scene without "estimate" lights.
-std::vector<radiosity::Rgb> editRadiance(const SceneFile& scene, const EditFile& edit);
-/// The same for a scene as loaded (loadScene) and a PreparedImage made from it, maybe read
-/// from a cache: the nominal radiance of an "estimate" light is its estimate, the photo's
-/// radiance of that light (`photoRadiance`, it is on in the photo). Throws
-/// std::invalid_argument when photoRadiance has the wrong size.
+/// `photoRadiance` is the PreparedImage's (maybe read from a cache): the nominal radiance of
+/// an "estimate" light is its estimate, its radiance in the photo (it is on there), so the
+/// scene may be the one loadScene() gave. Throws std::invalid_argument when photoRadiance
+/// has the wrong size.
 std::vector<radiosity::Rgb> editRadiance(const SceneFile& scene, const EditFile& edit,
                                          std::span<const radiosity::Rgb> photoRadiance);
 

@@ -15,6 +15,7 @@
 
 #include "relight/face_repair.h"
 #include "relight/json_reader.h"
+#include "relight/light_reader.h"
 #include "relight/obj_reader.h"
 
 namespace relight {
@@ -25,8 +26,6 @@ using jsonio::element;
 using jsonio::JsonReader;
 using jsonio::parseJsonFile;
 using nlohmann::json;
-using radiosity::checkPolygon;
-using radiosity::PolygonCheck;
 using radiosity::Vec3;
 
 namespace {
@@ -221,39 +220,15 @@ SceneFile loadScene(const fs::path& dir) {
     for (size_t i = 0; i < lights.size(); ++i) {
         const std::string path = element("lights", i);
         const json& lj = lights[i];
-        r.checkKeys(lj, path, {"name", "type", "vertices", "radiance"});
+        const LightJson lightJson =
+            readLightJson(r, lj, path, /*typeRequired=*/true, /*estimateAllowed=*/true);
         radiosity::Light light;
-        light.name = r.string(r.require(lj, path, "name"), child(path, "name"));
-        if (light.name.empty()) r.fail(child(path, "name"), "empty light name");
+        light.name = lightJson.name;
         if (sf.scene.findLight(light.name) >= 0)
             r.fail(child(path, "name"), "duplicate light name \"" + light.name + "\"");
-        const std::string type = r.string(r.require(lj, path, "type"), child(path, "type"));
-        if (type != "quad") r.fail(child(path, "type"), "light type " + type + " not supported");
-
-        const std::string vPath = child(path, "vertices");
-        const json& vj = r.array(r.require(lj, path, "vertices"), vPath, 0, 3);
-        std::vector<Vec3> corners;
-        for (size_t k = 0; k < vj.size(); ++k) corners.push_back(r.point(vj[k], element(vPath, k)));
-        const PolygonCheck check = checkPolygon(corners);
-        if (check.status != PolygonCheck::Status::ok)
-            r.fail(vPath,
-                   "a light must be a planar convex polygon of non-zero area: " + check.message);
-
-        const std::string radPath = child(path, "radiance");
-        const json& rj = r.require(lj, path, "radiance");
-        Rgb radiance;
-        bool estimate = false;
-        if (rj.is_string()) {
-            if (rj.get<std::string>() != "estimate")
-                r.fail(radPath, "expected an RGB array or \"estimate\", got " + rj.dump());
-            estimate = true;
-        } else {
-            radiance = r.rgb(rj, radPath);
-            for (int k = 0; k < 3; ++k)
-                if (radiance[k] < 0)
-                    r.fail(element(radPath, static_cast<size_t>(k)),
-                           "radiance must not be negative");
-        }
+        const std::vector<Vec3>& corners = lightJson.corners;
+        const Rgb radiance = lightJson.radiance;
+        const bool estimate = lightJson.estimate;
 
         const std::string objectName = "light:" + light.name;
         if (sf.scene.findObject(objectName) >= 0)

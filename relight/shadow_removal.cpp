@@ -23,23 +23,6 @@ Rgb weighted(const std::vector<double>& a, int v, std::span<const Rgb> L) {
     return out;
 }
 
-/// Per channel: a floor that keeps ratios finite where a quantity vanishes, relative to
-/// its mean (as displayRatio's).
-Rgb floorOf(const std::vector<Rgb>& x) {
-    Rgb mean;
-    for (const Rgb& v : x) mean += v;
-    if (!x.empty()) mean = mean * (1.0 / static_cast<double>(x.size()));
-    Rgb d = mean * kRatioFloor;
-    for (int c = 0; c < 3; ++c)
-        if (!(d[c] > 0)) d[c] = 1e-30;
-    return d;
-}
-
-Rgb clampRho(Rgb r) {
-    for (int c = 0; c < 3; ++c) r[c] = std::clamp(r[c], 0.0, kMaxReflectance);
-    return r;
-}
-
 }  // namespace
 
 ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
@@ -69,7 +52,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
         D0[v] = weighted(direct.unoccluded, v, L);
         for (int c = 0; c < 3; ++c) out.blocked[v][c] = std::max(0.0, D0[v][c] - Dv[v][c]);
     }
-    const Rgb deltaH = floorOf(H);
+    const Rgb deltaH = ratioFloor(H);
     auto meanOverCorners = [&](int leaf, const std::vector<Rgb>& x) {
         Rgb m;
         const int k = h.nodes[leaf].vertexCount;
@@ -166,7 +149,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
             if (f == Rgb::gray(1.0)) continue;
             Rgb r = h.nodes[n].rho;
             for (int c = 0; c < 3; ++c) r[c] *= f[c];
-            solver.setElementReflectance(n, clampRho(r));
+            solver.setElementReflectance(n, clampReflectance(r));
         }
         solver.pullReflectance();
         solver.gatherPushPull();
@@ -247,7 +230,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
     // indirect light of the corrected reflectances. The floor is the display's own (displayRatio:
     // kRatioFloor x mean D), so that k B/D is 1 to rounding for the unedited lights, umbra
     // included.
-    const Rgb deltaF = floorOf(out.D);
+    const Rgb deltaF = ratioFloor(out.D);
     for (int v = 0; v < nv; ++v)
         for (int c = 0; c < 3; ++c)
             out.kFinal[v][c] = (out.D[v][c] + deltaF[c]) / (Hfinal[v][c] + deltaF[c]);

@@ -78,8 +78,6 @@ struct PreparedState {
     bool written = false;        ///< the cache was (re)written
     double seconds = 0;          ///< time to load or to prepare and write
 };
-/// "item buffer 0.019, solve 0.013, ...": the time of each preparation step, in seconds.
-std::string stepTimes(const PrepareTimes& t);
 
 /// `writeMustSucceed`: a cache that cannot be written is an error (prepare) rather than a
 /// warning on stderr (render: rendering goes on without it).

@@ -39,16 +39,6 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     return o;
 }
 
-std::string stepTimes(const PrepareTimes& t) {
-    char text[320];
-    std::snprintf(text, sizeof text,
-                  "item buffer %.3f, solve %.3f, reflectance %.3f, refinement %.3f, responses "
-                  "%.3f, vertex lighting %.3f, shadow removal %.3f, display map %.3f",
-                  t.itemBuffer, t.solve, t.reflectance, t.refinement, t.responses, t.vertexLighting,
-                  t.shadowRemoval, t.displayMap);
-    return text;
-}
-
 PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const CacheArgs& c,
                             bool writeMustSucceed, std::unique_ptr<Relighting>* solverState) {
     PreparedState s;

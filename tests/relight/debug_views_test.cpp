@@ -29,7 +29,7 @@ const Relighting& room() {
 
 std::vector<Rgb> backOff() {
     const EditFile e = loadEdit(RELIGHT_DATA_DIR "/room/edits/back_off.json", room().scene);
-    return editRadiance(room().scene, e);
+    return editRadiance(room().scene, e, room().prepared.photoRadiance);
 }
 
 /// The views of the unedited lights, and of back_off, computed once.

@@ -360,7 +360,7 @@ TEST(Emittance, RoomWithEstimatedLightsRelightsLikeTheGivenOnes) {
     // edit's radiances to 1e-4 (the test above), and rel_rmse against the truth to 1e-3,
     // a tenth of the data's noise floor (0.0097), far below what a wrong nominal radiance
     // does: with scene.json's 0 as the nominal of the estimated lights (the fresh scene's
-    // editRadiance(scene, edit), without the prepared photo radiance) they go dark, a
+    // own nominal radiance, without the prepared photo radiance) they go dark, a
     // rel_rmse of 0.6 to 1.1 on these edits.
     relight::test::TempDir dir("relight_emittance_test");
     const fs::path copy = roomCopy(dir, {"A", "C", "D"});
@@ -405,9 +405,9 @@ TEST(Emittance, RoomWithEstimatedLightsRelightsLikeTheGivenOnes) {
             fs::path(RELIGHT_DATA_DIR "/room/edits") / (name + std::string(".json"));
         const EditFile eEst = loadEdit(editFile, fresh);
         const EditFile eRef = loadEdit(editFile, ref->scene);
-        const auto radEst = editRadiance(est->scene, eEst);
+        const auto radEst = editRadiance(est->scene, eEst, est->prepared.photoRadiance);
         const auto radFresh = editRadiance(fresh, eEst, cached->photoRadiance);
-        const auto radRef = editRadiance(ref->scene, eRef);
+        const auto radRef = editRadiance(ref->scene, eRef, ref->prepared.photoRadiance);
         ASSERT_EQ(radEst.size(), 4u);
         for (size_t l = 0; l < 4; ++l) {
             EXPECT_EQ(radFresh[l], radEst[l]) << l;
@@ -418,7 +418,8 @@ TEST(Emittance, RoomWithEstimatedLightsRelightsLikeTheGivenOnes) {
         const Score sEst = scoreImage(renderEdit(*cached, radFresh), T, photo, maskT, maskP);
         const Score sRef = scoreImage(renderEdit(ref->prepared, radRef), T, photo, maskT, maskP);
         const Score sWrong =
-            scoreImage(renderEdit(*cached, editRadiance(fresh, eEst)), T, photo, maskT, maskP);
+            scoreImage(renderEdit(*cached, editedRadiance(fresh, eEst, fresh.nominalRadiance)), T,
+                       photo, maskT, maskP);
         std::printf("  %s: rel_rmse estimated %.5f, given %.5f, nominal 0 %.5f\n", name,
                     sEst.relRmse, sRef.relRmse, sWrong.relRmse);
         EXPECT_NEAR(sEst.relRmse, sRef.relRmse, 1e-3);

@@ -119,7 +119,7 @@ TEST(PreparedCache, RoundTripRendersBitIdentically) {
     EXPECT_TRUE(sameBits(renderEdit(*p, p->photoRadiance),
                          renderEdit(r.prepared, r.prepared.photoRadiance)));
     const EditFile e = loadEdit(RELIGHT_DATA_DIR "/room/edits/left_off_right_double.json", r.scene);
-    const auto radiance = editRadiance(r.scene, e);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
     EXPECT_TRUE(sameBits(renderEdit(*p, radiance), renderEdit(r.prepared, radiance)));
     // Written again (a newer preparation), the old file is replaced whole.
     writePreparedCache(f, r.prepared, roomKey() + 1);

@@ -173,7 +173,7 @@ TEST(Relighting, DoublingEveryLightDoublesTheSurfaces) {
 TEST(Relighting, RealEditsLoadAndRender) {
     const Relighting& r = room();
     const EditFile e = loadEdit(RELIGHT_DATA_DIR "/room/edits/back_off.json", r.scene);
-    const auto radiance = editRadiance(r.scene, e);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
     const Image out = renderEdit(r.prepared, radiance);
     EXPECT_EQ(out.width, r.prepared.photo.width);
     EXPECT_EQ(out.height, r.prepared.photo.height);
@@ -247,7 +247,7 @@ TEST(Relighting, LightOffInThePhotoCanBeSwitchedOn) {
     const EditFile e = loadEdit(dir.write("on.json", R"({"format":"relight-edit/1",
         "lights":{"D":{"scale":1}}})"),
                                 r->scene);
-    const auto radiance = editRadiance(r->scene, e);
+    const auto radiance = editRadiance(r->scene, e, r->prepared.photoRadiance);
     EXPECT_EQ(radiance[d], r->scene.nominalRadiance[d]);
     ASSERT_GT(radiance[d].maxComponent(), 0.0);
     const auto before = vertexIrradiance(r->prepared, r->prepared.photoRadiance);
