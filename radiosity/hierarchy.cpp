@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 namespace radiosity {
 
@@ -197,6 +198,92 @@ bool Hierarchy::subdivide(int node) {
     nodes[node].firstChild = first;
     nodes[node].childCount = 4;
     return true;
+}
+
+int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
+                            std::span<const Rgb> emittance, int maxPolygonsPerCluster,
+                            int* oldRoot) {
+    if (polygons.empty()) throw std::invalid_argument("attachObject: no polygon");
+    if (firstPolygon != static_cast<int>(polygons_.size()) || emittance.size() != polygons.size())
+        throw std::invalid_argument("attachObject: polygons must follow the existing ones");
+    Attached rec;
+    rec.root = nodes[kRoot];
+    rec.nodes = nodes.size();
+    rec.polygons = polygons_.size();
+    rec.clusters = clusterCount_;
+    const int n0 = static_cast<int>(nodes.size());
+    // The old root's copy takes its children; every node below it is one level deeper.
+    for (Node& n : nodes) ++n.level;
+    Node copy = nodes[kRoot];
+    copy.parent = kRoot;
+    nodes.push_back(copy);
+    for (int k = 0; k < copy.childCount; ++k) nodes[copy.firstChild + k].parent = n0;
+    Node cluster;
+    cluster.kind = NodeKind::cluster;
+    cluster.parent = kRoot;
+    cluster.level = 1;
+    nodes.push_back(cluster);
+    clusterCount_ += 2;
+
+    const int begin = static_cast<int>(polygonOrder.size());
+    const int total = firstPolygon + static_cast<int>(polygons.size());
+    std::vector<Vec3> centroids(total);
+    for (size_t i = 0; i < polygons.size(); ++i) {
+        polygons_.push_back(polygons[i]);
+        polygonOrder.push_back(firstPolygon + static_cast<int>(i));
+        centroids[firstPolygon + i] = polygons[i].centroid();
+    }
+    polygonRoot.resize(total, -1);
+    buildCluster(n0 + 1, begin, total, std::max(1, maxPolygonsPerCluster), centroids);
+    areaPrefix.resize(total + 1);
+    for (int i = begin; i < total; ++i)
+        areaPrefix[i + 1] = areaPrefix[i] + polygons_[polygonOrder[i]].area;
+    for (size_t i = 0; i < polygons.size(); ++i) {
+        Node& e = nodes[polygonRoot[firstPolygon + i]];
+        e.E = emittance[i];
+        e.emitting = e.E.maxComponent() > 0;
+    }
+    pullAverages(n0 + 1);
+
+    Node& root = nodes[kRoot];
+    root.firstChild = n0;
+    root.childCount = 2;
+    root.polyBegin = 0;
+    root.polyEnd = total;
+    root.bounds = nodes[n0].bounds;
+    root.bounds.extend(nodes[n0 + 1].bounds);
+    root.area = nodes[n0].area + nodes[n0 + 1].area;
+    root.centre = root.bounds.centre();
+    root.radius = 0.5 * glm::length(root.bounds.diagonal());
+    root.level = 0;
+    // The root's averages, from its two children only (the rest is unchanged).
+    const double a0 = nodes[n0].area, a1 = nodes[n0 + 1].area;
+    const double inv = root.area > 0 ? 1.0 / root.area : 0.0;  // guard: no area at all
+    const Node& c0 = nodes[n0];
+    const Node& c1 = nodes[n0 + 1];
+    root.B = (c0.B * a0 + c1.B * a1) * inv;
+    root.rho = (c0.rho * a0 + c1.rho * a1) * inv;
+    root.E = (c0.E * a0 + c1.E * a1) * inv;
+    root.emitting = c0.emitting || c1.emitting;
+    attached_.push_back(rec);
+    if (oldRoot) *oldRoot = n0;
+    return n0 + 1;
+}
+
+void Hierarchy::detachLastObject() {
+    if (attached_.empty()) throw std::logic_error("detachLastObject: no object attached");
+    const Attached rec = attached_.back();
+    attached_.pop_back();
+    nodes.resize(rec.nodes);
+    nodes[kRoot] = rec.root;
+    for (int k = 0; k < rec.root.childCount; ++k) nodes[rec.root.firstChild + k].parent = kRoot;
+    for (Node& n : nodes) --n.level;
+    nodes[kRoot].level = 0;  // it was not raised: restore its saved level
+    clusterCount_ = rec.clusters;
+    polygons_.resize(rec.polygons);
+    polygonOrder.resize(rec.polygons);
+    polygonRoot.resize(rec.polygons);
+    areaPrefix.resize(rec.polygons + 1);
 }
 
 void Hierarchy::updateEmittance(const Scene& scene) {

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "radiosity/rgb.h"
@@ -69,6 +70,22 @@ class Hierarchy {
     /// (returns false otherwise, changing nothing).
     bool unsubdivide(int node);
 
+    /// Dynamic objects (Drettakis & Sillion 1997; Loscos et al. 2000, §5.1): attaches
+    /// `polygons`, whose Scene::polygons indices are firstPolygon, firstPolygon + 1, ... (the
+    /// next free ones), as a new cluster under the root. The root's contents move to a new
+    /// node (the old root's copy, returned in *oldRoot) so that the root has two contiguous
+    /// children, that copy and the object's cluster; every other node keeps its id.
+    /// Reflectance and emittance come from the polygons (E from `emittance`, one per
+    /// polygon). Returns the object's cluster node.
+    int attachObject(std::span<const Polygon> polygons, int firstPolygon,
+                     std::span<const Rgb> emittance, int maxPolygonsPerCluster, int* oldRoot);
+    /// Undoes the last attachObject(): the nodes from the old root's copy on go (also any
+    /// made since, which must all lie under the object), and the root, polygon order and
+    /// levels are as before, bit for bit. Throws std::logic_error with no object attached.
+    void detachLastObject();
+    /// Number of objects attached and not detached.
+    int attachedObjects() const { return static_cast<int>(attached_.size()); }
+
     /// Re-reads emittance from `scene` (after a light edit) and updates `emitting` and the
     /// clusters' mean E.
     void updateEmittance(const Scene& scene);
@@ -100,6 +117,12 @@ class Hierarchy {
     void initElement(Node& e, const Polygon& p, int polygonIndex);
     int clusterCount_ = 0;
     std::vector<Polygon> polygons_;  // corners for point sampling in clusters
+    struct Attached {
+        Node root;  // the root before the attachment
+        size_t nodes = 0, polygons = 0;
+        int clusters = 0;
+    };
+    std::vector<Attached> attached_;  // a stack: detachLastObject() pops
 };
 
 /// Whether point x (on the element's plane) lies in element e, edges included to within

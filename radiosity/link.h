@@ -20,6 +20,13 @@ struct Link {
     VisibilityType type = VisibilityType::visible;
     uint8_t rays = 0;         ///< visibility rays cast for this link (0: decided by its shaft)
     bool shaftEmpty = false;  ///< no occluder in the shaft: VISIBLE without rays
+    /// Passive links only: its subtree was replaced by an active copy of it (a dynamic
+    /// update found it entirely blocked); the tree walk then skips it.
+    bool retired = false;
+    /// The passive link this one was refined from (index into the solver's passive list),
+    /// -1 for a top link. Links form a tree by it (the line-space hierarchy of Drettakis &
+    /// Sillion 1997), whose shafts the dynamic updates walk from the top.
+    int parent = -1;
 };
 
 }  // namespace radiosity

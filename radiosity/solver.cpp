@@ -38,6 +38,9 @@ void HierarchicalSolver::report(const std::string& msg) const {
 bool HierarchicalSolver::canSplit(int node) const {
     const Node& n = h_.nodes[node];
     if (!n.isLeaf()) return true;
+    // Leaves of the scene as it was before the first dynamic insertion stay leaves: the
+    // display interpolates over their corners.
+    if (frozenNodes_ > 0 && static_cast<size_t>(node) < frozenNodes_) return false;
     return !n.isCluster() && n.area * 0.25 >= minArea_;
 }
 
@@ -114,6 +117,7 @@ void HierarchicalSolver::refineLink(const Link& linkIn, std::vector<Link>& out) 
     }
     changedInRefine_ = true;
     passive_.push_back(link);  // Drettakis & Sillion 1997: keep it for dynamic updates
+    const int me = static_cast<int>(passive_.size()) - 1;
 
     const int r = link.receiver, s = link.source;
     if (d == Decision::splitReceiver && h_.nodes[r].isLeaf()) h_.subdivide(r);
@@ -124,6 +128,7 @@ void HierarchicalSolver::refineLink(const Link& linkIn, std::vector<Link>& out) 
     auto child = [&](int rc, int sc) {
         if (!transfer_->facing(rc, sc)) return;
         Link c = makeLink(rc, sc);
+        c.parent = me;
         if (link.shaftEmpty) {
             // The shaft of two sub-volumes lies in the convex hull of the parents'
             // volumes, which held no occluder: the child is visible too.
@@ -155,11 +160,12 @@ bool HierarchicalSolver::refineAll() {
     return changedInRefine_;
 }
 
-void HierarchicalSolver::pushLightLinksToLeaves() {
-    std::vector<Link> old;
-    old.swap(links_);
-    links_.reserve(old.size() * 2);
+void HierarchicalSolver::pushLightLinksToLeaves(size_t from) {
+    std::vector<Link> old(links_.begin() + static_cast<std::ptrdiff_t>(from), links_.end());
+    links_.resize(from);
+    links_.reserve(from + old.size() * 2);
     std::vector<Link> stack;
+    std::vector<size_t> pending;  // links whose visibility is still to be evaluated
     for (const Link& l : old) {
         stack.push_back(l);
         while (!stack.empty()) {
@@ -168,15 +174,17 @@ void HierarchicalSolver::pushLightLinksToLeaves() {
             const Node& S = h_.nodes[link.source];
             const Node& R = h_.nodes[link.receiver];
             if (!(S.emitting && !S.isCluster()) || R.isLeaf()) {
-                if (link.rays == 0 && !link.shaftEmpty) transfer_->visibility(link);
+                if (link.rays == 0 && !link.shaftEmpty) pending.push_back(links_.size());
                 links_.push_back(link);
                 continue;
             }
             passive_.push_back(link);
+            const int me = static_cast<int>(passive_.size()) - 1;
             for (int k = R.childCount - 1; k >= 0; --k) {
                 const int rc = R.firstChild + k;
                 if (!transfer_->facing(rc, link.source)) continue;
                 Link c = makeLink(rc, link.source);
+                c.parent = me;
                 if (link.shaftEmpty) {
                     c.shaftEmpty = true;
                     c.type = VisibilityType::visible;
@@ -186,11 +194,22 @@ void HierarchicalSolver::pushLightLinksToLeaves() {
             }
         }
     }
+    // Each link's rays come from a generator seeded by its two nodes: evaluating them in
+    // parallel gives the same result as one by one.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pending.size(), 16),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t i = range.begin(); i != range.end(); ++i)
+                              transfer_->visibility(links_[pending[i]]);
+                      });
 }
 
-void HierarchicalSolver::buildReceiverIndex() {
-    std::stable_sort(links_.begin(), links_.end(),
-                     [](const Link& a, const Link& b) { return a.receiver < b.receiver; });
+void HierarchicalSolver::buildReceiverIndex(size_t sortedPrefix) {
+    const auto byReceiver = [](const Link& a, const Link& b) { return a.receiver < b.receiver; };
+    sortedPrefix = std::min(sortedPrefix, links_.size());
+    const auto mid = links_.begin() + static_cast<std::ptrdiff_t>(sortedPrefix);
+    // Stable sort of the tail and a stable merge: the same order as a stable sort of all.
+    std::stable_sort(mid, links_.end(), byReceiver);
+    std::inplace_merge(links_.begin(), mid, links_.end(), byReceiver);
     receivers_.clear();
     receiverStart_.clear();
     for (size_t i = 0; i < links_.size(); ++i) {
@@ -469,10 +488,12 @@ bool HierarchicalSolver::splitForLights(int leaf,
     if (children) children->assign(4, std::vector<LightExchange>(scene_.lights.size()));
     for (const Link& old : rec.removed) {
         passive_.push_back(old);
+        const int me = static_cast<int>(passive_.size()) - 1;
         for (int k = 0; k < parent.childCount; ++k) {
             const int rc = parent.firstChild + k;
             if (!transfer_->facing(rc, old.source)) continue;
             Link c = makeLink(rc, old.source);
+            c.parent = me;
             if (old.shaftEmpty) {  // no occluder between the parent and the light
                 c.shaftEmpty = true;
                 c.type = VisibilityType::visible;

@@ -64,6 +64,21 @@ struct SolverStats {
     Rgb radiosityPower;  ///< sum B A over leaves
 };
 
+/// What a dynamic update did (insertObject, removeLastObject, moveLastObject), and where
+/// its time went.
+struct DynamicUpdate {
+    int shaftTests = 0;        ///< shafts of the link tree tested against the object's box
+    int linksCut = 0;          ///< active links whose shaft the object's box cuts
+    int linksReactivated = 0;  ///< passive links made active again (entirely blocked now)
+    int linksNew = 0;          ///< links of the object itself
+    uint64_t rays = 0;         ///< visibility rays cast
+    int sweeps = 0;            ///< gather/push-pull sweeps
+    /// Leaf elements whose links from a light the object's shaft cuts (old and new
+    /// positions for a move): where the direct light may have changed.
+    std::vector<int> shadowLeaves;
+    double timeShafts = 0, timeVisibility = 0, timeLinks = 0, timeGather = 0;  ///< seconds
+};
+
 class HierarchicalSolver {
   public:
     HierarchicalSolver(Scene scene, SolverOptions options = {});
@@ -83,6 +98,36 @@ class HierarchicalSolver {
     void setLightRadiance(int light, const Rgb& radiance);
     /// The same for all lights at once (one radiance per light), with one re-gather.
     void setLightRadiances(std::span<const Rgb> radiance);
+
+    /// Dynamic objects (Drettakis & Sillion 1997, as used by Loscos et al. 2000, §5.1-5.2).
+    /// Inserts `polygons` (world space, checked by makePolygon; their `object` and `light`
+    /// fields are set here) as a new object named `name`, and, when `lightRadiance` is given,
+    /// as a new light of that radiance (its faces then emit; rho is set to 0). Steps:
+    ///  1. the object becomes a cluster under the root (Hierarchy::attachObject) and enters
+    ///     the visibility BVH;
+    ///  2. the link tree is walked from its top links; a link whose shaft (Haines & Wallace)
+    ///     misses the object's box is skipped with all its subtree; an active link cut by it
+    ///     gets its visibility again; a passive link between two elements that the object
+    ///     now blocks entirely is made active again, replacing its subtree (as a solution
+    ///     from scratch would keep it unrefined);
+    ///  3. the object is linked to the scene by the refinement oracle: first the links it
+    ///     gathers (so that its radiosity is known), then those it shoots and its own;
+    ///     links from a light go down to leaf elements; the scene's leaves present at the
+    ///     first insertion are not subdivided (the display's mesh stays as it is);
+    ///  4. gather/push-pull, warm-started from the current solution.
+    /// Returns the object's index in scene().objects.
+    int insertObject(const std::string& name, std::vector<Polygon> polygons,
+                     const Rgb* lightRadiance = nullptr, DynamicUpdate* report = nullptr);
+    /// Removes the object inserted last: scene, hierarchy, links, passive links, B and H
+    /// are restored bit for bit as they were before its insertion. Throws std::logic_error
+    /// when no object was inserted.
+    void removeLastObject(DynamicUpdate* report = nullptr);
+    /// Moves the object inserted last to `polygons` (the same faces, new positions):
+    /// removal as above, then insertion at the new place; only links whose shafts the old
+    /// or the new box cuts have their visibility evaluated again.
+    void moveLastObject(std::vector<Polygon> polygons, DynamicUpdate* report = nullptr);
+    /// Objects inserted and not removed.
+    int insertedObjects() const { return static_cast<int>(inserted_.size()); }
 
     /// B at point x of polygon (radiosity units): the value of the leaf containing it.
     Rgb radiosityAt(int polygon, const Vec3& x) const;
@@ -146,10 +191,14 @@ class HierarchicalSolver {
     Link makeLink(int r, int s) const;
     void refineLink(const Link& link, std::vector<Link>& out);
     bool refineAll();
-    void pushLightLinksToLeaves();
+    void pushLightLinksToLeaves(size_t from = 0);
+    void cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report);
+    void linkObject(int cluster, int oldRoot, DynamicUpdate& report);
     int lightOfNode(int node) const;
     void addLinksFromSource(int node);
-    void buildReceiverIndex();
+    /// Sorts links_ by receiver (stable) and indexes them; links_[0, sortedPrefix) must
+    /// already be sorted (the rest is sorted and merged in, linear time).
+    void buildReceiverIndex(size_t sortedPrefix = 0);
     void pushPull(int node, const Rgb& Hdown);
     bool canSplit(int node) const;
     void report(const std::string& msg) const;
@@ -175,6 +224,21 @@ class HierarchicalSolver {
         std::vector<size_t> at;     ///< their indices in links_ before the split
     } lastSplit_;
     SolverStats timing_;
+    /// What removeLastObject() restores, one per inserted object (a stack).
+    struct Insertion {
+        std::vector<Link> links;  ///< links_ before (sorted by receiver)
+        size_t passive = 0, polygons = 0, objects = 0, lights = 0;
+        std::vector<Rgb> B, H;          ///< per node before
+        std::vector<int> retired;       ///< passive links retired by this insertion
+        std::vector<int> shadowLeaves;  ///< DynamicUpdate::shadowLeaves of the insertion
+        std::string name;
+        bool light = false;
+        Rgb radiance;
+        int visGroup = -1;
+        size_t frozenNodes = 0;
+    };
+    std::vector<Insertion> inserted_;
+    size_t frozenNodes_ = 0;  ///< leaves below this id are not split (0: no limit)
 };
 
 }  // namespace radiosity

@@ -17,10 +17,18 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace radiosity {
+
+namespace {
+float f(double x) {
+    return static_cast<float>(x);
+}
+}  // namespace
 
 struct Visibility::Impl {
     RTCDevice device = nullptr;
@@ -41,6 +49,17 @@ struct Visibility::Impl {
     // traffic does not evict the scene handle other threads read on every query.
     alignas(64) std::atomic<uint64_t> rays{0};
 
+    // Scene::polygons index of primitive 0 of each geometry, by geomID (-1: free id). The
+    // scene's own polygons are geometry 0; addPolygons() attaches one geometry per group.
+    std::vector<int> geomFirst;
+    std::vector<unsigned> groupGeom;  // by group id: its geomID, or RTC_INVALID_GEOMETRY_ID
+    std::vector<size_t> groupCount;   // by group id: its number of polygons
+    unsigned groupGeometry(int group) const;
+
+    int polygonOf(unsigned geomID, unsigned primID) const {
+        return geomFirst[geomID] + static_cast<int>(primID);
+    }
+
     static void onError(void* self, RTCError code, const char* text) {
         auto* impl = static_cast<Impl*>(self);
         std::lock_guard<std::mutex> lock(impl->errorMutex);
@@ -57,6 +76,59 @@ struct Visibility::Impl {
         throw std::runtime_error(std::string("Visibility: ") + where + ": " + errorText);
     }
 
+    // Creates a quad geometry for `polygons` (Scene::polygons indices from firstIndex on),
+    // attaches it (the scene still needs a commit) and returns its geomID.
+    unsigned attachQuads(std::span<const Polygon> polygons, int firstIndex) {
+        for (size_t p = 0; p < polygons.size(); ++p) {
+            const int count = polygons[p].vertexCount;
+            if (count != 3 && count != 4)
+                throw std::invalid_argument("Visibility: polygon " +
+                                            std::to_string(firstIndex + p) + " has " +
+                                            std::to_string(count) + " vertices, expected 3 or 4");
+        }
+        const size_t n = polygons.size();
+        RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
+        // 4 float3 per polygon (x y z, 12 bytes each); Embree pads the buffer's end itself.
+        // Released on every path: the scene takes its own reference when attached.
+        const std::unique_ptr<RTCGeometryTy, void (*)(RTCGeometry)> owner(geometry,
+                                                                          &rtcReleaseGeometry);
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), 4 * n);
+        // 4 vertex indices per polygon; a triangle repeats v2 as v3.
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), n));
+        check("allocating geometry buffers");
+        for (size_t p = 0; p < n; ++p) {
+            const Polygon& poly = polygons[p];
+            for (int k = 0; k < 4; ++k) {
+                const unsigned base = static_cast<unsigned>(4 * p);
+                indices[4 * p + k] =
+                    base + static_cast<unsigned>(poly.vertexCount == 3 && k == 3 ? 2 : k);
+            }
+        }
+        writeVertices(geometry, polygons);
+        const unsigned id = rtcAttachGeometry(scene, geometry);
+        check("building the geometry");
+        if (geomFirst.size() <= id) geomFirst.resize(id + 1, -1);
+        geomFirst[id] = firstIndex;
+        return id;
+    }
+
+    void writeVertices(RTCGeometry geometry, std::span<const Polygon> polygons) {
+        auto* vertices =
+            static_cast<float*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+        for (size_t p = 0; p < polygons.size(); ++p) {
+            const Polygon& poly = polygons[p];
+            for (int k = 0; k < 4; ++k) {
+                const Vec3 v = poly.v[std::min(k, poly.vertexCount - 1)] - origin;
+                vertices[3 * (4 * p + k) + 0] = f(v.x);
+                vertices[3 * (4 * p + k) + 1] = f(v.y);
+                vertices[3 * (4 * p + k) + 2] = f(v.z);
+            }
+        }
+        rtcCommitGeometry(geometry);
+    }
+
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -64,10 +136,6 @@ struct Visibility::Impl {
 };
 
 namespace {
-
-float f(double x) {
-    return static_cast<float>(x);
-}
 
 double maxAbs(const Vec3& p) {
     return std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
@@ -77,14 +145,16 @@ double maxAbs(const Vec3& p) {
 // Embree hands the context pointer back to the filter, which recovers the ids from it
 // (the context is the first member, so the two addresses coincide).
 struct EndContext {
-    RTCIntersectContext context;  // first member: &EndContext == &EndContext::context
-    unsigned ignoreA = RTC_INVALID_GEOMETRY_ID;  // polygon of the end point a, or invalid
-    unsigned ignoreB = RTC_INVALID_GEOMETRY_ID;  // polygon of the end point b, or invalid
+    RTCIntersectContext context;     // first member: &EndContext == &EndContext::context
+    int ignoreA = -1;                // polygon of the end point a, or -1
+    int ignoreB = -1;                // polygon of the end point b, or -1
+    const int* geomFirst = nullptr;  // Visibility::Impl::geomFirst
 
-    EndContext(int polygonA, int polygonB) {
+    EndContext(int polygonA, int polygonB, const std::vector<int>& first) {
         rtcInitIntersectContext(&context);
-        if (polygonA >= 0) ignoreA = static_cast<unsigned>(polygonA);
-        if (polygonB >= 0) ignoreB = static_cast<unsigned>(polygonB);
+        ignoreA = polygonA;
+        ignoreB = polygonB;
+        geomFirst = first.data();
         // Only pay for the filter call when there is something to ignore.
         if (polygonA >= 0 || polygonB >= 0) context.filter = &ignoreEndPolygons;
     }
@@ -97,8 +167,9 @@ struct EndContext {
         const auto* self = reinterpret_cast<const EndContext*>(args->context);
         for (unsigned i = 0; i < args->N; ++i) {
             if (args->valid[i] != -1) continue;
-            const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
-            if (prim == self->ignoreA || prim == self->ignoreB) args->valid[i] = 0;
+            const int polygon = self->geomFirst[RTCHitN_geomID(args->hit, args->N, i)] +
+                                static_cast<int>(RTCHitN_primID(args->hit, args->N, i));
+            if (polygon == self->ignoreA || polygon == self->ignoreB) args->valid[i] = 0;
         }
     }
 };
@@ -161,35 +232,50 @@ Visibility::Visibility(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     }
     if (n > 0) {
         impl_->origin = scene.bounds().centre();
-        RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
-        // 4 float3 per polygon (x y z, 12 bytes each); Embree pads the buffer's end itself.
-        // Released on every path: the scene takes its own reference when attached.
-        const std::unique_ptr<RTCGeometryTy, void (*)(RTCGeometry)> owner(geometry,
-                                                                          &rtcReleaseGeometry);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * n));
-        // 4 vertex indices per polygon; a triangle repeats v2 as v3.
-        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), n));
-        impl_->check("allocating geometry buffers");
-        for (size_t p = 0; p < n; ++p) {
-            const Polygon& poly = scene.polygons[p];
-            for (int k = 0; k < 4; ++k) {
-                const Vec3 v = poly.v[std::min(k, poly.vertexCount - 1)] - impl_->origin;
-                vertices[3 * (4 * p + k) + 0] = f(v.x);
-                vertices[3 * (4 * p + k) + 1] = f(v.y);
-                vertices[3 * (4 * p + k) + 2] = f(v.z);
-                const unsigned base = static_cast<unsigned>(4 * p);
-                indices[4 * p + k] =
-                    base + static_cast<unsigned>(poly.vertexCount == 3 && k == 3 ? 2 : k);
-            }
-        }
-        rtcCommitGeometry(geometry);
-        rtcAttachGeometry(impl_->scene, geometry);  // geomID 0
-        impl_->check("building the geometry");
+        impl_->attachQuads(scene.polygons, 0);  // geomID 0
     }
     rtcCommitScene(impl_->scene);
     impl_->check("committing the scene");
+}
+
+int Visibility::addPolygons(std::span<const Polygon> polygons, int firstIndex) {
+    if (polygons.empty()) throw std::invalid_argument("Visibility::addPolygons: no polygon");
+    const unsigned id = impl_->attachQuads(polygons, firstIndex);
+    rtcCommitScene(impl_->scene);
+    impl_->check("committing the scene");
+    impl_->groupGeom.push_back(id);
+    impl_->groupCount.push_back(polygons.size());
+    return static_cast<int>(impl_->groupGeom.size()) - 1;
+}
+
+unsigned Visibility::Impl::groupGeometry(int group) const {
+    if (group < 0 || group >= static_cast<int>(groupGeom.size()) ||
+        groupGeom[group] == RTC_INVALID_GEOMETRY_ID)
+        throw std::invalid_argument("Visibility: no polygon group " + std::to_string(group));
+    return groupGeom[group];
+}
+
+void Visibility::movePolygons(int group, std::span<const Polygon> polygons) {
+    const unsigned id = impl_->groupGeometry(group);
+    if (impl_->groupCount[group] != polygons.size())
+        throw std::invalid_argument("Visibility::movePolygons: the group has " +
+                                    std::to_string(impl_->groupCount[group]) + " polygons, not " +
+                                    std::to_string(polygons.size()));
+    RTCGeometry g = rtcGetGeometry(impl_->scene, id);
+    impl_->writeVertices(g, polygons);
+    rtcUpdateGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(g);
+    rtcCommitScene(impl_->scene);
+    impl_->check("moving polygons");
+}
+
+void Visibility::removePolygons(int group) {
+    const unsigned id = impl_->groupGeometry(group);
+    rtcDetachGeometry(impl_->scene, id);
+    rtcCommitScene(impl_->scene);
+    impl_->check("removing polygons");
+    impl_->geomFirst[id] = -1;
+    impl_->groupGeom[group] = RTC_INVALID_GEOMETRY_ID;
 }
 
 Visibility::~Visibility() = default;
@@ -211,7 +297,7 @@ bool Visibility::visible(const Vec3& a, const Vec3& b, int polygonA, int polygon
     ray.mask = 0xFFFFFFFFu;
     ray.id = 0;
     ray.flags = 0;
-    EndContext context(polygonA, polygonB);
+    EndContext context(polygonA, polygonB, impl_->geomFirst);
     rtcOccluded1(impl_->scene, &context.context, &ray);
     impl_->check("rtcOccluded1");
     return ray.tfar >= 0;  // -inf when occluded
@@ -223,7 +309,7 @@ int Visibility::visibleBatch(const Vec3* from, const Vec3* to, int n, bool* out,
     impl_->rays.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
     constexpr int kWidth = 16;
     int visibleCount = 0;
-    EndContext context(polygonA, polygonB);
+    EndContext context(polygonA, polygonB, impl_->geomFirst);
     for (int start = 0; start < n; start += kWidth) {
         const int count = std::min(kWidth, n - start);
         RTCRay16 packet;    // RTC_ALIGN(64) in the type, so the stack slot is aligned
@@ -298,7 +384,7 @@ Visibility::Hit Visibility::intersect(const Vec3& org, const Vec3& dir, double t
     rtcIntersect1(impl_->scene, &context, &rayHit);
     impl_->check("rtcIntersect1");
     if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return result;
-    result.polygon = static_cast<int>(rayHit.hit.primID);
+    result.polygon = impl_->polygonOf(rayHit.hit.geomID, rayHit.hit.primID);
     result.t = static_cast<double>(ray.tfar);
     return result;
 }

@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 
 #include "radiosity/scene.h"
 #include "radiosity/vec.h"
@@ -88,6 +89,16 @@ class Visibility {
         double t = 0;      ///< ray parameter of the hit (metres for a unit dir)
     };
     Hit intersect(const Vec3& org, const Vec3& dir, double tMin = 0, double tMax = 1e30) const;
+
+    /// Dynamic geometry (virtual objects and lights, Loscos et al. 2000, §5.1-5.2): adds
+    /// `polygons` as one group whose Scene::polygons indices are firstIndex, firstIndex + 1,
+    /// ... (what hits and the polygonA / polygonB filters report), and rebuilds the BVH.
+    /// Returns the group's id. Not thread safe: no query may run meanwhile.
+    int addPolygons(std::span<const Polygon> polygons, int firstIndex);
+    /// Moves the group's polygons to new positions (the same count, same order).
+    void movePolygons(int group, std::span<const Polygon> polygons);
+    /// Takes the group out of the scene.
+    void removePolygons(int group);
 
     /// Number of occlusion rays cast so far by visible() and visibleBatch(), all threads
     /// together (intersect() rays are not counted). Counter "Visibility/Rays".

@@ -316,3 +316,35 @@ TEST(Visibility, ConcurrentCallsGiveTheSameResults) {
     }
     EXPECT_EQ(vis.raysCast(), before + 2 * 2 * static_cast<uint64_t>(n));
 }
+
+TEST(Visibility, AddedPolygonsBlockMoveAndGoAway) {
+    Scene scene = baseScene();
+    addSquareZ(scene, -5, -5, 10, 0, true);  // a floor, polygon 0
+    Visibility vis(scene);
+    const Vec3 a{0.5, 0.5, 0.1}, b{0.5, 0.5, 3};
+    ASSERT_TRUE(vis.visible(a, b));
+    // A square at z = 1 over the segment, as polygon 1 of the scene.
+    Scene extra = baseScene();
+    addSquareZ(extra, 0, 0, 1, 1, true);
+    const int group = vis.addPolygons(extra.polygons, 1);
+    EXPECT_FALSE(vis.visible(a, b));
+    // Hits report the added polygon's scene index, and end filters use it.
+    const Visibility::Hit hit = vis.intersect(a, {0, 0, 1});
+    EXPECT_EQ(hit.polygon, 1);
+    EXPECT_NEAR(hit.t, 0.9, 1e-6);
+    EXPECT_TRUE(vis.visible({0.5, 0.5, 1}, b, 1));
+    // Moved aside, it no longer blocks; moved back, it does.
+    Scene moved = baseScene();
+    addSquareZ(moved, 3, 3, 1, 1, true);
+    vis.movePolygons(group, moved.polygons);
+    EXPECT_TRUE(vis.visible(a, b));
+    EXPECT_FALSE(vis.visible({3.5, 3.5, 0.1}, {3.5, 3.5, 3}));
+    vis.removePolygons(group);
+    EXPECT_TRUE(vis.visible({3.5, 3.5, 0.1}, {3.5, 3.5, 3}));
+    EXPECT_THROW(vis.removePolygons(group), std::invalid_argument);
+    Scene two = baseScene();
+    addSquareZ(two, 0, 0, 1, 1, true);
+    addSquareZ(two, 0, 0, 1, 2, true);
+    EXPECT_THROW(vis.movePolygons(vis.addPolygons(extra.polygons, 1), two.polygons),
+                 std::invalid_argument);
+}

@@ -1,0 +1,305 @@
+// Dynamic objects of the hierarchical solver: insertion, removal and motion of virtual
+// objects and lights (Drettakis & Sillion 1997, "Interactive update of global illumination
+// using a line-space hierarchy", as used by Loscos, Drettakis & Robert 2000, §5.1-5.2).
+//
+// The links form a tree by their `parent` (the passive link each was refined from): the
+// line-space hierarchy. An object changes visibility only inside the shafts it cuts, and a
+// link's segments lie in the convex hull of its parent's two boxes, which its shaft
+// contains: when the object misses a passive link's shaft it misses every link below it.
+// The walk from the top links therefore reaches exactly the links the object may block,
+// at the cost of the shafts tested on the way.
+//
+// Removal restores a snapshot taken at insertion (links, B, H), so that insertion followed
+// by removal gives back the solution bit for bit; the work of a move (shaft tests, rays,
+// new links) is only that of the old and the new position.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "radiosity/shaft.h"
+#include "radiosity/solver.h"
+
+namespace radiosity {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+}  // namespace
+
+void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report) {
+    auto t0 = Clock::now();
+    const int P = static_cast<int>(passive_.size());
+    const int A = static_cast<int>(links_.size());
+    // Children of each passive link, encoded p >= 0 (passive) and ~a < 0 (active).
+    std::vector<int> start(static_cast<size_t>(P) + 2, 0);
+    std::vector<int> roots;
+    for (int p = 0; p < P; ++p) {
+        if (passive_[p].parent >= 0)
+            ++start[passive_[p].parent + 2];
+        else
+            roots.push_back(p);
+    }
+    for (int a = 0; a < A; ++a) {
+        if (links_[a].parent >= 0)
+            ++start[links_[a].parent + 2];
+        else
+            roots.push_back(~a);
+    }
+    for (int p = 0; p < P; ++p) start[p + 2] += start[p + 1];
+    std::vector<int> child(static_cast<size_t>(start[P + 1]));
+    for (int p = 0; p < P; ++p)
+        if (passive_[p].parent >= 0) child[start[passive_[p].parent + 1]++] = p;
+    for (int a = 0; a < A; ++a)
+        if (links_[a].parent >= 0) child[start[links_[a].parent + 1]++] = ~a;
+    // start[p] .. start[p + 1] are now the children of p.
+
+    std::vector<char> erased(static_cast<size_t>(A), 0);
+    std::vector<int> cut;
+    std::vector<Link> revived;
+    const auto eraseSubtree = [&](int p) {
+        std::vector<int> stack{p};
+        while (!stack.empty()) {
+            const int id = stack.back();
+            stack.pop_back();
+            if (id < 0) {
+                erased[~id] = 1;
+                continue;
+            }
+            for (int k = start[id]; k < start[id + 1]; ++k) stack.push_back(child[k]);
+        }
+    };
+    const auto isObjectNode = [&](int node) {
+        const Node& n = h_.nodes[node];
+        return n.isCluster() ? false : n.polygon >= objectPolyBegin;
+    };
+    std::vector<int> stack(roots.rbegin(), roots.rend());
+    double timeVisibility = 0;
+    while (!stack.empty()) {
+        const int id = stack.back();
+        stack.pop_back();
+        const Link& L = id >= 0 ? passive_[id] : links_[~id];
+        if (id >= 0 && L.retired) continue;
+        if (isObjectNode(L.receiver) || isObjectNode(L.source)) continue;
+        ++report.shaftTests;
+        const Shaft shaft(h_.nodes[L.receiver].bounds, h_.nodes[L.source].bounds);
+        if (!shaft.mayIntersect(box)) continue;
+        if (id < 0) {
+            cut.push_back(~id);
+            continue;
+        }
+        // A passive link between two elements (not from a light: those stay at the leaves)
+        // that the object now blocks entirely carries nothing: as refineLink() would keep it
+        // unrefined, it becomes active again in place of its subtree (Drettakis & Sillion
+        // 1997: passive links are reactivated at no cost, F is kept).
+        const Node& R = h_.nodes[L.receiver];
+        const Node& S = h_.nodes[L.source];
+        if (!R.isCluster() && !S.isCluster() && L.receiver != L.source && !S.emitting) {
+            const auto tv = Clock::now();
+            Link c = L;
+            transfer_->visibility(c, /*thorough=*/true);
+            timeVisibility += secondsSince(tv);
+            if (c.type == VisibilityType::invisible) {
+                passive_[id].retired = true;
+                inserted_.back().retired.push_back(id);
+                eraseSubtree(id);
+                revived.push_back(c);
+                ++report.linksReactivated;
+                continue;
+            }
+        }
+        for (int k = start[id + 1] - 1; k >= start[id]; --k) stack.push_back(child[k]);
+    }
+    report.timeShafts += secondsSince(t0) - timeVisibility;
+
+    // Visibility of the cut links again, in parallel (each link's rays are seeded by its
+    // nodes, so the order does not matter).
+    t0 = Clock::now();
+    std::erase_if(cut, [&](int a) { return erased[a] != 0; });
+    const uint64_t raysBefore = transfer_->counters.rays.load();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, cut.size(), 8),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t i = range.begin(); i != range.end(); ++i)
+                              transfer_->visibility(links_[cut[i]]);
+                      });
+    report.linksCut += static_cast<int>(cut.size());
+    for (int a : cut) {
+        const Link& l = links_[a];
+        const Node& R = h_.nodes[l.receiver];
+        if (lightOfNode(l.source) >= 0 && !R.isCluster() && R.isLeaf())
+            report.shadowLeaves.push_back(l.receiver);
+    }
+    // Erasing keeps the receiver order; the revived links go after it.
+    if (report.linksReactivated > 0) {
+        std::vector<Link> kept;
+        kept.reserve(links_.size());
+        for (int a = 0; a < A; ++a)
+            if (!erased[a]) kept.push_back(links_[a]);
+        links_.swap(kept);
+    }
+    for (const Link& c : revived) links_.push_back(c);
+    report.rays += transfer_->counters.rays.load() - raysBefore;
+    report.timeVisibility += secondsSince(t0) + timeVisibility;
+}
+
+void HierarchicalSolver::linkObject(int cluster, int oldRoot, DynamicUpdate& report) {
+    const auto t0 = Clock::now();
+    const uint64_t raysBefore = transfer_->counters.rays.load();
+    const size_t first = links_.size();
+    // 1. What the object gathers from the scene, then its radiosity from those links alone
+    //    (the refinement of what it shoots needs it: the oracle weighs B_s).
+    Link gather = makeLink(cluster, oldRoot);
+    refineLink(gather, links_);
+    for (size_t i = first; i < links_.size(); ++i) {
+        const Link& l = links_[i];
+        h_.nodes[l.receiver].H += h_.nodes[l.source].B * (l.F * static_cast<double>(l.V));
+    }
+    pushPull(cluster, Rgb{});
+    // 2. What it shoots into the scene, and its light onto itself.
+    Link shoot = makeLink(oldRoot, cluster);
+    refineLink(shoot, links_);
+    Link self = makeLink(cluster, cluster);
+    refineLink(self, links_);
+    if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves(first);
+    report.linksNew += static_cast<int>(links_.size() - first);
+    for (size_t i = first; i < links_.size(); ++i) {
+        const Link& l = links_[i];
+        const Node& R = h_.nodes[l.receiver];
+        if (lightOfNode(l.source) >= 0 && !R.isCluster() && R.isLeaf() &&
+            static_cast<size_t>(l.receiver) < frozenNodes_)
+            report.shadowLeaves.push_back(l.receiver);  // a new light's links
+    }
+    report.rays += transfer_->counters.rays.load() - raysBefore;
+    report.timeLinks += secondsSince(t0);
+}
+
+int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygon> polygons,
+                                     const Rgb* lightRadiance, DynamicUpdate* reportOut) {
+    if (!started_) throw std::logic_error("insertObject: solve() first");
+    if (polygons.empty()) throw std::invalid_argument("insertObject: the object has no polygon");
+    if (indexDirty_) finishSplits();
+    DynamicUpdate report;
+    Insertion rec;
+    rec.links = links_;
+    rec.passive = passive_.size();
+    rec.polygons = scene_.polygons.size();
+    rec.objects = scene_.objects.size();
+    rec.lights = scene_.lights.size();
+    rec.B.reserve(h_.nodes.size());
+    rec.H.reserve(h_.nodes.size());
+    for (const Node& n : h_.nodes) {
+        rec.B.push_back(n.B);
+        rec.H.push_back(n.H);
+    }
+    rec.name = name;
+    rec.light = lightRadiance != nullptr;
+    if (lightRadiance) rec.radiance = *lightRadiance;
+    rec.frozenNodes = frozenNodes_;
+    if (frozenNodes_ == 0) frozenNodes_ = h_.nodes.size();
+
+    // The scene: a new object, maybe a new light.
+    const int object = static_cast<int>(scene_.objects.size());
+    scene_.objects.push_back(name);
+    int light = -1;
+    if (lightRadiance) {
+        light = static_cast<int>(scene_.lights.size());
+        Light l;
+        l.name = name;
+        l.radiance = *lightRadiance;
+        scene_.lights.push_back(l);
+    }
+    const int first = static_cast<int>(scene_.polygons.size());
+    Bounds3 box;
+    for (Polygon& p : polygons) {
+        p.object = object;
+        p.light = light;
+        if (light >= 0) {
+            p.rho = Rgb{};  // an emitting face reflects nothing (scene.h)
+            scene_.lights[light].polygons.push_back(static_cast<int>(scene_.polygons.size()));
+        }
+        box.extend(p.bounds());
+        scene_.polygons.push_back(p);
+    }
+    const std::span<const Polygon> added(scene_.polygons.data() + first, polygons.size());
+    std::vector<Rgb> emittance(polygons.size());
+    for (size_t i = 0; i < polygons.size(); ++i)
+        emittance[i] = scene_.emittance(first + static_cast<int>(i));
+    inserted_.push_back(std::move(rec));
+    int oldRoot = -1;
+    const int cluster =
+        h_.attachObject(added, first, emittance, options_.maxPolygonsPerCluster, &oldRoot);
+    inserted_.back().visGroup = vis_->addPolygons(added, first);
+    // The root's links (if any: usually refined away) now belong to its copy.
+    for (Link& l : links_) {
+        if (l.receiver == Hierarchy::kRoot) l.receiver = oldRoot;
+        if (l.source == Hierarchy::kRoot) l.source = oldRoot;
+    }
+    for (Link& l : passive_) {
+        if (l.receiver == Hierarchy::kRoot) l.receiver = oldRoot;
+        if (l.source == Hierarchy::kRoot) l.source = oldRoot;
+    }
+
+    cutLinks(box, first, report);
+    const size_t sorted = links_.size() - static_cast<size_t>(report.linksReactivated);
+    linkObject(cluster, oldRoot, report);
+    buildReceiverIndex(sorted);
+    inserted_.back().shadowLeaves = report.shadowLeaves;
+
+    const auto t0 = Clock::now();
+    report.sweeps = gatherPushPull();
+    report.timeGather += secondsSince(t0);
+    if (reportOut) *reportOut = std::move(report);
+    return object;
+}
+
+void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
+    if (inserted_.empty()) throw std::logic_error("removeLastObject: no object inserted");
+    Insertion rec = std::move(inserted_.back());
+    inserted_.pop_back();
+    vis_->removePolygons(rec.visGroup);
+    h_.detachLastObject();
+    const int oldRoot = static_cast<int>(rec.B.size());  // the root's copy was the next node
+    links_ = std::move(rec.links);
+    passive_.resize(rec.passive);
+    for (Link& l : passive_) {
+        if (l.receiver == oldRoot) l.receiver = Hierarchy::kRoot;
+        if (l.source == oldRoot) l.source = Hierarchy::kRoot;
+    }
+    for (int p : rec.retired) passive_[p].retired = false;
+    scene_.polygons.resize(rec.polygons);
+    scene_.objects.resize(rec.objects);
+    scene_.lights.resize(rec.lights);
+    for (size_t n = 0; n < rec.B.size(); ++n) {
+        h_.nodes[n].B = rec.B[n];
+        h_.nodes[n].H = rec.H[n];
+    }
+    frozenNodes_ = rec.frozenNodes;
+    buildReceiverIndex(links_.size());
+    if (report) report->shadowLeaves = std::move(rec.shadowLeaves);
+}
+
+void HierarchicalSolver::moveLastObject(std::vector<Polygon> polygons, DynamicUpdate* report) {
+    if (inserted_.empty()) throw std::logic_error("moveLastObject: no object inserted");
+    const std::string name = inserted_.back().name;
+    const bool light = inserted_.back().light;
+    const Rgb radiance = inserted_.back().radiance;
+    const auto t0 = Clock::now();
+    DynamicUpdate removal;
+    removeLastObject(&removal);
+    const double removeTime = secondsSince(t0);
+    DynamicUpdate insertion;
+    insertObject(name, std::move(polygons), light ? &radiance : nullptr, &insertion);
+    insertion.timeLinks += removeTime;
+    for (int leaf : removal.shadowLeaves) insertion.shadowLeaves.push_back(leaf);
+    std::sort(insertion.shadowLeaves.begin(), insertion.shadowLeaves.end());
+    insertion.shadowLeaves.erase(
+        std::unique(insertion.shadowLeaves.begin(), insertion.shadowLeaves.end()),
+        insertion.shadowLeaves.end());
+    if (report) *report = std::move(insertion);
+}
+
+}  // namespace radiosity
