@@ -28,8 +28,8 @@ bool DirectLight::shaftClear(int leaf, int q) const {
     return found;
 }
 
-void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
-                           double* unoccluded) const {
+void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G, double* unoccluded,
+                           int firstLight) const {
     const Scene& scene = solver_.scene();
     const Polygon& p = scene.polygons[polygon];
     const int leaf = solver_.hierarchy().locateLeaf(polygon, x);
@@ -37,7 +37,7 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
     const int maxRays = options_.maxRays;
     const int k = strataSide(maxRays);
     uint64_t rays = 0;
-    for (size_t l = 0; l < scene.lights.size(); ++l) {
+    for (size_t l = static_cast<size_t>(std::max(firstLight, 0)); l < scene.lights.size(); ++l) {
         double g = 0, g0 = 0;
         for (int qi : scene.lights[l].polygons) {
             if (qi == polygon) continue;  // an emitting face does not light itself

@@ -39,8 +39,10 @@ class DirectLight {
     /// are off included. `seed` selects the shadow rays. When `unoccluded` is given it gets
     /// sum_q F(x -> q) without visibility (the light a point would get with no blocker:
     /// Loscos et al. 2000, Eq. (8) per point).
+    /// With firstLight > 0 only lights firstLight.. are evaluated (G of the others is left
+    /// as it is): the virtual lights added after the scene's.
     void geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
-                  double* unoccluded = nullptr) const;
+                  double* unoccluded = nullptr, int firstLight = 0) const;
 
     int lightCount() const { return static_cast<int>(solver_.scene().lights.size()); }
     uint64_t raysCast() const { return rays_; }

@@ -29,9 +29,13 @@ struct CornerKeyHash {
 
 }  // namespace
 
-LeafMesh::LeafMesh(const Hierarchy& h) : h_(h), corners_(h.nodes.size()) {
+LeafMesh::LeafMesh(const Hierarchy& h) : LeafMesh(h, 0) {}
+
+LeafMesh::LeafMesh(const Hierarchy& h, int firstNode) : h_(h), corners_(h.nodes.size()) {
     std::unordered_map<CornerKey, int, CornerKeyHash> index;
-    for (size_t n = 0; n < h.nodes.size(); ++n) {
+    for (size_t n = 0; n < static_cast<size_t>(std::max(firstNode, 0)) && n < h.nodes.size(); ++n)
+        corners_[n] = {-1, -1, -1, -1};
+    for (size_t n = static_cast<size_t>(std::max(firstNode, 0)); n < h.nodes.size(); ++n) {
         corners_[n] = {-1, -1, -1, -1};
         const Node& e = h.nodes[n];
         if (e.isCluster() || !e.isLeaf()) continue;

@@ -24,6 +24,9 @@ class LeafMesh {
   public:
     /// Collects the leaf corners of every polygon of `h` (the hierarchy as it stands).
     explicit LeafMesh(const Hierarchy& h);
+    /// The same for the leaves whose node id is at least `firstNode` only (the nodes of the
+    /// objects inserted after the scene's hierarchy was built: Hierarchy::attachObject).
+    LeafMesh(const Hierarchy& h, int firstNode);
 
     struct Vertex {
         Vec3 position;  ///< metres

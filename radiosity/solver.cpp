@@ -285,6 +285,13 @@ int HierarchicalSolver::gatherPushPull() {
     // reflectance). Stopping when the last change is small is not enough for rho -> 1:
     // the error left is about delta q / (1 - q). That estimate, with q measured from two
     // successive changes, is what must fall below `tolerance` (relative).
+    if (!(scene_.emittedPower().maxComponent() > 0)) {
+        // No light on: the solution is B = 0 (E = 0 everywhere). Sweeps would only decay
+        // towards it geometrically, never meeting a relative tolerance.
+        for (Node& n : h_.nodes) n.H = Rgb{};
+        pushPull(Hierarchy::kRoot, Rgb{});
+        return 1;
+    }
     double previous = -1, previousDelta = -1;
     int count = 0;
     while (count < options_.maxSweeps) {

@@ -223,17 +223,11 @@ std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
     return out;
 }
 
-void requireLightsOnly(const EditFile& edit) {
-    std::vector<std::string> parts;
-    if (!edit.addLights.empty()) parts.push_back("\"add_lights\"");
-    if (!edit.addObjects.empty()) parts.push_back("\"add_objects\"");
-    if (!edit.removeObjects.empty()) parts.push_back("\"remove_objects\"");
-    if (parts.empty()) return;
-    std::string list;
-    for (size_t i = 0; i < parts.size(); ++i)
-        list += (i == 0 ? "" : (i + 1 == parts.size() ? " and " : ", ")) + parts[i];
-    throw InputError(edit.file.string() + ": " + list + (parts.size() == 1 ? " is" : " are") +
-                     " not supported yet (this version changes real lights only)");
+void requireRenderable(const EditFile& edit) {
+    if (edit.removeObjects.empty()) return;
+    throw InputError(edit.file.string() +
+                     ": \"remove_objects\" is not supported yet (this version changes real "
+                     "lights and adds virtual lights and objects)");
 }
 
 }  // namespace relight

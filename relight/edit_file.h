@@ -6,8 +6,8 @@
 // Every part is read and checked here: real-light changes, virtual lights (their emitting
 // face checked like a scene light's), virtual objects (OBJ read relative to the edit file,
 // faces checked and repaired like the scene's, placed by the transform) and removals
-// (removable objects of the scene). Rendering applies real-light changes only so far:
-// requireLightsOnly() refuses the other parts with a clear message.
+// (removable objects of the scene). Rendering applies all but the removals so far:
+// requireRenderable() refuses those with a clear message.
 #pragma once
 
 #include <array>
@@ -72,9 +72,8 @@ EditFile loadEdit(const std::filesystem::path& file, const SceneFile& sf);
 std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
                                 const std::vector<Rgb>& nominal);
 
-/// Throws InputError("<file>: \"add_lights\" is not supported yet ...") naming every part
-/// of the edit that this version cannot render (non-empty add_lights, add_objects,
-/// remove_objects); returns when the edit changes real lights only.
-void requireLightsOnly(const EditFile& edit);
+/// Throws InputError("<file>: \"remove_objects\" is not supported yet ...") when the edit
+/// removes real objects, which this version cannot render; returns otherwise.
+void requireRenderable(const EditFile& edit);
 
 }  // namespace relight

@@ -4,7 +4,9 @@
 // With --debug-views the scene is prepared in memory (the views need the solver state,
 // which the cache does not hold; the cache is still written) and the pipeline's
 // intermediate images go to DIR (relight/debug_views.h). The relit image is the same as
-// without it.
+// without it. An edit with virtual lights or objects is also prepared in memory (their
+// insertion needs the solver: relight/dynamic_relighting.h); the views then show the
+// real lights' part of the edit.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -12,6 +14,7 @@
 #include "relight/cli/commands.h"
 #include "relight/cli/util.h"
 #include "relight/debug_views.h"
+#include "relight/dynamic_relighting.h"
 #include "relight/edit_file.h"
 #include "relight/image.h"
 #include "relight/relighting.h"
@@ -28,28 +31,64 @@ int runRender(const RenderArgs& a) {
     EditFile edit;
     if (!a.edit.empty()) {
         edit = loadEdit(a.edit, sf);
-        requireLightsOnly(edit);
+        requireRenderable(edit);
     }
     // A folder that cannot be made fails at once too, not after the preparation.
     if (!a.debugViews.empty()) createDebugViewsFolder(a.debugViews);
     std::unique_ptr<Relighting> full;
+    const bool virtualParts = !edit.addLights.empty() || !edit.addObjects.empty();
     const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false,
-                                          a.debugViews.empty() ? nullptr : &full);
+                                          a.debugViews.empty() && !virtualParts ? nullptr : &full);
     const PreparedImage& p = s.image;
     const double tPrepare = s.seconds;
     // The PreparedImage's photo radiance holds the estimates of "estimate" lights.
     const auto radiance = editRadiance(sf, edit, p.photoRadiance);
-    auto t0 = Clock::now();
-    const Image img = renderEdit(p, radiance);
-    const double tEdit = since(t0);
-    writeImage(a.output, img, a.exposure);
     double tViews = 0;
     size_t viewFiles = 0;
-    if (full) {
-        t0 = Clock::now();
+    auto t0 = Clock::now();
+    if (full && !a.debugViews.empty()) {
         viewFiles = writeDebugViews(*full, radiance, a.debugViews).size();
         tViews = since(t0);
     }
+    t0 = Clock::now();
+    Image img;
+    nlohmann::json virtualJson = nlohmann::json::array();
+    if (virtualParts) {
+        DynamicRelighting dyn(*full, radiance);
+        const auto note = [&](const std::string& kind, const std::string& name) {
+            const FrameTimes& ft = dyn.times();
+            const radiosity::DynamicUpdate& u = dyn.lastUpdate();
+            std::printf("inserted %s %s: %d links cut, %d new, %d reactivated, %.4f s\n",
+                        kind.c_str(), name.c_str(), u.linksCut, u.linksNew, u.linksReactivated,
+                        ft.total());
+            virtualJson.push_back({{"kind", kind},
+                                   {"name", name},
+                                   {"links_cut", u.linksCut},
+                                   {"links_new", u.linksNew},
+                                   {"links_reactivated", u.linksReactivated},
+                                   {"shaft_tests", u.shaftTests},
+                                   {"rays", u.rays},
+                                   {"time_s",
+                                    {{"shafts", ft.shafts},
+                                     {"visibility", ft.visibility},
+                                     {"links", ft.links},
+                                     {"radiosity", ft.radiosity},
+                                     {"vertices", ft.vertices}}}});
+        };
+        for (const VirtualLight& l : edit.addLights) {
+            dyn.addLight(l);
+            note("light", l.name);
+        }
+        for (const VirtualObject& obj : edit.addObjects) {
+            dyn.addObject(obj);
+            note("object", obj.name);
+        }
+        img = dyn.render();
+    } else {
+        img = renderEdit(p, radiance);
+    }
+    const double tEdit = since(t0);
+    writeImage(a.output, img, a.exposure);
     std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
     if (s.cache == "hit")
         std::printf("time: load cache %.3f s (its preparation took: %s); edit %.4f s\n", tPrepare,
@@ -59,7 +98,7 @@ int runRender(const RenderArgs& a) {
                     stepTimes(p.times).c_str(), tEdit);
     std::printf("wrote %s (%dx%d)\n", a.output.c_str(), img.width, img.height);
     if (s.written) std::printf("wrote cache %s\n", s.file.string().c_str());
-    if (full)
+    if (!a.debugViews.empty())
         std::printf("wrote debug views %s (%zu files, %.3f s)\n", a.debugViews.c_str(), viewFiles,
                     tViews);
     if (!a.report.empty()) {
@@ -82,6 +121,7 @@ int runRender(const RenderArgs& a) {
                                   {"links", p.links},
                                   {"leaf_vertices", p.vertexCount()},
                                   {"lights", lights},
+                                  {"virtual", virtualJson},
                                   {"time_s",
                                    {{"item_buffer", p.times.itemBuffer},
                                     {"solve", p.times.solve},
