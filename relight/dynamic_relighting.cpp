@@ -37,6 +37,7 @@ DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radianc
     if (static_cast<int>(radiance.size()) != realLights_)
         throw std::invalid_argument("DynamicRelighting: one radiance per real light expected");
     radiance_.assign(radiance.begin(), radiance.end());
+    for (const auto& l : solver_.scene().lights) photoRadiance_.push_back(l.radiance);
     realPolygons_ = solver_.scene().polygons.size();
     realNodes_ = solver_.hierarchy().nodes.size();
     // The solution at the edit's radiances: the "before" of every indirect change.
@@ -45,12 +46,22 @@ DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radianc
     base_.resize(nv);
     for (size_t v = 0; v < nv; ++v)
         base_[v] = r_.prepared.lighting.irradiance(static_cast<int>(v), radiance_);
-    direct_.assign(nv, Rgb{});
+    realDirect_.assign(nv, Rgb{});
+    virtualDirect_.assign(nv, Rgb{});
     indirect_.assign(nv, Rgb{});
     indirect0_ = indirectPerNode();
 }
 
-DynamicRelighting::~DynamicRelighting() = default;
+DynamicRelighting::~DynamicRelighting() {
+    // The relighting's solver goes back to the scene as prepared (bit for bit: removal
+    // restores each insertion's snapshot), with the photo's radiances.
+    try {
+        while (solver_.insertedObjects() > 0) solver_.removeLastObject();
+        solver_.setLightRadiances(photoRadiance_);
+    } catch (...) {
+        // A destructor must not throw; the solver is left as the failed step left it.
+    }
+}
 
 std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
     // H_ind(node): what the node and its ancestors gather through links whose source is not
@@ -130,37 +141,45 @@ void DynamicRelighting::afterUpdate(const radiosity::DynamicUpdate& u, bool allV
                 }
         }
     }
-    refreshDirect(vertices);
+    refreshDirect(vertices, /*virtualOnly=*/allVertices);
     refreshIndirect(allVertices);
     times_.vertices = secondsSince(t0);
 }
 
-void DynamicRelighting::refreshDirect(const std::vector<int>& vertices) {
+void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool virtualOnly) {
     const auto& mesh = *r_.mesh;
     const radiosity::DirectLight direct(solver_);
     const auto& scene = solver_.scene();
     const int lights = static_cast<int>(scene.lights.size());
     const VertexDirect& before = r_.direct;
     const auto& correction = r_.removal.linkCorrection;
-    tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, vertices.size(), 16),
-        [&](const tbb::blocked_range<size_t>& range) {
-            std::vector<double> G(static_cast<size_t>(lights));
-            for (size_t i = range.begin(); i != range.end(); ++i) {
-                const int v = vertices[i];
-                const int p = mesh.vertices()[v].polygon;
-                if (scene.polygons[p].light >= 0) continue;  // shown, not lit
-                direct.geometry(p, mesh.insidePoint(v), static_cast<uint64_t>(v), G.data());
-                const Rgb c = correction.empty() ? Rgb::gray(1.0) : correction[v];
-                Rgb d;
-                for (int l = 0; l < realLights_; ++l) {
-                    const double was = before.visible[static_cast<size_t>(v) * realLights_ + l];
-                    d += radiance_[l] * c * (kPi * G[l] - was);
-                }
-                for (int l = realLights_; l < lights; ++l) d += radiance_[l] * (kPi * G[l]);
-                direct_[v] = d;
-            }
-        });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices.size(), 16),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          std::vector<double> G(static_cast<size_t>(lights));
+                          for (size_t i = range.begin(); i != range.end(); ++i) {
+                              const int v = vertices[i];
+                              const int p = mesh.vertices()[v].polygon;
+                              if (scene.polygons[p].light >= 0) continue;  // shown, not lit
+                              // A virtual light added or removed changes the virtual lights' direct
+                              // light only; a moved object may change every light's.
+                              direct.geometry(p, mesh.insidePoint(v), static_cast<uint64_t>(v),
+                                              G.data(), nullptr, virtualOnly ? realLights_ : 0);
+                              if (!virtualOnly) {
+                                  const Rgb c = correction.empty() ? Rgb::gray(1.0) : correction[v];
+                                  Rgb d;
+                                  for (int l = 0; l < realLights_; ++l) {
+                                      const double was =
+                                          before.visible[static_cast<size_t>(v) * realLights_ + l];
+                                      d += radiance_[l] * c * (kPi * G[l] - was);
+                                  }
+                                  realDirect_[v] = d;
+                              }
+                              Rgb d;
+                              for (int l = realLights_; l < lights; ++l)
+                                  d += radiance_[l] * (kPi * G[l]);
+                              virtualDirect_[v] = d;
+                          }
+                      });
 }
 
 std::vector<Rgb> DynamicRelighting::gatherAtVertices() const {
@@ -229,7 +248,8 @@ Image DynamicRelighting::render() {
     const PreparedImage& P = r_.prepared;
     const size_t nv = base_.size();
     std::vector<Rgb> H(nv);
-    for (size_t v = 0; v < nv; ++v) H[v] = base_[v] + direct_[v] + indirect_[v];
+    for (size_t v = 0; v < nv; ++v)
+        H[v] = base_[v] + realDirect_[v] + virtualDirect_[v] + indirect_[v];
     auto ratio = displayRatio(H, P.D);
     if (P.textureFactor.size() == ratio.size())
         for (size_t v = 0; v < ratio.size(); ++v)

@@ -47,8 +47,9 @@ struct FrameTimes {
 class DynamicRelighting {
   public:
     /// `r` must come from prepareRelighting() and outlive this object, which changes its
-    /// solver (virtual parts are inserted into it). `radiance`: the real lights' radiance
-    /// for the edit (editRadiance()), one per scene light.
+    /// solver (virtual parts are inserted into it) until it is destroyed: the destructor
+    /// removes them and restores the solver's radiances, so sessions can follow each other.
+    /// `radiance`: the real lights' radiance for the edit (editRadiance()), one per scene light.
     DynamicRelighting(Relighting& r, std::span<const Rgb> radiance);
     ~DynamicRelighting();
 
@@ -69,7 +70,7 @@ class DynamicRelighting {
 
   private:
     void afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices);
-    void refreshDirect(const std::vector<int>& vertices);
+    void refreshDirect(const std::vector<int>& vertices, bool virtualOnly);
     void refreshIndirect(bool full);  ///< and the virtual objects' surfaces
     std::vector<Rgb> gatherAtVertices() const;
     std::vector<Rgb> indirectPerNode() const;
@@ -77,13 +78,15 @@ class DynamicRelighting {
     Relighting& r_;
     radiosity::HierarchicalSolver& solver_;
     int realLights_ = 0;
-    size_t realPolygons_ = 0;     ///< polygons below this index are the scene's
-    size_t realNodes_ = 0;        ///< nodes below this id are the scene's
-    std::vector<Rgb> radiance_;   ///< real lights, then virtual lights (solver order)
-    std::vector<Rgb> base_;       ///< per vertex: sum_l L_l h_l(v)
-    std::vector<Rgb> direct_;     ///< per vertex: the direct light changes (both terms above)
-    std::vector<Rgb> indirect0_;  ///< per node: H_ind before any virtual part
-    std::vector<Rgb> indirect_;   ///< per vertex: H_ind(now) - H_ind(before)
+    size_t realPolygons_ = 0;         ///< polygons below this index are the scene's
+    size_t realNodes_ = 0;            ///< nodes below this id are the scene's
+    std::vector<Rgb> radiance_;       ///< real lights, then virtual lights (solver order)
+    std::vector<Rgb> photoRadiance_;  ///< the solver's radiances before (restored at the end)
+    std::vector<Rgb> base_;           ///< per vertex: sum_l L_l h_l(v)
+    std::vector<Rgb> realDirect_;     ///< per vertex: the real lights' direct light change
+    std::vector<Rgb> virtualDirect_;  ///< per vertex: the virtual lights' direct light
+    std::vector<Rgb> indirect0_;      ///< per node: H_ind before any virtual part
+    std::vector<Rgb> indirect_;       ///< per vertex: H_ind(now) - H_ind(before)
     // Per vertex: final gather (radiosity/final_gather.h) of the indirect light before any
     // virtual part, its change at the last full update (a light added or removed), and the
     // leaf-level change at that time; objects moved since add only their leaf-level change.
