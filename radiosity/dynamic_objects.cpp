@@ -21,15 +21,9 @@
 
 #include "radiosity/shaft.h"
 #include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
 
 namespace radiosity {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-}  // namespace
 
 void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report) {
     auto t0 = Clock::now();

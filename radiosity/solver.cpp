@@ -1,4 +1,5 @@
 #include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -10,13 +11,6 @@
 #include <stdexcept>
 
 namespace radiosity {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-}  // namespace
 
 HierarchicalSolver::HierarchicalSolver(Scene scene, SolverOptions options)
     : scene_(std::move(scene)),

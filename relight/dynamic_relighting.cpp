@@ -11,17 +11,17 @@
 
 #include "radiosity/direct_light.h"
 #include "radiosity/final_gather.h"
+#include "radiosity/stopwatch.h"
 
 namespace relight {
 
 using radiosity::Node;
 using radiosity::Vec3;
 
+using radiosity::Clock;
+using radiosity::secondsSince;
+
 namespace {
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 constexpr double kPi = std::numbers::pi;
 // Seeds of the shadow rays of the virtual objects' vertices, apart from the scene's.
 constexpr uint64_t kObjectSeed = 0x0b1ec7ull << 24;
