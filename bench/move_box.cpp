@@ -61,17 +61,6 @@ std::vector<radiosity::Polygon> placeBox(const std::vector<radiosity::Polygon>& 
     return out;
 }
 
-double relRmse(const Image& a, const Image& b) {
-    double se = 0, sum = 0;
-    for (size_t i = 0; i < a.rgb.size(); ++i) {
-        const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
-        se += d * d;
-        sum += static_cast<double>(b.rgb[i]);
-    }
-    const double n = static_cast<double>(a.rgb.size());
-    return sum > 0 ? std::sqrt(se / n) / (sum / n) : 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -156,7 +145,7 @@ int main(int argc, char** argv) {
         std::printf(
             "after the path: rel_rmse %.4f, changed_rel_rmse %.4f against the truth of "
             "virtual_box_moved; %.5f rel. RMS from a fresh insertion there\n",
-            moved.relRmse, moved.changedRelRmse, relRmse(last, fresh));
+            moved.relRmse, moved.changedRelRmse, relativeRmsDifference(last, fresh));
 
         {
             DynamicRelighting dyn(*r, photo);

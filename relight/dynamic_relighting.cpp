@@ -250,10 +250,7 @@ Image DynamicRelighting::render() {
     std::vector<Rgb> H(nv);
     for (size_t v = 0; v < nv; ++v)
         H[v] = base_[v] + realDirect_[v] + virtualDirect_[v] + indirect_[v];
-    auto ratio = displayRatio(H, P.D);
-    if (P.textureFactor.size() == ratio.size())
-        for (size_t v = 0; v < ratio.size(); ++v)
-            for (int c = 0; c < 3; ++c) ratio[v][c] *= P.textureFactor[v][c];
+    const auto ratio = vertexRatio(P, H);
     const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
     Image img = renderRatio(P.display, P.photo, ratio, real, P.photoRadiance);
 

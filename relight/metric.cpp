@@ -1,5 +1,6 @@
 #include "relight/metric.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -77,6 +78,19 @@ Score scoreImage(const Image& R, const Image& T, const Image& P, const std::vect
         s.hasChanged = true;
     }
     return s;
+}
+
+double relativeRmsDifference(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height || a.rgb.size() != b.rgb.size())
+        throw std::invalid_argument("relativeRmsDifference: images of different sizes");
+    double se = 0, sum = 0;
+    for (size_t i = 0; i < a.rgb.size(); ++i) {
+        const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
+        se += d * d;
+        sum += static_cast<double>(b.rgb[i]);
+    }
+    const double n = static_cast<double>(std::max<size_t>(a.rgb.size(), 1));
+    return sum > 0 ? std::sqrt(se / n) / (sum / n) : 0;
 }
 
 }  // namespace relight

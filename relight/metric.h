@@ -22,6 +22,11 @@ struct Score {
     int changedBlocks = 0;
 };
 
+/// sqrt(mean (a - b)^2) / mean(b) over every pixel and channel (no blocks, no masks): how
+/// far two renderings of the same thing are apart. 0 when mean(b) is 0 (guard).
+/// Throws std::invalid_argument when the sizes differ.
+double relativeRmsDifference(const Image& a, const Image& b);
+
 /// R: relit image, T: truth, P: photo, masks of the truth and the photo (255 = keep).
 /// All the same size; throws std::invalid_argument otherwise. `errorMap` (optional)
 /// receives one pixel per block: the block's RMS error over the channels divided by the

@@ -13,12 +13,16 @@ std::vector<Rgb> vertexIrradiance(const PreparedImage& p, std::span<const Rgb> r
     return B;
 }
 
-Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance) {
-    const auto B = vertexIrradiance(p, radiance);
-    auto ratio = displayRatio(B, p.D);
+std::vector<Rgb> vertexRatio(const PreparedImage& p, std::span<const Rgb> H) {
+    auto ratio = displayRatio(H, p.D);
     if (p.textureFactor.size() == ratio.size())
         for (size_t v = 0; v < ratio.size(); ++v)
             for (int c = 0; c < 3; ++c) ratio[v][c] *= p.textureFactor[v][c];
+    return ratio;
+}
+
+Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance) {
+    const auto ratio = vertexRatio(p, vertexIrradiance(p, radiance));
     return renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance);
 }
 

@@ -49,6 +49,10 @@ struct PreparedImage {
 std::vector<radiosity::Rgb> vertexIrradiance(const PreparedImage& p,
                                              std::span<const radiosity::Rgb> radiance);
 
+/// The display ratio k H/D per vertex for vertex irradiance H (displayRatio() times the
+/// texture correction k of real-shadow removal).
+std::vector<radiosity::Rgb> vertexRatio(const PreparedImage& p, std::span<const radiosity::Rgb> H);
+
 /// The relit photo for the lights' radiances (superposition path).
 Image renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance);
 
