@@ -1,4 +1,4 @@
-// Writing a JSON document to a file atomically (reports, debug-view indexes).
+// Writing a text or JSON file atomically (reports, debug-view indexes, edits, OBJ files).
 #pragma once
 
 #include <filesystem>
@@ -10,14 +10,15 @@
 
 namespace relight {
 
-/// Writes `j` to `path` through a temporary file renamed over it: a failed write never
+/// Writes `text` to `path` through a temporary file renamed over it: a failed write never
 /// leaves a half-written file. Throws std::runtime_error naming the file.
-inline void writeJsonAtomic(const std::filesystem::path& path, const nlohmann::json& j) {
+inline void writeTextAtomic(const std::filesystem::path& path, const std::string& text) {
     namespace fs = std::filesystem;
     const fs::path tmp = path.parent_path() / (".tmp-" + path.filename().string());
     {
         std::ofstream out(tmp);
-        out << j.dump(2) << "\n";
+        out << text;
+        out.close();  // a write that fails on flushing (disk full) fails here, not silently
         if (!out) {
             std::error_code ec;
             fs::remove(tmp, ec);
@@ -30,6 +31,12 @@ inline void writeJsonAtomic(const std::filesystem::path& path, const nlohmann::j
         fs::remove(tmp, ec);
         throw std::runtime_error(path.string() + ": cannot write: " + ec.message());
     }
+}
+
+/// writeTextAtomic() of `j` (2-space indented). The text is made before the file is opened,
+/// so a document that cannot be dumped (invalid UTF-8) leaves no temporary file behind.
+inline void writeJsonAtomic(const std::filesystem::path& path, const nlohmann::json& j) {
+    writeTextAtomic(path, j.dump(2) + "\n");
 }
 
 }  // namespace relight
