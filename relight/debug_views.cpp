@@ -143,6 +143,7 @@ DebugViews computeDebugViews(const Relighting& r, std::span<const Rgb> radianceN
     v.B = Image(w, hgt);
     v.D = Image(w, hgt);
     v.reflectance = Image(w, hgt);
+    v.bFactor = Image(w, hgt);
     std::vector<int> surfacePixels;
     for (int px = 0; px < pixels; ++px) {
         const PixelLeaves& p = leaves[px];
@@ -154,6 +155,7 @@ DebugViews computeDebugViews(const Relighting& r, std::span<const Rgb> radianceN
         // B / pi = rho H / pi: radiance in the photo's units (relight/reflectance.h).
         const Rgb toRadiance = rho * (1.0 / (std::numbers::pi * weight));
         setPixel(v.B, px, Hsum * toRadiance);
+        setPixel(v.bFactor, px, toRadiance);
         setPixel(v.D, px, Dsum * toRadiance);
         setPixel(v.reflectance, px, rho);
         surfacePixels.push_back(px);

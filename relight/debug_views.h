@@ -44,6 +44,9 @@ struct DebugViews {
     Image Torig, Tinter, Tfinal;  ///< linear; Tinter and Tfinal empty without shadow removal
     Image reflectance;            ///< linear, dimensionless
     Image mesh, frontier;         ///< linear overlays; frontier empty without shadow removal
+    /// Per pixel rho / (pi sum_v w_v), 0 without surface: B = bFactor * sum_v w_v H(v) with
+    /// the display map's weights, so that a display can draw B for any vertex irradiance.
+    Image bFactor;
     /// PNG scale of B and D, the same for both so that their brightness compares: the
     /// 99th percentile of D's luminance over the pixels with a surface maps to 1. D is the
     /// photo's lighting, so the scale is the same for every edit of a prepared scene.

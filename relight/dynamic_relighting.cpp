@@ -243,19 +243,42 @@ void DynamicRelighting::refreshIndirect(bool full) {
                       });
 }
 
-Image DynamicRelighting::render() {
-    const auto t0 = Clock::now();
-    const PreparedImage& P = r_.prepared;
+std::vector<Rgb> DynamicRelighting::vertexIrradiance() const {
     const size_t nv = base_.size();
     std::vector<Rgb> H(nv);
     for (size_t v = 0; v < nv; ++v)
         H[v] = base_[v] + realDirect_[v] + virtualDirect_[v] + indirect_[v];
-    const auto ratio = vertexRatio(P, H);
-    const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
-    Image img = renderRatio(P.display, P.photo, ratio, real, P.photoRadiance);
+    return H;
+}
 
+std::vector<Rgb> DynamicRelighting::vertexRatios() const {
+    return vertexRatio(r_.prepared, vertexIrradiance());
+}
+
+Image DynamicRelighting::render() {
+    const auto t0 = Clock::now();
+    const PreparedImage& P = r_.prepared;
+    const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
+    Image img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
+    const double tRatio = secondsSince(t0);
+    applyOverlay(img, overlay());
+    times_.display += tRatio;
+    return img;
+}
+
+void applyOverlay(Image& img, const VirtualOverlay& o) {
+    for (int y = 0; y < o.height; ++y)
+        for (int x = 0; x < o.width; ++x) {
+            const float* a = &o.rgba[(static_cast<size_t>(y) * o.width + x) * 4];
+            float* px = img.at(o.x0 + x, o.y0 + y);
+            for (int c = 0; c < 3; ++c) px[c] = a[3] * px[c] + a[c];
+        }
+}
+
+VirtualOverlay DynamicRelighting::overlay() {
+    const auto t0 = Clock::now();
     // The item buffer again, in the projected box of the virtual parts only (the pixels of
-    // an old position outside it are the ratio display's, drawn in full above).
+    // an old position outside it are the ratio display's).
     const Camera& camera = r_.scene.camera;
     const auto& scene = solver_.scene();
     int x0 = camera.width, y0 = camera.height, x1 = -1, y1 = -1;
@@ -275,56 +298,60 @@ Image DynamicRelighting::render() {
             y1 = std::max(y1, static_cast<int>(std::ceil(v)));
         }
     }
-    x0 = std::max(x0, 0);
-    y0 = std::max(y0, 0);
-    x1 = std::min(x1, camera.width - 1);
-    y1 = std::min(y1, camera.height - 1);
-    if (x1 >= x0 && y1 >= y0) {
-        const int k =
-            std::max(1, static_cast<int>(std::floor(std::sqrt(static_cast<double>(r_.items.spp)))));
-        const Vec3 eye = camera.position();
-        const auto& h = solver_.hierarchy();
-        const auto& vis = solver_.visibility();
-        tbb::parallel_for(
-            tbb::blocked_range<int>(y0, y1 + 1), [&](const tbb::blocked_range<int>& rows) {
-                for (int y = rows.begin(); y != rows.end(); ++y)
-                    for (int x = x0; x <= x1; ++x) {
-                        double realShare = 0;
-                        Rgb added;
-                        for (int s = 0; s < k * k; ++s) {
-                            const double u = x - 0.5 + ((s % k) + 0.5) / k;
-                            const double v = y - 0.5 + ((s / k) + 0.5) / k;
-                            const Vec3 dir = camera.rayDirection(u, v);
-                            const auto hit = vis.intersect(eye, dir);
-                            if (hit.polygon < static_cast<int>(realPolygons_)) {
-                                realShare += 1;  // the photo's sample, as displayed above
-                                continue;
-                            }
-                            const auto& poly = scene.polygons[hit.polygon];
-                            if (glm::dot(poly.normal, dir) >= 0) continue;  // back: black
-                            if (poly.light >= 0) {
-                                added += radiance_[poly.light];
-                                continue;
-                            }
-                            if (!objectMesh_) continue;
-                            const Vec3 point = eye + hit.t * dir;
-                            const int leaf = h.locateLeaf(hit.polygon, point);
-                            const auto w = objectMesh_->weights(leaf, point);
-                            const auto& corners = objectMesh_->corners(leaf);
-                            for (int i = 0; i < h.nodes[leaf].vertexCount; ++i)
-                                added += objectRadiance_[corners[i]] * w[i];
-                        }
-                        const double n = static_cast<double>(k * k);
-                        if (realShare == n) continue;
-                        float* px = img.at(x, y);
-                        for (int c = 0; c < 3; ++c)
-                            px[c] = static_cast<float>(realShare / n * static_cast<double>(px[c]) +
-                                                       added[c] / n);
-                    }
-            });
+    VirtualOverlay o;
+    o.x0 = std::max(x0, 0);
+    o.y0 = std::max(y0, 0);
+    o.width = std::min(x1, camera.width - 1) - o.x0 + 1;
+    o.height = std::min(y1, camera.height - 1) - o.y0 + 1;
+    if (o.empty()) {
+        o.width = o.height = 0;
+        times_.display = secondsSince(t0);
+        return o;
     }
+    o.rgba.assign(static_cast<size_t>(o.width) * o.height * 4, 0.0f);
+    const int k =
+        std::max(1, static_cast<int>(std::floor(std::sqrt(static_cast<double>(r_.items.spp)))));
+    const Vec3 eye = camera.position();
+    const auto& h = solver_.hierarchy();
+    const auto& vis = solver_.visibility();
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, o.height), [&](const tbb::blocked_range<int>& rows) {
+            for (int by = rows.begin(); by != rows.end(); ++by)
+                for (int bx = 0; bx < o.width; ++bx) {
+                    const int x = o.x0 + bx, y = o.y0 + by;
+                    double realShare = 0;
+                    Rgb added;
+                    for (int s = 0; s < k * k; ++s) {
+                        const double u = x - 0.5 + ((s % k) + 0.5) / k;
+                        const double v = y - 0.5 + ((s / k) + 0.5) / k;
+                        const Vec3 dir = camera.rayDirection(u, v);
+                        const auto hit = vis.intersect(eye, dir);
+                        if (hit.polygon < static_cast<int>(realPolygons_)) {
+                            realShare += 1;  // the photo's sample, as the ratio display shows
+                            continue;
+                        }
+                        const auto& poly = scene.polygons[hit.polygon];
+                        if (glm::dot(poly.normal, dir) >= 0) continue;  // back: black
+                        if (poly.light >= 0) {
+                            added += radiance_[poly.light];
+                            continue;
+                        }
+                        if (!objectMesh_) continue;
+                        const Vec3 point = eye + hit.t * dir;
+                        const int leaf = h.locateLeaf(hit.polygon, point);
+                        const auto w = objectMesh_->weights(leaf, point);
+                        const auto& corners = objectMesh_->corners(leaf);
+                        for (int i = 0; i < h.nodes[leaf].vertexCount; ++i)
+                            added += objectRadiance_[corners[i]] * w[i];
+                    }
+                    const double n = static_cast<double>(k * k);
+                    float* a = &o.rgba[(static_cast<size_t>(by) * o.width + bx) * 4];
+                    for (int c = 0; c < 3; ++c) a[c] = static_cast<float>(added[c] / n);
+                    a[3] = static_cast<float>(realShare / n);
+                }
+        });
     times_.display = secondsSince(t0);
-    return img;
+    return o;
 }
 
 }  // namespace relight

@@ -44,6 +44,21 @@ struct FrameTimes {
     double total() const { return shafts + visibility + links + radiosity + vertices + display; }
 };
 
+/// What the virtual parts show in their projected bounding box, per pixel of the box: the
+/// share of the pixel's samples that still see the photo's surfaces (they keep the ratio
+/// display) and the radiance the other samples add (virtual objects' rho H / pi, virtual
+/// light faces), already divided by the samples per pixel:
+///   pixel = realShare * ratio display + added.
+/// Pixels outside the box are the ratio display's alone.
+struct VirtualOverlay {
+    int x0 = 0, y0 = 0, width = 0, height = 0;  ///< the box in pixels (empty: nothing)
+    std::vector<float> rgba;                    ///< per box pixel: added r, g, b; realShare
+    bool empty() const { return width <= 0 || height <= 0; }
+};
+
+/// Applies an overlay to a ratio-display image (same size as the photo).
+void applyOverlay(Image& img, const VirtualOverlay& overlay);
+
 class DynamicRelighting {
   public:
     /// `r` must come from prepareRelighting() and outlive this object, which changes its
@@ -62,8 +77,18 @@ class DynamicRelighting {
     /// Removes the virtual part added last (object or light).
     void removeLast();
 
-    /// The relit photo as it stands.
+    /// The relit photo as it stands: the ratio display of vertexRatios() with overlay().
     Image render();
+    /// Its two parts, for a display that does the per-pixel work itself (the viewer's GPU):
+    /// the display ratio k H/D per leaf vertex of the scene (relight/prepared.h, vertexRatio)
+    /// and the virtual parts' overlay (casts the camera's samples in their box again).
+    std::vector<Rgb> vertexRatios() const;
+    VirtualOverlay overlay();
+    /// Irradiance H per leaf vertex of the scene, with every change the edit makes.
+    std::vector<Rgb> vertexIrradiance() const;
+    /// Radiance of the real lights (scene order), then of the virtual lights.
+    std::span<const Rgb> radiance() const { return radiance_; }
+    int realLights() const { return realLights_; }
 
     const FrameTimes& times() const { return times_; }
     const radiosity::DynamicUpdate& lastUpdate() const { return last_; }

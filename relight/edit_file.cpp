@@ -106,6 +106,18 @@ VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::
     if (!fs::exists(v.file, ec)) r.fail(fPath, "OBJ file \"" + v.file.string() + "\" not found");
     ObjFile obj = readObj(v.file);
     warnings.insert(warnings.end(), obj.warnings.begin(), obj.warnings.end());
+    placeObject(v, obj, warnings);
+    if (v.polygons.empty()) r.fail(fPath, "\"" + v.file.string() + "\" has no usable face");
+    return v;
+}
+
+}  // namespace
+
+void placeObject(VirtualObject& v, ObjFile obj, std::vector<std::string>& warnings) {
+    const auto& M = v.transform;
+    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
     for (radiosity::Vec3& p : obj.positions)
         p = radiosity::Vec3(M[0][0] * p.x + M[0][1] * p.y + M[0][2] * p.z + M[0][3],
                             M[1][0] * p.x + M[1][1] * p.y + M[1][2] * p.z + M[1][3],
@@ -119,12 +131,8 @@ VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::
     const std::vector<int> toObject(obj.objects.size(), 0);
     addObjFaces(
         obj, toObject, [&](int) { return v.reflectance; }, faces, warnings);
-    if (faces.polygons.empty()) r.fail(fPath, "\"" + v.file.string() + "\" has no usable face");
     v.polygons = std::move(faces.polygons);
-    return v;
 }
-
-}  // namespace
 
 EditFile loadEdit(const fs::path& file, const SceneFile& sf) {
     EditFile edit;

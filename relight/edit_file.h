@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "relight/obj_reader.h"
 #include "relight/scene_file.h"
 
 namespace relight {
@@ -71,6 +72,13 @@ EditFile loadEdit(const std::filesystem::path& file, const SceneFile& sf);
 /// against another scene).
 std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
                                 const std::vector<Rgb>& nominal);
+
+/// Places an object's geometry as loadEdit does: v.transform applied to `obj`'s positions
+/// (faces turned back under a mirroring transform), faces checked and repaired with
+/// v.name and v.reflectance, into v.polygons (empty when no usable face remains). The
+/// repairs' messages go to `warnings`. The viewer places its boxes with it, so that a
+/// saved edit loads to the same polygons.
+void placeObject(VirtualObject& v, ObjFile obj, std::vector<std::string>& warnings);
 
 /// Throws InputError("<file>: \"remove_objects\" is not supported yet ...") when the edit
 /// removes real objects, which this version cannot render; returns otherwise.

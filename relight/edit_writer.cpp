@@ -124,26 +124,29 @@ void writeEdit(const fs::path& file, const EditFile& edit) {
     writeJsonAtomic(file, editJson(edit, file.parent_path()));
 }
 
-void writeUnitBoxObj(const fs::path& file) {
+const char* unitBoxObjText() {
     // data/room/objects/box.obj's vertices and faces, divided by its 0.3 m side: the faces
     // are counter-clockwise seen from outside, so that the fronts (obj_reader.h) face out.
-    writeTextAtomic(file,
-                    "# unit cube, base centred on the origin at z = 0, fronts outward\n"
-                    "o box\n"
-                    "v -0.5 -0.5 1\n"
-                    "v -0.5 0.5 1\n"
-                    "v -0.5 0.5 0\n"
-                    "v -0.5 -0.5 0\n"
-                    "v 0.5 -0.5 0\n"
-                    "v 0.5 0.5 0\n"
-                    "v 0.5 0.5 1\n"
-                    "v 0.5 -0.5 1\n"
-                    "f 1 2 3 4\n"
-                    "f 5 6 7 8\n"
-                    "f 4 5 8 1\n"
-                    "f 2 7 6 3\n"
-                    "f 3 6 5 4\n"
-                    "f 1 8 7 2\n");
+    return "# unit cube, base centred on the origin at z = 0, fronts outward\n"
+           "o box\n"
+           "v -0.5 -0.5 1\n"
+           "v -0.5 0.5 1\n"
+           "v -0.5 0.5 0\n"
+           "v -0.5 -0.5 0\n"
+           "v 0.5 -0.5 0\n"
+           "v 0.5 0.5 0\n"
+           "v 0.5 0.5 1\n"
+           "v 0.5 -0.5 1\n"
+           "f 1 2 3 4\n"
+           "f 5 6 7 8\n"
+           "f 4 5 8 1\n"
+           "f 2 7 6 3\n"
+           "f 3 6 5 4\n"
+           "f 1 8 7 2\n";
+}
+
+void writeUnitBoxObj(const fs::path& file) {
+    writeTextAtomic(file, unitBoxObjText());
 }
 
 }  // namespace relight

@@ -32,5 +32,7 @@ void writeEdit(const std::filesystem::path& file, const EditFile& edit);
 /// a 0.3 m cube of the same layout). Atomic like writeEdit. A viewer scales and places it
 /// with the transform.
 void writeUnitBoxObj(const std::filesystem::path& file);
+/// The text writeUnitBoxObj() writes (a viewer parses it to place boxes in memory).
+const char* unitBoxObjText();
 
 }  // namespace relight

@@ -1,0 +1,322 @@
+#include "viewer/app.h"
+
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <functional>
+
+namespace relight::viewer {
+
+namespace {
+
+constexpr float kPanelWidth = 360.0f;  ///< window pixels
+
+enum class Tool { select, light, box };
+
+/// Where the photo is drawn in the window (window coordinates, y down): the area left of
+/// the panel, at the photo's aspect, centred.
+struct PhotoRect {
+    double x = 0, y = 0, w = 1, h = 1;
+    bool contains(double mx, double my) const {
+        return mx >= x && mx < x + w && my >= y && my < y + h;
+    }
+    /// Pixel coordinates in the photo (OpenCV: 0 is the centre of the first pixel).
+    void toPixel(double mx, double my, int photoW, int photoH, double& u, double& v) const {
+        u = (mx - x) / w * photoW - 0.5;
+        v = (my - y) / h * photoH - 0.5;
+    }
+};
+
+PhotoRect photoRect(int winW, int winH, int photoW, int photoH) {
+    const double areaW = std::max(1.0, winW - static_cast<double>(kPanelWidth));
+    const double s = std::min(areaW / photoW, static_cast<double>(winH) / photoH);
+    PhotoRect r;
+    r.w = photoW * s;
+    r.h = photoH * s;
+    r.x = 0.5 * (areaW - r.w);
+    r.y = 0.5 * (winH - r.h);
+    return r;
+}
+
+class App {
+  public:
+    App(GlWindow& window, Session& session, FrameRenderer& frame, const AppOptions& o)
+        : window_(window), session_(session), frame_(frame), windowShot_(o.windowShot) {
+        std::snprintf(savePath_, sizeof savePath_, "%s", o.saveFile.c_str());
+    }
+
+    void run();
+
+  private:
+    void panel();
+    void lightsPanel();
+    void objectsPanel();
+    void displayPanel();
+    void statsOverlay(const PhotoRect& r);
+    void mouse(const PhotoRect& r);
+    void act(const char* what, const std::function<void()>& f);
+
+    GlWindow& window_;
+    Session& session_;
+    FrameRenderer& frame_;
+    Tool tool_ = Tool::select;
+    char savePath_[1024] = {};
+    std::string status_;
+    FrameStats stats_;
+    double frameSeconds_ = 0, lastUpdate_ = 0;
+    bool wasDown_ = false;
+    double lastMx_ = -1, lastMy_ = -1;
+    std::string windowShot_;
+};
+
+/// The window's back buffer (sRGB-encoded bytes) as a linear image, rows from the top.
+Image readWindow(int w, int h) {
+    std::vector<unsigned char> bytes(static_cast<size_t>(w) * h * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    Image img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c)
+                img.at(x, h - 1 - y)[c] = static_cast<float>(
+                    srgbDecode(bytes[(static_cast<size_t>(y) * w + x) * 4 + c] / 255.0));
+    return img;
+}
+
+void App::act(const char* what, const std::function<void()>& f) {
+    // A failed action (a degenerate pick, a file that cannot be written) is a message in the
+    // panel, never the end of the session.
+    try {
+        f();
+    } catch (const std::exception& e) {
+        status_ = std::string(what) + " failed: " + e.what();
+        std::fprintf(stderr, "relight-viewer: %s\n", status_.c_str());
+    }
+}
+
+void App::lightsPanel() {
+    if (!ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    auto& lights = session_.lights();
+    int remove = -1;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        LightControl& l = lights[i];
+        ImGui::PushID(static_cast<int>(i));
+        const std::string label = l.name + (l.isVirtual ? " (virtual)" : "");
+        bool changed = ImGui::Checkbox(label.c_str(), &l.on);
+        if (l.isVirtual) {
+            ImGui::SameLine();
+            if (ImGui::SmallButton("remove")) remove = static_cast<int>(i);
+        }
+        float c[3] = {static_cast<float>(l.colour.r), static_cast<float>(l.colour.g),
+                      static_cast<float>(l.colour.b)};
+        if (ImGui::ColorEdit3("colour", c, ImGuiColorEditFlags_Float)) {
+            l.colour = Rgb{c[0], c[1], c[2]};
+            changed = true;
+        }
+        float intensity = static_cast<float>(l.intensity);
+        if (ImGui::SliderFloat("intensity", &intensity, 0.0f, 60.0f, "%.2f",
+                               ImGuiSliderFlags_Logarithmic)) {
+            l.intensity = std::max(0.0f, intensity);
+            changed = true;
+        }
+        if (changed) act("light change", [&] { session_.update(); });
+        ImGui::PopID();
+    }
+    if (remove >= 0) act("removing the light", [&] { session_.removeLight(remove); });
+}
+
+void App::objectsPanel() {
+    if (!ImGui::CollapsingHeader("Virtual parts", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (ImGui::RadioButton("move objects", tool_ == Tool::select)) tool_ = Tool::select;
+    ImGui::SameLine();
+    if (ImGui::RadioButton("add light", tool_ == Tool::light)) tool_ = Tool::light;
+    ImGui::SameLine();
+    if (ImGui::RadioButton("add box", tool_ == Tool::box)) tool_ = Tool::box;
+    ImGui::TextDisabled(tool_ == Tool::select  ? "drag an object over the surface it stands on"
+                        : tool_ == Tool::light ? "click a surface: a lamp on it"
+                                               : "click a surface: a box standing on it");
+    const auto& objects = session_.objects();
+    int remove = -1;
+    for (size_t i = 0; i < objects.size(); ++i) {
+        ImGui::PushID(1000 + static_cast<int>(i));
+        ImGui::TextUnformatted(objects[i].object.name.c_str());
+        ImGui::SameLine();
+        if (ImGui::SmallButton("remove")) remove = static_cast<int>(i);
+        const Rgb& rho = objects[i].object.reflectance;
+        float c[3] = {static_cast<float>(rho.r), static_cast<float>(rho.g),
+                      static_cast<float>(rho.b)};
+        ImGui::ColorEdit3("reflectance", c, ImGuiColorEditFlags_Float);
+        if (ImGui::IsItemDeactivatedAfterEdit()) {
+            // Below 1: a surface reflects less than it receives (edit_file.h).
+            const Rgb r{std::clamp(c[0], 0.0f, 0.99f), std::clamp(c[1], 0.0f, 0.99f),
+                        std::clamp(c[2], 0.0f, 0.99f)};
+            act("reflectance change", [&] { session_.setReflectance(static_cast<int>(i), r); });
+        }
+        ImGui::PopID();
+    }
+    if (remove >= 0) act("removing the object", [&] { session_.removeObject(remove); });
+}
+
+void App::displayPanel() {
+    if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    int fb = frame_.framebuffer == Framebuffer::float32 ? 0 : 1;
+    ImGui::RadioButton("float framebuffer", &fb, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("multipass 8-bit", &fb, 1);
+    frame_.framebuffer = fb == 0 ? Framebuffer::float32 : Framebuffer::multipass8;
+    float exposure = static_cast<float>(frame_.exposure);
+    if (ImGui::SliderFloat("exposure (stops)", &exposure, -4.0f, 4.0f, "%.1f"))
+        frame_.exposure = exposure;
+    int view = 0;
+    for (int i = 0; i < static_cast<int>(std::size(kViewKinds)); ++i)
+        if (kViewKinds[i] == frame_.view) view = i;
+    if (ImGui::BeginCombo("view", viewName(frame_.view))) {
+        for (int i = 0; i < static_cast<int>(std::size(kViewKinds)); ++i)
+            if (ImGui::Selectable(viewName(kViewKinds[i]), i == view)) frame_.view = kViewKinds[i];
+        ImGui::EndCombo();
+    }
+}
+
+void App::panel() {
+    int winW = 0, winH = 0;
+    glfwGetWindowSize(window_.handle(), &winW, &winH);
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(winW) - kPanelWidth, 0));
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(winH)));
+    ImGui::Begin("relight", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    lightsPanel();
+    objectsPanel();
+    displayPanel();
+    if (ImGui::CollapsingHeader("Save", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::InputText("file", savePath_, sizeof savePath_);
+        if (ImGui::Button("Save edit (relight-edit/1)"))
+            act("saving", [&] {
+                session_.save(savePath_);
+                status_ = std::string("saved ") + savePath_ +
+                          "; render it with: relight render <scene> --edit " + savePath_ +
+                          " -o out.png";
+            });
+    }
+    if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+    ImGui::End();
+}
+
+void App::statsOverlay(const PhotoRect& r) {
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(r.x) + 8, static_cast<float>(r.y) + 8));
+    ImGui::SetNextWindowBgAlpha(0.55f);
+    ImGui::Begin("stats", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings);
+    const PreparedImage& p = session_.prepared();
+    ImGui::Text("frame %.1f ms (%.0f fps)", 1e3 * frameSeconds_,
+                static_cast<double>(ImGui::GetIO().Framerate));
+    ImGui::Text("update %.1f ms, upload %.1f ms, draw %.1f ms", 1e3 * lastUpdate_,
+                1e3 * stats_.upload, 1e3 * stats_.draw);
+    ImGui::Text("leaves %d, links %zu, vertices %zu", p.leaves, session_.links(), p.vertexCount());
+    ImGui::Text("%dx%d, %s, %d pass%s", p.photo.width, p.photo.height,
+                frame_.framebuffer == Framebuffer::float32 ? "float" : "8-bit", stats_.passes,
+                stats_.passes == 1 ? "" : "es");
+    if (const FrameTimes* t = session_.dynamicTimes())
+        ImGui::Text("last part: shafts %.1f, rays %.1f, links %.1f, radiosity %.1f ms",
+                    1e3 * t->shafts, 1e3 * t->visibility, 1e3 * t->links, 1e3 * t->radiosity);
+    ImGui::End();
+}
+
+void App::mouse(const PhotoRect& r) {
+    GLFWwindow* w = window_.handle();
+    const bool down = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    double mx = 0, my = 0;
+    glfwGetCursorPos(w, &mx, &my);
+    const PreparedImage& p = session_.prepared();
+    double u = 0, v = 0;
+    r.toPixel(mx, my, p.photo.width, p.photo.height, u, v);
+    const bool pressed = down && !wasDown_;
+    const bool overUi = ImGui::GetIO().WantCaptureMouse;
+    if (pressed && !overUi && r.contains(mx, my)) {
+        const Pick pick = session_.pick(u, v);
+        if (!pick.hit)
+            status_ = "nothing there to click on";
+        else if (tool_ == Tool::light)
+            act("adding a light", [&] { session_.addLightAt(pick); });
+        else if (tool_ == Tool::box)
+            act("adding a box", [&] { session_.addBoxAt(pick); });
+        else if (pick.object >= 0)
+            act("picking the object", [&] { session_.beginDrag(pick.object, pick); });
+    }
+    if (down && session_.dragging() >= 0 && (mx != lastMx_ || my != lastMy_))
+        act("moving the object", [&] { session_.dragTo(u, v); });
+    if (!down && session_.dragging() >= 0) session_.endDrag();
+    wasDown_ = down;
+    lastMx_ = mx;
+    lastMy_ = my;
+}
+
+void App::run() {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window_.handle(), true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+    const PreparedImage& p = session_.prepared();
+    int lastGeneration = -1, frames = 0;
+    while (!glfwWindowShouldClose(window_.handle())) {
+        const double t0 = glfwGetTime();
+        glfwPollEvents();
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        int winW = 0, winH = 0, fbW = 0, fbH = 0;
+        glfwGetWindowSize(window_.handle(), &winW, &winH);
+        glfwGetFramebufferSize(window_.handle(), &fbW, &fbH);
+        const PhotoRect r = photoRect(winW, winH, p.photo.width, p.photo.height);
+        panel();
+        mouse(r);
+        statsOverlay(r);
+        if (session_.generation() != lastGeneration) {
+            lastUpdate_ = session_.updateSeconds();
+            lastGeneration = session_.generation();
+        }
+        act("drawing", [&] { stats_ = frame_.render(); });
+        ImGui::Render();
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, fbW, fbH);
+        glClearColor(0.12f, 0.12f, 0.12f, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        // Window coordinates (y down) to the framebuffer's pixels (y up; HiDPI scale).
+        const double sx = winW > 0 ? static_cast<double>(fbW) / winW : 1;
+        const double sy = winH > 0 ? static_cast<double>(fbH) / winH : 1;
+        frame_.present(static_cast<int>(std::lround(r.x * sx)),
+                       static_cast<int>(std::lround((winH - r.y - r.h) * sy)),
+                       static_cast<int>(std::lround(r.w * sx)),
+                       static_cast<int>(std::lround(r.h * sy)));
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        // A few frames first: ImGui lays its windows out over the first ones.
+        if (!windowShot_.empty() && ++frames >= 4) {
+            writeImage(windowShot_, readWindow(fbW, fbH));
+            std::printf("wrote %s (%dx%d)\n", windowShot_.c_str(), fbW, fbH);
+            break;
+        }
+        glfwSwapBuffers(window_.handle());
+        frameSeconds_ = glfwGetTime() - t0;
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+}  // namespace
+
+int runApp(GlWindow& window, Session& session, FrameRenderer& frame, const AppOptions& options) {
+    App app(window, session, frame, options);
+    app.run();
+    return 0;
+}
+
+}  // namespace relight::viewer

@@ -1,0 +1,120 @@
+#include "viewer/frame.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "radiosity/stopwatch.h"
+
+namespace relight::viewer {
+
+using radiosity::Clock;
+using radiosity::secondsSince;
+
+const char* viewName(ViewKind v) {
+    switch (v) {
+        case ViewKind::relit:
+            return "relit";
+        case ViewKind::mesh:
+            return "mesh";
+        case ViewKind::B:
+            return "B";
+        case ViewKind::D:
+            return "D";
+        case ViewKind::Torig:
+            return "T_orig";
+        case ViewKind::Tfinal:
+            return "T_final";
+        case ViewKind::reflectance:
+            return "reflectance";
+        case ViewKind::frontier:
+            return "frontier";
+    }
+    return "?";
+}
+
+ViewKind parseView(const std::string& name) {
+    std::string all;
+    for (ViewKind v : kViewKinds) {
+        if (name == viewName(v)) return v;
+        all += (all.empty() ? "" : ", ") + std::string(viewName(v));
+    }
+    throw std::invalid_argument("unknown view \"" + name + "\" (the views: " + all + ")");
+}
+
+FrameRenderer::FrameRenderer(Session& session, GpuRatioDisplay& display)
+    : session_(session), display_(display) {}
+
+const DebugViews& FrameRenderer::debugViews() {
+    // The views of the photo's own lighting: all but B do not depend on the edit (B is
+    // drawn on the GPU from the vertex irradiance with their bFactor).
+    if (!views_)
+        views_ = std::make_unique<DebugViews>(
+            computeDebugViews(session_.relighting(), session_.prepared().photoRadiance));
+    return *views_;
+}
+
+FrameStats FrameRenderer::render() {
+    const bool valuesChanged = session_.generation() != generation_;
+    const bool viewChanged = view != lastView_ || generation_ < 0;
+    drew_ = valuesChanged || viewChanged || framebuffer != lastFramebuffer_ ||
+            exposure != lastExposure_;
+    if (!drew_) return last_;
+    FrameStats s;
+    const auto t0 = Clock::now();
+    double gain = std::exp2(exposure);
+    if (view == ViewKind::relit || view == ViewKind::B) {
+        if (valuesChanged || viewChanged) {
+            display_.setVertexValues(view == ViewKind::B ? session_.vertexIrradiance()
+                                                         : session_.vertexRatios());
+            display_.setRadiance(session_.realRadiance());
+        }
+        if (valuesChanged) display_.setOverlay(session_.overlay());
+        if (view == ViewKind::B) {
+            if (viewChanged) display_.setBFactor(debugViews().bFactor);
+            gain *= debugViews().bdScale;
+        }
+    } else if (viewChanged) {
+        const DebugViews& v = debugViews();
+        const Image* img = nullptr;
+        switch (view) {
+            case ViewKind::mesh:
+                img = &v.mesh;
+                break;
+            case ViewKind::D:
+                img = &v.D;
+                break;
+            case ViewKind::Torig:
+                img = &v.Torig;
+                break;
+            case ViewKind::Tfinal:
+                img = v.Tfinal.width > 0 ? &v.Tfinal : &v.Torig;
+                break;
+            case ViewKind::reflectance:
+                img = &v.reflectance;
+                break;
+            case ViewKind::frontier:
+                img = v.frontier.width > 0 ? &v.frontier : &v.mesh;
+                break;
+            default:
+                break;
+        }
+        if (img) display_.setImage(*img);
+    }
+    if (view == ViewKind::D) gain *= debugViews().bdScale;
+    glFinish();
+    s.upload = secondsSince(t0);
+    const auto t1 = Clock::now();
+    const View gpuView =
+        view == ViewKind::relit ? View::relit : (view == ViewKind::B ? View::B : View::image);
+    s.passes = display_.draw(gpuView, framebuffer, static_cast<float>(gain));
+    glFinish();
+    s.draw = secondsSince(t1);
+    generation_ = session_.generation();
+    lastView_ = view;
+    lastFramebuffer_ = framebuffer;
+    lastExposure_ = exposure;
+    last_ = s;
+    return s;
+}
+
+}  // namespace relight::viewer

@@ -1,0 +1,64 @@
+// One frame of the viewer, without the window's interface: the session's values uploaded to
+// the GPU display when they changed, the photo area drawn. The interactive window
+// (viewer/app.h), the screenshots and the frame-time benchmark all draw through it, so the
+// benchmark times what the window does.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "relight/debug_views.h"
+#include "viewer/gpu_display.h"
+#include "viewer/session.h"
+
+namespace relight::viewer {
+
+/// What the photo area can show: the relit photo and the debug views.
+enum class ViewKind { relit, mesh, B, D, Torig, Tfinal, reflectance, frontier };
+inline constexpr ViewKind kViewKinds[] = {
+    ViewKind::relit, ViewKind::mesh,   ViewKind::B,           ViewKind::D,
+    ViewKind::Torig, ViewKind::Tfinal, ViewKind::reflectance, ViewKind::frontier};
+/// "relit", "mesh", "B", "D", "T_orig", "T_final", "reflectance", "frontier"
+const char* viewName(ViewKind v);
+/// The view named so; throws std::invalid_argument naming the choices otherwise.
+ViewKind parseView(const std::string& name);
+
+struct FrameStats {
+    double upload = 0;  ///< seconds: the session's values (overlay rays included) to the GPU
+    double draw = 0;    ///< seconds: the photo area drawn, glFinish included
+    int passes = 1;
+};
+
+class FrameRenderer {
+  public:
+    FrameRenderer(Session& session, GpuRatioDisplay& display);
+
+    ViewKind view = ViewKind::relit;
+    Framebuffer framebuffer = Framebuffer::float32;
+    double exposure = 0;  ///< stops
+
+    /// Uploads what changed since the last call and draws the photo area into the display's
+    /// offscreen target. Returns the times.
+    FrameStats render();
+    /// Draws the photo area into the current framebuffer's viewport (the window).
+    void present(int x, int y, int w, int h) { display_.present(x, y, w, h); }
+    /// The photo area as last drawn: linear values at the photo's size, exposure included.
+    Image read() { return display_.read(); }
+    /// Whether the last render() drew anything (values, view or settings changed).
+    bool drew() const { return drew_; }
+    /// The views that do not depend on the edit (computed once, on first use).
+    const DebugViews& debugViews();
+
+  private:
+    Session& session_;
+    GpuRatioDisplay& display_;
+    std::unique_ptr<DebugViews> views_;
+    int generation_ = -1;
+    ViewKind lastView_ = ViewKind::relit;
+    Framebuffer lastFramebuffer_ = Framebuffer::float32;
+    double lastExposure_ = 0;
+    bool drew_ = false;
+    FrameStats last_;
+};
+
+}  // namespace relight::viewer

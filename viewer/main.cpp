@@ -1,0 +1,175 @@
+// relight-viewer <scene_dir> [--edit edit.json] [--screenshot out.png|exr] [options]
+//
+// Opens the relit photo in a window with a panel of the lights and virtual parts
+// (viewer/app.h). With --screenshot it draws one frame (after --edit and the --do actions)
+// at the photo's resolution, writes it like `relight render` does (linear values; PNG: sRGB
+// transfer function, clipped to [0, 1], after --exposure stops) and exits.
+// --do runs what a click would, in order, for scripts and tests:
+//   light:U,V          a virtual light on the surface under photo pixel (U, V)
+//   box:U,V            a box standing on the surface under (U, V)
+//   drag:U0,V0:U1,V1   grabs the object under (U0, V0) and drags it to (U1, V1)
+// Errors (no display, no OpenGL 3.3, a scene or edit that does not load) print one clear
+// line and exit with 2 for bad input, 1 otherwise.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include "relight/edit_file.h"
+#include "relight/relighting.h"
+#include "relight/scene_file.h"
+#include "viewer/app.h"
+#include "viewer/frame.h"
+#include "viewer/gl_window.h"
+#include "viewer/session.h"
+
+using namespace relight;
+using namespace relight::viewer;
+
+namespace {
+
+struct Args {
+    std::string scene, edit, screenshot, saveEdit, framebuffer = "float", view = "relit";
+    std::vector<std::string> actions;
+    std::string windowShot;
+    double exposure = 0, epsilon = 1e-4;
+    int spp = 16;
+};
+
+/// "U,V" -> pixel coordinates; throws std::invalid_argument naming the action.
+void parsePoint(const std::string& text, const std::string& action, double& u, double& v) {
+    std::istringstream in(text);
+    char comma = 0;
+    if (!(in >> u >> comma >> v) || comma != ',' || !in.eof())
+        throw std::invalid_argument("--do " + action + ": \"" + text + "\" is not a pixel \"U,V\"");
+}
+
+void runAction(Session& s, const std::string& action) {
+    const auto colon = action.find(':');
+    const std::string kind = action.substr(0, colon);
+    const std::string rest = colon == std::string::npos ? "" : action.substr(colon + 1);
+    double u = 0, v = 0;
+    if (kind == "light" || kind == "box") {
+        parsePoint(rest, action, u, v);
+        const Pick p = s.pick(u, v);
+        if (!p.hit) throw std::invalid_argument("--do " + action + ": no surface at that pixel");
+        if (kind == "light")
+            s.addLightAt(p);
+        else
+            s.addBoxAt(p);
+    } else if (kind == "drag") {
+        const auto sep = rest.find(':');
+        if (sep == std::string::npos)
+            throw std::invalid_argument("--do " + action + ": expected drag:U0,V0:U1,V1");
+        double u1 = 0, v1 = 0;
+        parsePoint(rest.substr(0, sep), action, u, v);
+        parsePoint(rest.substr(sep + 1), action, u1, v1);
+        const Pick p = s.pick(u, v);
+        if (p.object < 0)
+            throw std::invalid_argument("--do " + action + ": no virtual object at " +
+                                        rest.substr(0, sep));
+        s.beginDrag(p.object, p);
+        // The pointer's path in steps of about a pixel, as a mouse would report it.
+        const int steps = std::max(1, static_cast<int>(std::hypot(u1 - u, v1 - v)));
+        for (int k = 1; k <= steps; ++k) {
+            const double f = static_cast<double>(k) / steps;
+            s.dragTo(u + f * (u1 - u), v + f * (v1 - v));
+        }
+        s.endDrag();
+    } else {
+        throw std::invalid_argument("--do " + action +
+                                    ": unknown action (light:U,V, box:U,V, drag:U0,V0:U1,V1)");
+    }
+}
+
+int run(const Args& a) {
+    // Everything that can fail fast does, before the preparation: the scene, the edit, the
+    // display and the OpenGL context.
+    const SceneFile sf = loadScene(a.scene);
+    EditFile edit;
+    if (!a.edit.empty()) {
+        edit = loadEdit(a.edit, sf);
+        requireRenderable(edit);
+    }
+    for (const std::string& w : edit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    const ViewKind view = parseView(a.view);
+    if (a.framebuffer != "float" && a.framebuffer != "multipass")
+        throw std::invalid_argument("--framebuffer must be float or multipass");
+    const bool interactive = a.screenshot.empty();
+    const int pw = sf.camera.width, ph = sf.camera.height;
+    // The photo at up to 3x, within 1600 x 1000 with the panel beside it.
+    const double zoom = std::max(1.0, std::min({3.0, 1240.0 / pw, 1000.0 / ph}));
+    GlWindow window(static_cast<int>(pw * zoom) + 360, static_cast<int>(ph * zoom),
+                    "relight-viewer " + a.scene, interactive);
+    std::fprintf(stderr, "relight-viewer: %s\n", window.renderer().c_str());
+
+    RelightOptions o;
+    o.epsilon = a.epsilon;
+    o.spp = a.spp;
+    o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
+    std::fprintf(stderr, "relight-viewer: preparing %s\n", a.scene.c_str());
+    const std::unique_ptr<Relighting> prepared = prepareRelighting(sf, o);
+    Session session(*prepared, edit);
+    for (const std::string& act : a.actions) runAction(session, act);
+    GpuRatioDisplay display(session.prepared());
+    FrameRenderer frame(session, display);
+    frame.view = view;
+    frame.framebuffer = a.framebuffer == "float" ? Framebuffer::float32 : Framebuffer::multipass8;
+    frame.exposure = a.exposure;
+    if (!a.saveEdit.empty() && !interactive) {
+        session.save(a.saveEdit);
+        std::printf("wrote %s\n", a.saveEdit.c_str());
+    }
+    if (!interactive) {
+        const FrameStats s = frame.render();
+        const Image img = frame.read();
+        writeImage(a.screenshot, img);  // exposure already applied by the display
+        std::printf("wrote %s (%dx%d, %s framebuffer, %d pass%s, draw %.1f ms)\n",
+                    a.screenshot.c_str(), img.width, img.height, a.framebuffer.c_str(), s.passes,
+                    s.passes == 1 ? "" : "es", 1e3 * s.draw);
+        return 0;
+    }
+    AppOptions ao;
+    if (!a.saveEdit.empty()) ao.saveFile = a.saveEdit;
+    ao.windowShot = a.windowShot;
+    return runApp(window, session, frame, ao);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"relight-viewer: relight a photographed room by hand (Loscos et al. 2000)"};
+    Args a;
+    app.add_option("scene_dir", a.scene, "scene folder holding scene.json")->required();
+    app.add_option("--edit", a.edit, "relight-edit/1 JSON file to start from");
+    app.add_option("--screenshot", a.screenshot,
+                   "draw one frame, write it (.png sRGB 8-bit, .exr linear) and exit");
+    app.add_option("--window-screenshot", a.windowShot,
+                   "open the window, write all of it (panel included) after a few frames, exit");
+    app.add_option("--exposure", a.exposure, "exposure in stops");
+    app.add_option("--framebuffer", a.framebuffer,
+                   "float (one pass) or multipass (8-bit, the paper's §5.3 passes)");
+    app.add_option("--view", a.view, "relit, mesh, B, D, T_orig, T_final, reflectance or frontier");
+    app.add_option("--do", a.actions, "light:U,V | box:U,V | drag:U0,V0:U1,V1 (in order)");
+    app.add_option("--save-edit", a.saveEdit,
+                   "with --screenshot: write the session's edit here; else the panel's default");
+    app.add_option("--epsilon", a.epsilon, "BF refinement threshold")->check(CLI::PositiveNumber);
+    app.add_option("--spp", a.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
+    CLI11_PARSE(app, argc, argv);
+    try {
+        return run(a);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "relight-viewer: error: %s\n", e.what());
+        return 2;
+    } catch (const WindowError& e) {
+        std::fprintf(stderr, "relight-viewer: error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "relight-viewer: error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,362 @@
+#include "viewer/session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include "radiosity/stopwatch.h"
+#include "relight/edit_writer.h"
+
+namespace relight::viewer {
+
+namespace fs = std::filesystem;
+using radiosity::Clock;
+using radiosity::secondsSince;
+
+namespace {
+
+/// A unit vector perpendicular to n: the world x axis made perpendicular (y when n is
+/// nearly x), so that a box on a floor is aligned with the room's axes.
+Vec3 tangentOf(const Vec3& n) {
+    const Vec3 a = std::abs(n.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+    return glm::normalize(a - n * glm::dot(a, n));
+}
+
+/// "V3": with snprintf, as GCC 12 warns wrongly (-Wrestrict) on "V" + std::to_string(3).
+std::string numbered(const char* prefix, int n) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%d", prefix, n);
+    return buf;
+}
+
+ObjFile unitBox() {
+    std::istringstream in(unitBoxObjText());
+    return parseObj(in, "unit box");
+}
+
+}  // namespace
+
+void LightControl::setRadiance(const Rgb& radiance) {
+    intensity = std::max({radiance.r, radiance.g, radiance.b, 0.0});
+    colour = intensity > 0 ? radiance * (1.0 / intensity) : Rgb{1, 1, 1};
+    on = true;
+}
+
+Session::Session(Relighting& r, const EditFile& edit) : r_(&r) {
+    if (!r_->solver) throw std::invalid_argument("Session: the relighting is not prepared");
+    const SceneFile& sf = r_->scene;
+    realLights_ = static_cast<int>(sf.scene.lights.size());
+    realPolygons_ = r_->solver->scene().polygons.size();
+    const auto b = r_->solver->scene().bounds();
+    diagonal_ = std::max(glm::length(b.hi - b.lo), 1e-3);
+    const std::vector<Rgb> radiance = editRadiance(sf, edit, r_->prepared.photoRadiance);
+    for (int l = 0; l < realLights_; ++l) {
+        LightControl c;
+        c.name = sf.scene.lights[static_cast<size_t>(l)].name;
+        c.setRadiance(radiance[static_cast<size_t>(l)]);
+        // A light that is off keeps its nominal colour and strength for when it goes on.
+        if (!(radiance[static_cast<size_t>(l)].maxComponent() > 0)) {
+            c.setRadiance(r_->prepared.photoRadiance[static_cast<size_t>(l)].maxComponent() > 0
+                              ? r_->prepared.photoRadiance[static_cast<size_t>(l)]
+                              : sf.scene.lights[static_cast<size_t>(l)].radiance);
+            c.on = false;
+        }
+        lights_.push_back(c);
+    }
+    for (const VirtualLight& v : edit.addLights) {
+        LightControl c;
+        c.name = v.name;
+        c.isVirtual = true;
+        c.face = v;
+        c.setRadiance(v.radiance);
+        lights_.push_back(c);
+    }
+    for (const VirtualObject& o : edit.addObjects) {
+        ObjectControl c;
+        c.object = o;
+        c.geometry = readObj(o.file);
+        objects_.push_back(std::move(c));
+    }
+    stale_ = true;
+    update();
+}
+
+Session::~Session() {
+    dyn_.reset();  // takes the virtual parts out of the relighting's solver
+}
+
+void Session::rebuild() {
+    dyn_.reset();
+    objectPolygons_.clear();
+    const std::vector<Rgb> real = realRadiance();
+    if (hasVirtualParts()) {
+        dyn_ = std::make_unique<DynamicRelighting>(*r_, real);
+        for (size_t l = static_cast<size_t>(realLights_); l < lights_.size(); ++l) {
+            VirtualLight v = lights_[l].face;
+            v.radiance = lights_[l].radiance();
+            dyn_->addLight(v);
+        }
+        for (const ObjectControl& o : objects_) {
+            const size_t first = r_->solver->scene().polygons.size();
+            dyn_->addObject(o.object);
+            objectPolygons_.emplace_back(first, r_->solver->scene().polygons.size());
+        }
+    }
+    stale_ = false;
+}
+
+void Session::update() {
+    const auto t0 = Clock::now();
+    std::vector<Rgb> now;
+    for (const LightControl& l : lights_) now.push_back(l.radiance());
+    bool radianceChanged = now.size() != applied_.size();
+    for (size_t i = 0; !radianceChanged && i < now.size(); ++i)
+        radianceChanged = !(now[i] == applied_[i]);
+    if (!stale_ && !radianceChanged) return;
+    // Without virtual parts a radiance change is the superposition path: nothing to solve.
+    if (stale_ || (radianceChanged && hasVirtualParts())) rebuild();
+    applied_ = now;
+    updateSeconds_ = secondsSince(t0);
+    changed();
+}
+
+void Session::setReflectance(int i, const Rgb& reflectance) {
+    ObjectControl& o = objects_.at(static_cast<size_t>(i));
+    for (int c = 0; c < 3; ++c)
+        if (!(reflectance[c] >= 0 && reflectance[c] < 1))
+            throw std::invalid_argument("a reflectance must be in [0, 1)");
+    o.object.reflectance = reflectance;
+    std::vector<std::string> warnings;
+    placeObject(o.object, o.geometry, warnings);
+    stale_ = true;
+    update();
+}
+
+Pick Session::pick(double u, double v) const {
+    const Camera& camera = r_->scene.camera;
+    const Vec3 eye = camera.position();
+    const Vec3 dir = camera.rayDirection(u, v);
+    const auto hit = r_->solver->visibility().intersect(eye, dir);
+    Pick p;
+    const auto& polygons = r_->solver->scene().polygons;
+    if (hit.polygon < 0 || hit.polygon >= static_cast<int>(polygons.size())) return p;
+    p.hit = true;
+    p.point = eye + hit.t * dir;
+    p.normal = polygons[static_cast<size_t>(hit.polygon)].normal;
+    if (glm::dot(p.normal, dir) > 0) p.normal = -p.normal;
+    for (size_t i = 0; i < objectPolygons_.size(); ++i)
+        if (static_cast<size_t>(hit.polygon) >= objectPolygons_[i].first &&
+            static_cast<size_t>(hit.polygon) < objectPolygons_[i].second)
+            p.object = static_cast<int>(i);
+    return p;
+}
+
+void Session::addLightAt(const Pick& p) {
+    if (!p.hit) return;
+    const auto& scene = r_->solver->scene();
+    // The scene's own lights give the size and strength of a lamp in this room.
+    double area = 0;
+    int faces = 0;
+    Rgb radiance;
+    int lit = 0;
+    for (int l = 0; l < realLights_; ++l) {
+        const auto& light = scene.lights[static_cast<size_t>(l)];
+        for (int poly : light.polygons) area += scene.polygons[static_cast<size_t>(poly)].area;
+        faces += light.polygons.empty() ? 0 : 1;
+        const Rgb L = r_->prepared.photoRadiance[static_cast<size_t>(l)];
+        if (L.maxComponent() > 0) {
+            radiance += L;
+            ++lit;
+        }
+    }
+    const double side = faces > 0 && area > 0 ? std::sqrt(area / faces) : 0.05 * diagonal_;
+    radiance = lit > 0 ? radiance * (1.0 / lit) : Rgb{10, 10, 10};
+    const Vec3 n = glm::normalize(p.normal);
+    const Vec3 t = tangentOf(n);
+    const Vec3 b = glm::cross(n, t);
+    const Vec3 c = p.point + n * std::max(0.005, 0.02 * side);
+    const double h = 0.5 * side;
+    LightControl l;
+    do {
+        l.name = numbered("V", nextLight_++);
+    } while (std::any_of(lights_.begin(), lights_.end(),
+                         [&](const LightControl& o) { return o.name == l.name; }));
+    l.isVirtual = true;
+    // Counter-clockwise seen from the side it emits to: (v1 - v0) x (v2 - v0) along n.
+    l.face.name = l.name;
+    l.face.corners = {c + (-t - b) * h, c + (t - b) * h, c + (t + b) * h, c + (-t + b) * h};
+    l.setRadiance(radiance);
+    l.face.radiance = radiance;
+    const bool appendable = dyn_ && !stale_ && objects_.empty();
+    lights_.push_back(l);
+    if (appendable) {
+        dyn_->addLight(l.face);
+        applied_.push_back(l.radiance());
+        changed();
+    } else {
+        stale_ = true;
+        update();
+    }
+}
+
+void Session::addBoxAt(const Pick& p) {
+    if (!p.hit) return;
+    ObjectControl o;
+    do {
+        o.object.name = numbered("box", nextBox_++);
+    } while (std::any_of(objects_.begin(), objects_.end(),
+                         [&](const ObjectControl& x) { return x.object.name == o.object.name; }));
+    o.viewerBox = true;
+    o.geometry = unitBox();
+    o.object.reflectance = Rgb{0.7, 0.2, 0.2};
+    const double s = 0.06 * diagonal_;
+    const Vec3 z = glm::normalize(p.normal);
+    const Vec3 x = tangentOf(z);
+    const Vec3 y = glm::cross(z, x);
+    for (int i = 0; i < 3; ++i) {
+        o.object.transform[static_cast<size_t>(i)] = {x[i] * s, y[i] * s, z[i] * s, p.point[i]};
+    }
+    o.object.transform[3] = {0, 0, 0, 1};
+    std::vector<std::string> warnings;
+    placeObject(o.object, o.geometry, warnings);
+    const bool appendable = dyn_ && !stale_;
+    objects_.push_back(std::move(o));
+    if (appendable) {
+        const size_t first = r_->solver->scene().polygons.size();
+        dyn_->addObject(objects_.back().object);
+        objectPolygons_.emplace_back(first, r_->solver->scene().polygons.size());
+        changed();
+    } else {
+        stale_ = true;
+        update();
+    }
+}
+
+void Session::beginDrag(int i, const Pick& p) {
+    if (i < 0 || i >= static_cast<int>(objects_.size()) || !p.hit) return;
+    // Only the part added last moves incrementally: put this object at the end.
+    if (i != static_cast<int>(objects_.size()) - 1) {
+        std::rotate(objects_.begin() + i, objects_.begin() + i + 1, objects_.end());
+        stale_ = true;
+        update();
+    }
+    dragging_ = static_cast<int>(objects_.size()) - 1;
+    grab_ = p.point;
+    const auto& M = objects_.back().object.transform;
+    dragUp_ = glm::normalize(Vec3(M[0][2], M[1][2], M[2][2]));
+}
+
+bool Session::dragTo(double u, double v) {
+    if (dragging_ < 0 || !dyn_) return false;
+    const auto t0 = Clock::now();
+    const Camera& camera = r_->scene.camera;
+    const Vec3 eye = camera.position();
+    const Vec3 dir = camera.rayDirection(u, v);
+    const double denom = glm::dot(dir, dragUp_);
+    if (std::abs(denom) < 1e-9) return false;  // the ray runs along the plane
+    const double t = glm::dot(grab_ - eye, dragUp_) / denom;
+    if (!(t > 0) || !std::isfinite(t)) return false;  // the plane is behind the camera
+    const Vec3 q = eye + t * dir;
+    const Vec3 delta = q - grab_;
+    grab_ = q;
+    ObjectControl& o = objects_.back();
+    for (int i = 0; i < 3; ++i) o.object.transform[static_cast<size_t>(i)][3] += delta[i];
+    std::vector<std::string> warnings;
+    placeObject(o.object, o.geometry, warnings);
+    dyn_->moveLastObject(o.object.polygons);
+    updateSeconds_ = secondsSince(t0);
+    changed();
+    return true;
+}
+
+void Session::removeLight(int i) {
+    if (i < realLights_ || i >= static_cast<int>(lights_.size())) return;
+    const bool last = objects_.empty() && i == static_cast<int>(lights_.size()) - 1;
+    lights_.erase(lights_.begin() + i);
+    if (last && dyn_ && !stale_) {
+        dyn_->removeLast();
+        applied_.erase(applied_.begin() + i);
+        if (!hasVirtualParts()) dyn_.reset();
+        changed();
+    } else {
+        stale_ = true;
+        update();
+    }
+}
+
+void Session::removeObject(int i) {
+    if (i < 0 || i >= static_cast<int>(objects_.size())) return;
+    const bool last = i == static_cast<int>(objects_.size()) - 1;
+    objects_.erase(objects_.begin() + i);
+    dragging_ = -1;
+    if (last && dyn_ && !stale_) {
+        dyn_->removeLast();
+        objectPolygons_.pop_back();
+        if (!hasVirtualParts()) dyn_.reset();
+        changed();
+    } else {
+        stale_ = true;
+        update();
+    }
+}
+
+std::vector<Rgb> Session::realRadiance() const {
+    std::vector<Rgb> out;
+    for (int l = 0; l < realLights_; ++l) out.push_back(lights_[static_cast<size_t>(l)].radiance());
+    return out;
+}
+
+std::vector<Rgb> Session::vertexIrradiance() const {
+    if (dyn_) return dyn_->vertexIrradiance();
+    return relight::vertexIrradiance(r_->prepared, realRadiance());
+}
+
+std::vector<Rgb> Session::vertexRatios() const {
+    if (dyn_) return dyn_->vertexRatios();
+    return vertexRatio(r_->prepared, relight::vertexIrradiance(r_->prepared, realRadiance()));
+}
+
+VirtualOverlay Session::overlay() {
+    return dyn_ ? dyn_->overlay() : VirtualOverlay{};
+}
+
+fs::path Session::boxObjFile(const fs::path& editFile) {
+    return editFile.parent_path() / (editFile.stem().string() + ".box.obj");
+}
+
+EditFile Session::edit(const fs::path& editFile) const {
+    EditFile e;
+    e.file = editFile;
+    for (int l = 0; l < realLights_; ++l) {
+        const LightControl& c = lights_[static_cast<size_t>(l)];
+        LightEdit le;
+        if (c.on)
+            le.radiance = c.radiance();
+        else
+            le.scale = 0.0;
+        e.lights[c.name] = le;
+    }
+    for (size_t l = static_cast<size_t>(realLights_); l < lights_.size(); ++l) {
+        VirtualLight v = lights_[l].face;
+        v.radiance = lights_[l].radiance();
+        e.addLights.push_back(v);
+    }
+    for (const ObjectControl& o : objects_) {
+        VirtualObject v = o.object;
+        if (o.viewerBox) v.file = boxObjFile(editFile);
+        e.addObjects.push_back(v);
+    }
+    return e;
+}
+
+void Session::save(const fs::path& editFile) const {
+    const EditFile e = edit(editFile);
+    if (std::any_of(objects_.begin(), objects_.end(),
+                    [](const ObjectControl& o) { return o.viewerBox; }))
+        writeUnitBoxObj(boxObjFile(editFile));
+    writeEdit(editFile, e);
+}
+
+}  // namespace relight::viewer

@@ -1,0 +1,143 @@
+// A viewer session: the edit a user builds by hand, and what the display needs of it.
+//
+// The session owns the prepared relighting (relight/relighting.h) and the lights' and
+// virtual parts' controls. Without virtual parts a light change is the superposition path
+// (relight/prepared.h: B(v) = sum_l L_l h_l(v), a weighted sum per vertex). With virtual
+// parts the solver holds them (relight/dynamic_relighting.h): the part added last is
+// moved or removed incrementally (a drag is moveLastObject); any other change (a radiance,
+// a part that is not the last) inserts the parts again from the prepared solver, in the
+// order `relight render` inserts an edit's parts (virtual lights, then objects, each in
+// list order), so that a saved edit renders to the image on the screen.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "relight/dynamic_relighting.h"
+#include "relight/edit_file.h"
+#include "relight/obj_reader.h"
+#include "relight/relighting.h"
+
+namespace relight::viewer {
+
+using radiosity::Rgb;
+using radiosity::Vec3;
+
+/// One light of the panel: a real light of the scene or a virtual one.
+struct LightControl {
+    std::string name;
+    bool isVirtual = false;
+    bool on = true;
+    Rgb colour{1, 1, 1};   ///< the radiance's colour, brightest channel 1
+    double intensity = 0;  ///< the radiance's brightest channel when on
+    VirtualLight face;     ///< virtual lights: the emitting face (its radiance unused)
+    Rgb radiance() const { return on ? colour * intensity : Rgb{}; }
+    /// Sets colour and intensity from a radiance (black: white at intensity 0).
+    void setRadiance(const Rgb& radiance);
+};
+
+/// One virtual object.
+struct ObjectControl {
+    VirtualObject object;    ///< file, reflectance, transform and placed polygons
+    ObjFile geometry;        ///< its OBJ before the transform (to place it again)
+    bool viewerBox = false;  ///< made in the viewer: saved with a unit box OBJ beside the edit
+};
+
+/// What the camera ray through a pixel hits.
+struct Pick {
+    bool hit = false;
+    Vec3 point{0, 0, 0};
+    Vec3 normal{0, 0, 1};  ///< of the face hit, turned towards the camera
+    int object = -1;       ///< the virtual object hit, or -1
+};
+
+class Session {
+  public:
+    /// `r` from prepareRelighting(), which must outlive the session (the session inserts
+    /// its virtual parts into r's solver and takes them out again when it ends); `edit`
+    /// loaded against r.scene (its removals refused before: requireRenderable). The edit's
+    /// parts are inserted at once.
+    Session(Relighting& r, const EditFile& edit);
+    ~Session();
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+    const Relighting& relighting() const { return *r_; }
+    const PreparedImage& prepared() const { return r_->prepared; }
+
+    /// Real lights (scene order), then virtual lights. After changing one, call update().
+    std::vector<LightControl>& lights() { return lights_; }
+    const std::vector<ObjectControl>& objects() const { return objects_; }
+    int realLights() const { return realLights_; }
+
+    /// Brings the solution up to date with the lights' controls (a no-op when nothing
+    /// changed). Changes the generation when the display values change.
+    void update();
+    /// Sets object i's reflectance (inserted again).
+    void setReflectance(int i, const Rgb& reflectance);
+
+    /// What the camera ray through pixel (u, v) hits (OpenCV pixel coordinates).
+    Pick pick(double u, double v) const;
+    /// A virtual quad light on the face picked, facing out of it: the size of the scene's
+    /// lights (their mean area), their mean radiance, a few millimetres off the face.
+    void addLightAt(const Pick& p);
+    /// A virtual box standing on the face picked (its base on the face, its up the face's
+    /// normal), 6 % of the scene's diagonal on a side, reflectance 0.7, 0.2, 0.2.
+    void addBoxAt(const Pick& p);
+    /// Starts dragging object i, grabbed at p (the object becomes the part added last).
+    void beginDrag(int i, const Pick& p);
+    /// Moves the dragged object so that the grabbed point follows the camera ray through
+    /// (u, v) in the plane of the object's base. False when that ray misses the plane.
+    bool dragTo(double u, double v);
+    void endDrag() { dragging_ = -1; }
+    int dragging() const { return dragging_; }
+    void removeLight(int i);  ///< a virtual light (index into lights())
+    void removeObject(int i);
+
+    /// Changes whenever what the display shows changes.
+    int generation() const { return generation_; }
+    /// The display ratio k H/D per leaf vertex; the irradiance H per leaf vertex.
+    std::vector<Rgb> vertexRatios() const;
+    std::vector<Rgb> vertexIrradiance() const;
+    std::vector<Rgb> realRadiance() const;
+    /// The virtual parts' overlay box (empty without virtual parts); casts rays.
+    VirtualOverlay overlay();
+
+    /// The edit as it stands, to be written to `editFile`: every real light by radiance
+    /// (off: scale 0), the virtual lights, the objects (the viewer's boxes refer to the unit
+    /// box OBJ boxObjFile(editFile)).
+    EditFile edit(const std::filesystem::path& editFile) const;
+    /// Writes edit(editFile) and, when there are boxes, the unit box OBJ beside it.
+    void save(const std::filesystem::path& editFile) const;
+    static std::filesystem::path boxObjFile(const std::filesystem::path& editFile);
+
+    /// Seconds of the last update (solver and vertex values) and its parts.
+    double updateSeconds() const { return updateSeconds_; }
+    const FrameTimes* dynamicTimes() const { return dyn_ ? &dyn_->times() : nullptr; }
+    size_t links() const { return r_->solver->links().size(); }
+
+  private:
+    void rebuild();  ///< inserts every virtual part again, in render's order
+    void changed() { ++generation_; }
+    bool hasVirtualParts() const {
+        return lights_.size() > static_cast<size_t>(realLights_) || !objects_.empty();
+    }
+
+    Relighting* r_;
+    std::unique_ptr<DynamicRelighting> dyn_;
+    std::vector<LightControl> lights_;
+    std::vector<ObjectControl> objects_;
+    std::vector<std::pair<size_t, size_t>> objectPolygons_;  ///< per object: its polygons
+    std::vector<Rgb> applied_;  ///< radiances the solution was computed for
+    bool stale_ = false;        ///< the parts changed in a way only rebuild() follows
+    int realLights_ = 0;
+    size_t realPolygons_ = 0;
+    double diagonal_ = 1;  ///< of the scene's bounding box (metres)
+    int generation_ = 0, dragging_ = -1, nextLight_ = 1, nextBox_ = 1;
+    Vec3 grab_{0, 0, 0}, dragUp_{0, 0, 1};
+    double updateSeconds_ = 0;
+};
+
+}  // namespace relight::viewer
