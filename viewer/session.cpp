@@ -271,6 +271,13 @@ bool Session::dragTo(double u, double v) {
     return true;
 }
 
+void Session::endDrag() {
+    if (dragging_ < 0) return;
+    dragging_ = -1;
+    stale_ = true;
+    update();
+}
+
 void Session::removeLight(int i) {
     if (i < realLights_ || i >= static_cast<int>(lights_.size())) return;
     const bool last = objects_.empty() && i == static_cast<int>(lights_.size()) - 1;

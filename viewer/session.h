@@ -91,7 +91,11 @@ class Session {
     /// Moves the dragged object so that the grabbed point follows the camera ray through
     /// (u, v) in the plane of the object's base. False when that ray misses the plane.
     bool dragTo(double u, double v);
-    void endDrag() { dragging_ = -1; }
+    /// Ends the drag. The object's last position is inserted again from the prepared
+    /// solver, as `relight render` inserts it: the incremental moves of the drag agree with
+    /// a fresh insertion to about 1e-5 (bench/move_box), the resting image exactly, so that
+    /// a saved edit renders to what the window shows.
+    void endDrag();
     int dragging() const { return dragging_; }
     void removeLight(int i);  ///< a virtual light (index into lights())
     void removeObject(int i);

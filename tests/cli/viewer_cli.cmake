@@ -1,0 +1,93 @@
+# relight-viewer end to end, under a virtual X server with Mesa's llvmpipe:
+#  - the screenshot of each room light edit is `relight render`'s PNG within one 8-bit step
+#    (the GPU sums in float what the CPU sums in double: only values within about 1e-6 of a
+#    rounding boundary change, by one step; tests/viewer/viewer_test.cpp bounds the rest);
+#  - a session built by clicks (a light, a box, a drag) saved as an edit renders through
+#    `relight render` to the viewer's screenshot within the same step;
+#  - the window with its panel opens and draws;
+#  - clear messages and no output for a missing display, an OpenGL older than 3.3, a scene
+#    or edit that does not load, a bad --do.
+# Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=data/room -DWORK=... -P this
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
+foreach(var VIEWER XVFB_RUN)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "define ${var}")
+  endif()
+endforeach()
+find_program(IDIFF idiff REQUIRED)
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+set(cache "${WORK}/prepared.bin")
+
+# Runs the viewer under xvfb-run; stdout and stderr to `out`.
+function(viewer out expected_rc)
+  execute_process(COMMAND "${XVFB_RUN}" -a -s "-screen 0 1280x1024x24" "${VIEWER}" ${ARGN}
+                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
+  if(NOT rc EQUAL expected_rc)
+    message(FATAL_ERROR "relight-viewer ${ARGN}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
+  endif()
+  set(${out} "${o}${e}" PARENT_SCOPE)
+endfunction()
+
+# One 8-bit step is 1/255 = 0.00392: idiff fails on any pixel further apart than 0.004.
+function(same_within_one_step a b what)
+  execute_process(COMMAND "${IDIFF}" -fail 0.004 -failpercent 0 "${a}" "${b}"
+                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what}: ${a} and ${b} differ by more than one 8-bit step\n${o}${e}")
+  endif()
+endfunction()
+
+foreach(edit identity back_off left_off_right_double right_off_left_double colours)
+  relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/${edit}.json" -o "${WORK}/${edit}_render.png"
+          --cache "${cache}")
+  viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/${edit}.json" --screenshot "${WORK}/${edit}_viewer.png")
+  expect("${o}" "wrote .*${edit}_viewer.png \\(320x240, float framebuffer" "screenshot ${edit}")
+  same_within_one_step("${WORK}/${edit}_viewer.png" "${WORK}/${edit}_render.png" "edit ${edit}")
+endforeach()
+
+# A session by clicks: a lamp on the ceiling, a box on the floor dragged 60 pixels along it.
+set(saved "${WORK}/saved/session.json")
+file(MAKE_DIRECTORY "${WORK}/saved")
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --do light:200,20 --do box:90,200
+       --do drag:90,195:150,210 --save-edit "${saved}" --screenshot "${WORK}/session_viewer.png")
+file(READ "${saved}" json)
+expect("${json}" "\"add_lights\"" "saved session")
+expect("${json}" "\"file\": \"session.box.obj\"" "saved session")
+if(NOT EXISTS "${WORK}/saved/session.box.obj")
+  message(FATAL_ERROR "the saved session's box OBJ is missing")
+endif()
+relight(o 0 render "${SCENE}" --edit "${saved}" -o "${WORK}/session_render.png" --cache "${cache}")
+expect("${o}" "inserted object box1" "render of the saved session")
+same_within_one_step("${WORK}/session_viewer.png" "${WORK}/session_render.png" "saved session")
+
+# The window itself, panel included.
+viewer(o 0 "${SCENE}" --window-screenshot "${WORK}/window.png")
+expect("${o}" "wrote .*window.png \\([0-9]+x[0-9]+\\)" "window screenshot")
+
+# Failures: a message, a non-zero exit code, and an existing output left as it was.
+file(WRITE "${WORK}/keep.png" "not an image, and it must stay so")
+execute_process(COMMAND "${CMAKE_COMMAND}" -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY
+                        "${VIEWER}" "${SCENE}" --screenshot "${WORK}/keep.png"
+                ERROR_VARIABLE e RESULT_VARIABLE rc)
+if(rc EQUAL 0 OR NOT e MATCHES "no display: DISPLAY is not set")
+  message(FATAL_ERROR "without a display: exit code ${rc}, message:\n${e}")
+endif()
+execute_process(COMMAND "${CMAKE_COMMAND}" -E env MESA_GL_VERSION_OVERRIDE=3.0
+                        "${XVFB_RUN}" -a "${VIEWER}" "${SCENE}" --screenshot "${WORK}/keep.png"
+                ERROR_VARIABLE e RESULT_VARIABLE rc)
+if(rc EQUAL 0 OR NOT e MATCHES "no OpenGL 3.3 core context")
+  message(FATAL_ERROR "with OpenGL 3.0 only: exit code ${rc}, message:\n${e}")
+endif()
+viewer(o 2 "${WORK}/no_such_scene" --screenshot "${WORK}/keep.png")
+expect("${o}" "no_such_scene/scene.json" "missing scene")
+file(WRITE "${WORK}/bad_edit.json" "{\"format\": \"relight-edit/1\", \"lights\": {\"Q\": {\"scale\": 2}}}")
+viewer(o 2 "${SCENE}" --edit "${WORK}/bad_edit.json" --screenshot "${WORK}/keep.png")
+expect("${o}" "bad_edit.json: key \"lights.Q\"" "bad edit")
+viewer(o 1 "${SCENE}" --do light:abc --screenshot "${WORK}/keep.png")
+expect("${o}" "--do light:abc" "bad action")
+file(READ "${WORK}/keep.png" kept)
+if(NOT kept STREQUAL "not an image, and it must stay so")
+  message(FATAL_ERROR "a failed run changed an existing output file")
+endif()
+message(STATUS "viewer end to end: all checks passed")

@@ -1,0 +1,224 @@
+// The viewer's GPU display against the CPU display of `relight render`, under Xvfb with
+// Mesa's llvmpipe (tests/CMakeLists.txt runs this program through xvfb-run).
+//
+// Images are compared as the PNG files both write them: 8-bit sRGB of the linear value
+// clipped to [0, 1] (relight/image.h). Tolerances, in 8-bit steps:
+//  - GPU float vs CPU: 1 step. Both compute the same sums (display map weights times the
+//    vertex ratios); the GPU in float, the CPU in double, so values differ by about 1e-6
+//    relative, which changes the 8-bit code only where a value lies that close to a rounding
+//    boundary: by one step.
+//  - multipass 8-bit vs float: n steps for n passes, on the pixels that see no lamp face.
+//    Each pass's blend rounds once in the sRGB target (n half steps), the 8-bit texel's half
+//    step is scaled by the ratio, at most n (n half steps more), and the float image rounds
+//    once when written (half a step): n + 1/2 in all, so at most n whole steps between the
+//    codes. Pixels that see a lamp's face are excluded: there the display keeps a signed
+//    T_rest that an 8-bit texture cannot hold (relight/ratio_display.h).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "relight/debug_views.h"
+#include "relight/edit_file.h"
+#include "relight/multipass.h"
+#include "relight/relighting.h"
+#include "viewer/frame.h"
+#include "viewer/gl_window.h"
+#include "viewer/gpu_display.h"
+#include "viewer/session.h"
+
+namespace relight::viewer {
+namespace {
+
+const std::string kRoom = RELIGHT_DATA_DIR "/room";
+const char* kLightEdits[] = {"identity", "back_off", "left_off_right_double",
+                             "right_off_left_double", "colours"};
+
+int code8(float v) {
+    return static_cast<int>(std::lround(255.0 * srgbEncode(std::clamp(v, 0.0f, 1.0f))));
+}
+
+/// Largest difference of the 8-bit codes over the pixels `keep` accepts, and how many
+/// pixels differ at all.
+template <class Keep>
+int maxStepDifference(const Image& a, const Image& b, Keep keep, int* differing = nullptr) {
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    int worst = 0, count = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            if (!keep(y * a.width + x)) continue;
+            int d = 0;
+            for (int c = 0; c < 3; ++c)
+                d = std::max(d, std::abs(code8(a.at(x, y)[c]) - code8(b.at(x, y)[c])));
+            worst = std::max(worst, d);
+            count += d > 0 ? 1 : 0;
+        }
+    if (differing) *differing = count;
+    return worst;
+}
+
+const auto kAllPixels = [](int) { return true; };
+
+class ViewerGpu : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+        // A hidden window: this needs a display (xvfb-run); without one the suite fails
+        // with WindowError's message rather than skipping.
+        window_ = new GlWindow(64, 64, "viewer_test", false);
+        RelightOptions o;  // coarse: what is compared holds at any setting
+        o.epsilon = 1e-3;
+        o.spp = 4;
+        o.reflectanceRounds = 3;
+        relighting_ = prepareRelighting(loadScene(kRoom), o).release();
+    }
+    static void TearDownTestSuite() {
+        delete relighting_;
+        delete window_;
+    }
+    static EditFile edit(const std::string& name) {
+        return loadEdit(kRoom + "/edits/" + name + ".json", relighting_->scene);
+    }
+
+    static GlWindow* window_;
+    static Relighting* relighting_;
+};
+GlWindow* ViewerGpu::window_ = nullptr;
+Relighting* ViewerGpu::relighting_ = nullptr;
+
+TEST_F(ViewerGpu, FloatFramebufferMatchesRenderOnEveryLightEdit) {
+    const PreparedImage& P = relighting_->prepared;
+    GpuRatioDisplay display(P);
+    for (const char* name : kLightEdits) {
+        SCOPED_TRACE(name);
+        Session session(*relighting_, edit(name));
+        FrameRenderer frame(session, display);
+        frame.render();
+        const Image gpu = frame.read();
+        const Image cpu =
+            renderEdit(P, editRadiance(relighting_->scene, edit(name), P.photoRadiance));
+        int differing = 0;
+        EXPECT_LE(maxStepDifference(gpu, cpu, kAllPixels, &differing), 1);
+        // Rounding-boundary cases only: a handful of pixels, not a systematic offset.
+        EXPECT_LT(differing, gpu.width * gpu.height / 100);
+    }
+}
+
+TEST_F(ViewerGpu, MultipassMatchesFloatAndSkipsPassesBelowOne) {
+    const PreparedImage& P = relighting_->prepared;
+    const DisplayMap& m = P.display;
+    // The 8-bit texture holds [0, 1]: photo pixels brighter than that (a lamp the item
+    // buffer does not put there, relight/ratio_display.h trustPhotoAtEmitters) are clipped
+    // in it, as the paper's texture is; they are excluded with the lamp faces, and counted.
+    const auto inRange = [&](int px) {
+        const float* t = &P.photo.rgb[static_cast<size_t>(px) * 3];
+        return std::max({t[0], t[1], t[2]}) <= 1.0f && m.emitterStart[px] == m.emitterStart[px + 1];
+    };
+    int excluded = 0;
+    for (int px = 0; px < m.width * m.height; ++px) excluded += inRange(px) ? 0 : 1;
+    EXPECT_LT(excluded, m.width * m.height / 50);
+    GpuRatioDisplay display(P);
+    int mostPasses = 0;
+    for (const char* name : kLightEdits) {
+        SCOPED_TRACE(name);
+        Session session(*relighting_, edit(name));
+        FrameRenderer frame(session, display);
+        frame.framebuffer = Framebuffer::float32;
+        frame.render();
+        const Image f = frame.read();
+        frame.framebuffer = Framebuffer::multipass8;
+        const int passes = frame.render().passes;
+        const Image mp = frame.read();
+        // Loscos et al. 2000, §5.3: n = ceil(max B/D) passes, 1 when no ratio exceeds 1.
+        float maxRatio = 0;
+        for (const Rgb& r : session.vertexRatios())
+            maxRatio = std::max(maxRatio, static_cast<float>(r.maxComponent()));
+        EXPECT_EQ(passes, multipassCount(maxRatio));
+        if (maxRatio <= 1.0f) {
+            EXPECT_EQ(passes, 1);
+        }
+        mostPasses = std::max(mostPasses, passes);
+        EXPECT_LE(maxStepDifference(mp, f, inRange), passes);
+    }
+    // Doubling a light needs the passes: the test must have exercised them.
+    EXPECT_GE(mostPasses, 2);
+}
+
+TEST_F(ViewerGpu, VirtualPartsMatchTheCpuDisplay) {
+    const PreparedImage& P = relighting_->prepared;
+    GpuRatioDisplay display(P);
+    Session session(*relighting_, edit("virtual_light_and_box"));
+    FrameRenderer frame(session, display);
+    frame.render();
+    const Image gpu = frame.read();
+    Image cpu = renderRatio(P.display, P.photo, session.vertexRatios(), session.realRadiance(),
+                            P.photoRadiance);
+    const VirtualOverlay o = session.overlay();
+    ASSERT_FALSE(o.empty());
+    applyOverlay(cpu, o);
+    EXPECT_LE(maxStepDifference(gpu, cpu, kAllPixels), 1);
+}
+
+TEST_F(ViewerGpu, DebugViewBMatchesTheCpuView) {
+    const PreparedImage& P = relighting_->prepared;
+    GpuRatioDisplay display(P);
+    Session session(*relighting_, edit("left_off_right_double"));
+    FrameRenderer frame(session, display);
+    frame.view = ViewKind::B;
+    frame.render();
+    const Image gpu = frame.read();
+    const DebugViews v = computeDebugViews(*relighting_, session.realRadiance());
+    Image cpu = v.B;
+    for (float& c : cpu.rgb) c = static_cast<float>(static_cast<double>(c) * v.bdScale);
+    EXPECT_LE(maxStepDifference(gpu, cpu, kAllPixels), 1);
+}
+
+TEST_F(ViewerGpu, DraggedBoxFollowsThePointer) {
+    // The box of the room's edit, dragged 40 pixels to the right over the floor: the centre
+    // of its pixels moves right by about that much, and the relit image is the CPU's.
+    const PreparedImage& P = relighting_->prepared;
+    GpuRatioDisplay display(P);
+    Session session(*relighting_, edit("virtual_box"));
+    FrameRenderer frame(session, display);
+    // Where the box is: the centre of the pixels its samples cover, from the overlay (the
+    // share of each pixel's samples that no longer see the room).
+    const auto boxCentre = [&]() {
+        const VirtualOverlay o = session.overlay();
+        double sx = 0, n = 0;
+        for (int y = 0; y < o.height; ++y)
+            for (int x = 0; x < o.width; ++x) {
+                const double cover =
+                    1.0 -
+                    static_cast<double>(o.rgba[(static_cast<size_t>(y) * o.width + x) * 4 + 3]);
+                sx += cover * (o.x0 + x);
+                n += cover;
+            }
+        return n > 20 ? sx / n : -1.0;
+    };
+    const double before = boxCentre();
+    ASSERT_GT(before, 0);
+    // Grab the box at its centre pixel.
+    Pick grab;
+    const int cx = static_cast<int>(std::lround(before));
+    for (int y = P.photo.height - 1; y >= 0 && grab.object < 0; --y) grab = session.pick(cx, y);
+    ASSERT_EQ(grab.object, 0);
+    double u = 0, v = 0, depth = 0;
+    relighting_->scene.camera.project(grab.point, u, v, depth);
+    session.beginDrag(grab.object, grab);
+    for (int k = 1; k <= 40; ++k) EXPECT_TRUE(session.dragTo(u + k, v));
+    const double during = boxCentre();
+    session.endDrag();
+    frame.render();
+    const Image after = frame.read();
+    EXPECT_NEAR(during - before, 40.0, 12.0);  // perspective: the box's far side moves less
+    EXPECT_NEAR(boxCentre(), during, 0.5);
+    Image cpu = renderRatio(P.display, P.photo, session.vertexRatios(), session.realRadiance(),
+                            P.photoRadiance);
+    applyOverlay(cpu, session.overlay());
+    EXPECT_LE(maxStepDifference(after, cpu, kAllPixels), 1);
+}
+
+}  // namespace
+}  // namespace relight::viewer
