@@ -1,11 +1,13 @@
 // Small helpers the benchmark programs share.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace bench {
 
@@ -14,6 +16,13 @@ using Clock = std::chrono::steady_clock;
 /// Seconds since t0.
 inline double since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// The q-quantile of v (the element at rank q n, no interpolation); 0 when v is empty.
+inline double quantile(std::vector<double> v, double q) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
 }
 
 /// The arguments of the relighting benches, `<data_dir> [--epsilon E]`: false (after a

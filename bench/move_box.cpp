@@ -17,7 +17,6 @@
 // size.
 #include <tbb/global_control.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -33,17 +32,12 @@
 
 using namespace relight;
 using bench::Clock;
+using bench::quantile;
 using bench::since;
 
 namespace {
 
 constexpr int kSteps = 40;
-
-double quantile(std::vector<double> v, double q) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
-}
 
 /// The box's polygons placed by a rotation about z by `angle` and a translation (x, y).
 std::vector<radiosity::Polygon> placeBox(const std::vector<radiosity::Polygon>& local,

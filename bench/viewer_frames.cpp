@@ -1,0 +1,303 @@
+// The viewer's frame time under Mesa's llvmpipe (software OpenGL): the work the window does
+// per frame (viewer/frame.h), minus the ImGui panel, the present into the window and the
+// buffer swap.
+//
+//   LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1920x1080x24"
+//       ./build/bench/viewer_frames data [--upscale K] [--frames N]     (one line)
+//
+// Prepares data/room (default RelightOptions), with --upscale K at K times the photo's
+// resolution (the camera scaled, the photo upscaled by pixel replication: the same scene,
+// K^2 times the pixels and about the same mesh (the refinement reads the photo's samples),
+// so the per-pixel parts of a frame can be told from the per-vertex ones). Then, in a hidden
+// window, with the session, the GPU display and the frame renderer the viewer uses, N frames of
+// each of:
+//   - light slider: the first light's intensity moving smoothly from 0.2x to 2x of the
+//     photo's and back; without virtual parts a frame is the superposition of the lights'
+//     responses per vertex (relight/prepared.h) and the draw;
+//   - light slider with a box: the same with a box on the floor; with virtual parts a
+//     radiance change inserts them again from the prepared solver (viewer/session.h), the
+//     slow path of the viewer;
+//   - box drag: the box dragged over the floor, the pointer moving in equal steps along a
+//     straight line of 60 K pixels (about a pixel of the photo per frame at N = 60, as a
+//     mouse reports it); the solver moves the last part incrementally (moveLastObject).
+// each with both framebuffers: float (one pass) and the paper's 8-bit multipass (Loscos et
+// al. 2000, §5.3: ratios above 1 drawn as passes added in the framebuffer, n = ceil(max
+// ratio), so the draw grows with the brightest ratio). A frame is timed from the session's
+// change (update() or dragTo) to the end of FrameRenderer::render(), which ends with
+// glFinish. Prints the median and 90th percentile of the frame and its parts, in ms.
+// Reading the multipass rows: GpuRatioDisplay takes the maximum over every leaf vertex,
+// shown or not; with the box, a floor vertex that no pixel shows (D = 0) reaches ratios of
+// 5 to 17, so many frames draw up to 16-18 passes where the pixels need 2 or 3.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#include <unistd.h>
+
+#include "bench/bench_util.h"
+#include "relight/camera.h"
+#include "relight/edit_file.h"
+#include "relight/image.h"
+#include "relight/relighting.h"
+#include "relight/scene_file.h"
+#include "viewer/frame.h"
+#include "viewer/gl_window.h"
+#include "viewer/gpu_display.h"
+#include "viewer/session.h"
+
+using namespace relight;
+using namespace relight::viewer;
+using bench::Clock;
+using bench::quantile;
+using bench::since;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Args {
+    std::string data;
+    int upscale = 1, frames = 60;
+};
+
+/// `<data_dir> [--upscale K] [--frames N]`; false (after a usage line) when they are wrong.
+bool parseArgs(int argc, char** argv, Args& a) {
+    const auto usage = [&] {
+        std::fprintf(stderr, "usage: %s <data_dir> [--upscale K] [--frames N]\n", argv[0]);
+        return false;
+    };
+    if (argc < 2) return usage();
+    a.data = argv[1];
+    for (int i = 2; i < argc; i += 2) {
+        if (i + 1 >= argc) return usage();
+        int* value = std::strcmp(argv[i], "--upscale") == 0  ? &a.upscale
+                     : std::strcmp(argv[i], "--frames") == 0 ? &a.frames
+                                                             : nullptr;
+        if (!value) return usage();
+        *value = std::atoi(argv[i + 1]);
+    }
+    if (a.upscale < 1 || a.upscale > 16 || a.frames < 2) {
+        std::fprintf(stderr, "%s: --upscale must be in 1..16 and --frames at least 2\n", argv[0]);
+        return false;
+    }
+    return true;
+}
+
+/// A folder removed with what is in it when the bench ends, however it ends.
+struct TempDir {
+    fs::path path;
+    explicit TempDir(fs::path p) : path(std::move(p)) { fs::create_directories(path); }
+    ~TempDir() {
+        std::error_code ec;  // nothing to do about a failure at exit
+        fs::remove_all(path, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+};
+
+/// The scene seen at k times the resolution: the camera's focal lengths and size times k,
+/// the principal point moved so that each old pixel becomes k x k new ones (pixel centres
+/// are integers, so the continuous coordinate u + 1/2 scales by k), and the first photo
+/// upscaled by pixel replication, so that every new pixel holds exactly the old one's value.
+/// The photo goes to `dir` as linear EXR (an sRGB photo is decoded first).
+void upscaleScene(SceneFile& sf, int k, const fs::path& dir) {
+    if (sf.photos.empty()) throw InputError(sf.dir.string() + ": the scene has no photo");
+    Camera& c = sf.camera;
+    const double kd = k;
+    c.width *= k;
+    c.height *= k;
+    c.fx *= kd;
+    c.fy *= kd;
+    c.cx = (c.cx + 0.5) * kd - 0.5;
+    c.cy = (c.cy + 0.5) * kd - 0.5;
+    PhotoSpec& photo = sf.photos[0];
+    const Image small = readImage(photo.file, photo.encoding == PhotoSpec::Encoding::srgb);
+    Image big(small.width * k, small.height * k);
+    for (int y = 0; y < big.height; ++y)
+        for (int x = 0; x < big.width; ++x) std::copy_n(small.at(x / k, y / k), 3, big.at(x, y));
+    photo.file = dir / ("photo_x" + std::to_string(k) + ".exr");
+    photo.encoding = PhotoSpec::Encoding::linear;
+    writeImage(photo.file, big);
+}
+
+/// One scenario's frames: milliseconds per frame and its parts, passes drawn.
+struct Samples {
+    std::vector<double> frame, update, upload, draw, passes;
+};
+
+/// Draws `frames` frames with framebuffer `fb`; frame i is `change(i)` (the session's
+/// update or drag) followed by render(). One untimed frame first: the first draw into a
+/// target compiles llvmpipe's shader variants for it, which the window pays once.
+template <class Change>
+Samples timeFrames(FrameRenderer& frame, Framebuffer fb, int frames, Change change) {
+    frame.framebuffer = fb;
+    frame.render();
+    Samples s;
+    for (int i = 0; i < frames; ++i) {
+        const auto t0 = Clock::now();
+        change(i);
+        const double update = since(t0);
+        const FrameStats st = frame.render();
+        s.frame.push_back(1e3 * since(t0));
+        s.update.push_back(1e3 * update);
+        s.upload.push_back(1e3 * st.upload);
+        s.draw.push_back(1e3 * st.draw);
+        s.passes.push_back(st.passes);
+    }
+    return s;
+}
+
+void printHeader() {
+    std::printf("%-26s %-11s %-17s %-17s %-17s %-17s %6s %6s\n", "scenario", "framebuffer", "frame",
+                "update", "upload", "draw", "fps", "passes");
+}
+
+void printRow(const char* scenario, Framebuffer fb, const Samples& s) {
+    const auto cell = [](const std::vector<double>& v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%7.2f (%7.2f)", quantile(v, 0.5), quantile(v, 0.9));
+        return std::string(buf);
+    };
+    const auto [lo, hi] = std::minmax_element(s.passes.begin(), s.passes.end());
+    char passes[16];
+    std::snprintf(passes, sizeof passes, *lo == *hi ? "%.0f" : "%.0f-%.0f", *lo, *hi);
+    std::printf("%-26s %-11s %-17s %-17s %-17s %-17s %6.1f %6s\n", scenario,
+                fb == Framebuffer::float32 ? "float32" : "multipass8", cell(s.frame).c_str(),
+                cell(s.update).c_str(), cell(s.upload).c_str(), cell(s.draw).c_str(),
+                1e3 / quantile(s.frame, 0.5), passes);
+}
+
+constexpr Framebuffer kFramebuffers[] = {Framebuffer::float32, Framebuffer::multipass8};
+
+/// The light slider over both framebuffers: light 0 from 0.2x its intensity up to 2x and
+/// back (a raised cosine, as a hand moves a slider), then the photo's intensity again.
+void lightSlider(const char* scenario, Session& session, FrameRenderer& frame, int frames) {
+    LightControl& light = session.lights().at(0);
+    const double initial = light.intensity;
+    for (Framebuffer fb : kFramebuffers) {
+        const Samples s = timeFrames(frame, fb, frames, [&](int i) {
+            const double phase = 2 * std::numbers::pi * i / frames;
+            light.intensity = initial * (0.2 + 1.8 * 0.5 * (1 - std::cos(phase)));
+            session.update();
+        });
+        printRow(scenario, fb, s);
+    }
+    light.intensity = initial;
+    session.update();
+    frame.render();
+}
+
+int run(const Args& a) {
+    std::printf("command: ./build/bench/viewer_frames %s --upscale %d --frames %d\n",
+                a.data.c_str(), a.upscale, a.frames);
+    const fs::path dir = fs::path(a.data) / "room";
+    // The window before the preparation: without a display the bench fails at once.
+    SceneFile sf = loadScene(dir);
+    GlWindow window(sf.camera.width * a.upscale, sf.camera.height * a.upscale, "viewer_frames",
+                    false);
+    std::printf("renderer: %s; %u hardware threads\n", window.renderer().c_str(),
+                std::thread::hardware_concurrency());
+
+    const TempDir tmp(fs::temp_directory_path() /
+                      ("relight_viewer_frames_" + std::to_string(getpid())));
+    if (a.upscale > 1) upscaleScene(sf, a.upscale, tmp.path);
+    RelightOptions o;
+    const auto t0 = Clock::now();
+    o.progress = [&](const std::string& m) {
+        std::fprintf(stderr, "  [%6.1f s] %s\n", since(t0), m.c_str());
+    };
+    std::fprintf(stderr, "preparing %s at %dx%d\n", dir.c_str(), sf.camera.width, sf.camera.height);
+    const std::unique_ptr<Relighting> r = prepareRelighting(std::move(sf), o);
+    const PreparedImage& p = r->prepared;
+    std::printf(
+        "%s at %dx (photo %dx%d): preparation %.1f s (default options, epsilon %g); %d leaves, "
+        "%d links, %zu leaf vertices\n",
+        dir.c_str(), a.upscale, p.photo.width, p.photo.height, since(t0), o.epsilon, p.leaves,
+        p.links, p.vertexCount());
+
+    Session session(*r, EditFile{});
+    GpuRatioDisplay display(session.prepared());
+    FrameRenderer frame(session, display);
+    std::printf(
+        "%d frames per row; ms: median (90th percentile). update: Session::update or dragTo "
+        "(the solver, on the CPU); upload: the values per vertex computed and sent to the GPU, "
+        "with the virtual parts' overlay (its rays); draw: the photo area, glFinish included; "
+        "fps = 1000 / median frame\n",
+        a.frames);
+    printHeader();
+    lightSlider("light slider", session, frame, a.frames);
+
+    // The box where the room's own virtual_box edit puts it: the pixel of its centre,
+    // (1.25, 1.95, 0.15), in the camera at this resolution, which sees the floor behind it.
+    const Camera& camera = r->scene.camera;
+    double u = 0, v = 0, depth = 0;
+    if (!camera.project({1.25, 1.95, 0.15}, u, v, depth))
+        throw std::runtime_error("the box's place is behind the camera");
+    const Pick floor = session.pick(u, v);
+    if (!floor.hit || floor.normal.z < 0.9) throw std::runtime_error("no floor at the box's pixel");
+    session.addBoxAt(floor);
+    frame.render();
+    lightSlider("light slider with a box", session, frame, a.frames);
+
+    // The drag: grabbed where it was put, towards where virtual_box_moved puts the box (a
+    // straight line over the floor, which the box stays on), 60 K pixels in all; forwards
+    // with one framebuffer, back with the other, in one gesture.
+    const Pick grab = session.pick(u, v);
+    if (grab.object != 0) throw std::runtime_error("the box is not under its own pixel");
+    double u1 = 0, v1 = 0;
+    camera.project({0.7, 1.1, 0.0}, u1, v1, depth);
+    const double length = 60.0 * a.upscale, towards = std::hypot(u1 - u, v1 - v);
+    const double du = (u1 - u) / towards * length, dv = (v1 - v) / towards * length;
+    const auto boxAt = [&] {
+        const auto& m = session.objects().at(0).object.transform;
+        return Vec3(m[0][3], m[1][3], m[2][3]);
+    };
+    const Vec3 start = boxAt();
+    session.beginDrag(grab.object, grab);
+    int misses = 0;
+    Vec3 end = start;
+    for (Framebuffer fb : kFramebuffers) {
+        const bool forwards = fb == Framebuffer::float32;
+        const Samples s = timeFrames(frame, fb, a.frames, [&](int i) {
+            const double f = static_cast<double>(i + 1) / a.frames;
+            const double t = forwards ? f : 1 - f;
+            if (!session.dragTo(u + t * du, v + t * dv)) ++misses;
+        });
+        if (forwards) end = boxAt();
+        printRow("box drag", fb, s);
+    }
+    session.endDrag();
+    const auto& m = session.objects().at(0).object.transform;  // the unit box scaled
+    std::printf(
+        "box: %.2f m on a side at pixel (%.1f, %.1f); with it %zu active links; dragged %.0f px "
+        "from there towards (%.1f, %.1f): the box %.3f m over the floor and back%s\n",
+        glm::length(Vec3(m[0][0], m[1][0], m[2][0])), u, v, session.links(), length, u1, v1,
+        glm::length(end - start), misses ? " (some pointer positions missed its plane)" : "");
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Args a;
+    if (!parseArgs(argc, argv, a)) return 2;
+    try {
+        return run(a);
+    } catch (const WindowError& e) {
+        std::fprintf(stderr,
+                     "viewer_frames: error: %s\n(run it as the top of bench/viewer_frames.cpp "
+                     "says: under xvfb-run with LIBGL_ALWAYS_SOFTWARE=1)\n",
+                     e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "viewer_frames: error: %s\n", e.what());
+        return 1;
+    }
+}
