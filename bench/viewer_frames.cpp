@@ -25,9 +25,9 @@
 // ratio), so the draw grows with the brightest ratio). A frame is timed from the session's
 // change (update() or dragTo) to the end of FrameRenderer::render(), which ends with
 // glFinish. Prints the median and 90th percentile of the frame and its parts, in ms.
-// Reading the multipass rows: GpuRatioDisplay takes the maximum over every leaf vertex,
-// shown or not; with the box, a floor vertex that no pixel shows (D = 0) reaches ratios of
-// 5 to 17, so many frames draw up to 16-18 passes where the pixels need 2 or 3.
+// The pass count is taken over the vertices some pixel shows: with the box, a floor vertex
+// that no pixel shows (D = 0) reaches ratios of 5 to 17 and made the first version of the
+// display draw 16-18 passes where the pixels need 2 or 3 (bench/RESULTS.md).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

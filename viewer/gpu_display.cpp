@@ -218,6 +218,8 @@ GpuRatioDisplay::GpuRatioDisplay(const PreparedImage& p)
     presentProgram_ = link(kPresentShader);
     glGenVertexArrays(1, &vao_);
 
+    shown_.assign(p.vertexCount(), 0);
+    for (int v : m.vertex) shown_[static_cast<size_t>(v)] = 1;
     std::vector<int> starts(2 * (pixels + 1));
     for (size_t i = 0; i <= pixels; ++i) {
         starts[2 * i] = m.start[i];
@@ -324,7 +326,8 @@ void GpuRatioDisplay::setVertexValues(std::span<const Rgb> values) {
     for (size_t i = 0; i < values.size(); ++i)
         for (int c = 0; c < 3; ++c) {
             v[i * 4 + c] = static_cast<float>(values[i][c]);
-            if (v[i * 4 + c] > maxValue_) maxValue_ = v[i * 4 + c];  // NaN: skipped
+            if (i < shown_.size() && shown_[i] && v[i * 4 + c] > maxValue_)
+                maxValue_ = v[i * 4 + c];  // NaN: skipped
         }
     glBindBuffer(GL_TEXTURE_BUFFER, valueBuf_);
     glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(),

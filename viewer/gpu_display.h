@@ -89,7 +89,11 @@ class GpuRatioDisplay {
     void uploadImageTexture(GLuint tex, const Image& img, float alpha);
 
     int width_ = 0, height_ = 0, lights_ = 0;
-    float maxValue_ = 0;  ///< largest vertex value (passes of the multipass target)
+    float maxValue_ = 0;  ///< largest value of a shown vertex (passes of the multipass target)
+    /// Per leaf vertex: whether some pixel shows it. A vertex no pixel shows must not add
+    /// passes (one under a box, with D = 0, reaches ratios of 17 while the shown ones stay
+    /// below 3: bench/viewer_frames).
+    std::vector<char> shown_;
     bool anyUnshaded_ = false;
     GLuint vao_ = 0, program_ = 0, presentProgram_ = 0;
     // Texture buffers (buffer, texture) of the display map and the per-frame values.
