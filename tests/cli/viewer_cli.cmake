@@ -46,6 +46,13 @@ foreach(edit identity back_off left_off_right_double right_off_left_double colou
   same_within_one_step("${WORK}/${edit}_viewer.png" "${WORK}/${edit}_render.png" "edit ${edit}")
 endforeach()
 
+# Exposure is applied as render applies it (before the sRGB transfer function).
+relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/back_off.json" -o "${WORK}/exposed_render.png"
+        --cache "${cache}" --exposure 1.5)
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --exposure 1.5
+       --screenshot "${WORK}/exposed_viewer.png")
+same_within_one_step("${WORK}/exposed_viewer.png" "${WORK}/exposed_render.png" "exposure 1.5")
+
 # A session by clicks: a lamp on the ceiling, a box on the floor dragged 60 pixels along it.
 set(saved "${WORK}/saved/session.json")
 file(MAKE_DIRECTORY "${WORK}/saved")
