@@ -9,8 +9,10 @@
 // colour clamp(B/D - k, 0, 1). The passes sum to T * B/D, up to the 8-bit quantization of
 // each pass and the saturation of the framebuffer at 1.
 //
-// These are the CPU reference functions: the viewer does the same on the GPU and the tests
-// compare against them. The 8-bit emulation follows the fixed-function pipeline:
+// These are the CPU reference functions of the fixed-function pipeline (linear unorm8
+// texture and framebuffer); the viewer uses multipassCount() and draws the same passes on
+// the GPU in an sRGB 8-bit target (viewer/gpu_display.h), tested against its own float
+// display. The 8-bit emulation follows the fixed-function pipeline:
 //   t8 = round(255 clamp(t, 0, 1))                 texture texel (unorm8)
 //   c8 = round(255 passModulation(r, k))           vertex colour (unorm8)
 //   p8 = round(t8 c8 / 255)                        GL_MODULATE, rounded to 8 bits

@@ -442,8 +442,7 @@ Image GpuRatioDisplay::read() {
         glUniform1f(glGetUniformLocation(program_, "gain"), 1.0f);
         bindUnit(11, GL_TEXTURE_2D, byteTex_);
         glBindVertexArray(vao_);
-        // The image view flips rows once more; draw with the photo's orientation kept by
-        // sampling the target in its own rows (see below).
+        // The image view reads texel row height - 1 - j into row j: the copy is flipped.
         glDrawArrays(GL_TRIANGLES, 0, 3);
         glBindVertexArray(0);
         glUseProgram(0);

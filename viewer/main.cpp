@@ -48,42 +48,57 @@ void parsePoint(const std::string& text, const std::string& action, double& u, d
         throw std::invalid_argument("--do " + action + ": \"" + text + "\" is not a pixel \"U,V\"");
 }
 
-void runAction(Session& s, const std::string& action) {
-    const auto colon = action.find(':');
-    const std::string kind = action.substr(0, colon);
-    const std::string rest = colon == std::string::npos ? "" : action.substr(colon + 1);
-    double u = 0, v = 0;
+/// One --do action, parsed before the preparation so that a typo fails at once.
+struct Action {
+    std::string text;  ///< as given, for messages
+    enum class Kind { light, box, drag } kind = Kind::light;
+    double u = 0, v = 0, u1 = 0, v1 = 0;  ///< pixel; drag: from (u, v) to (u1, v1)
+};
+
+Action parseAction(const std::string& text) {
+    Action a;
+    a.text = text;
+    const auto colon = text.find(':');
+    const std::string kind = text.substr(0, colon);
+    const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
     if (kind == "light" || kind == "box") {
-        parsePoint(rest, action, u, v);
-        const Pick p = s.pick(u, v);
-        if (!p.hit) throw std::invalid_argument("--do " + action + ": no surface at that pixel");
-        if (kind == "light")
+        a.kind = kind == "light" ? Action::Kind::light : Action::Kind::box;
+        parsePoint(rest, text, a.u, a.v);
+    } else if (kind == "drag") {
+        a.kind = Action::Kind::drag;
+        const auto sep = rest.find(':');
+        if (sep == std::string::npos)
+            throw std::invalid_argument("--do " + text + ": expected drag:U0,V0:U1,V1");
+        parsePoint(rest.substr(0, sep), text, a.u, a.v);
+        parsePoint(rest.substr(sep + 1), text, a.u1, a.v1);
+    } else {
+        throw std::invalid_argument("--do " + text +
+                                    ": unknown action (light:U,V, box:U,V, drag:U0,V0:U1,V1)");
+    }
+    return a;
+}
+
+/// Does what the click (or the drag) would do in the window.
+void runAction(Session& s, const Action& a) {
+    const Pick p = s.pick(a.u, a.v);
+    if (a.kind != Action::Kind::drag) {
+        if (!p.hit) throw std::invalid_argument("--do " + a.text + ": no surface at that pixel");
+        if (a.kind == Action::Kind::light)
             s.addLightAt(p);
         else
             s.addBoxAt(p);
-    } else if (kind == "drag") {
-        const auto sep = rest.find(':');
-        if (sep == std::string::npos)
-            throw std::invalid_argument("--do " + action + ": expected drag:U0,V0:U1,V1");
-        double u1 = 0, v1 = 0;
-        parsePoint(rest.substr(0, sep), action, u, v);
-        parsePoint(rest.substr(sep + 1), action, u1, v1);
-        const Pick p = s.pick(u, v);
-        if (p.object < 0)
-            throw std::invalid_argument("--do " + action + ": no virtual object at " +
-                                        rest.substr(0, sep));
-        s.beginDrag(p.object, p);
-        // The pointer's path in steps of about a pixel, as a mouse would report it.
-        const int steps = std::max(1, static_cast<int>(std::hypot(u1 - u, v1 - v)));
-        for (int k = 1; k <= steps; ++k) {
-            const double f = static_cast<double>(k) / steps;
-            s.dragTo(u + f * (u1 - u), v + f * (v1 - v));
-        }
-        s.endDrag();
-    } else {
-        throw std::invalid_argument("--do " + action +
-                                    ": unknown action (light:U,V, box:U,V, drag:U0,V0:U1,V1)");
+        return;
     }
+    if (p.object < 0)
+        throw std::invalid_argument("--do " + a.text + ": no virtual object at the first pixel");
+    s.beginDrag(p.object, p);
+    // The pointer's path in steps of about a pixel, as a mouse would report it.
+    const int steps = std::max(1, static_cast<int>(std::hypot(a.u1 - a.u, a.v1 - a.v)));
+    for (int k = 1; k <= steps; ++k) {
+        const double f = static_cast<double>(k) / steps;
+        s.dragTo(a.u + f * (a.u1 - a.u), a.v + f * (a.v1 - a.v));
+    }
+    s.endDrag();
 }
 
 int run(const Args& a) {
@@ -96,6 +111,8 @@ int run(const Args& a) {
         requireRenderable(edit);
     }
     for (const std::string& w : edit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::vector<Action> actions;
+    for (const std::string& text : a.actions) actions.push_back(parseAction(text));
     const ViewKind view = parseView(a.view);
     if (a.framebuffer != "float" && a.framebuffer != "multipass")
         throw std::invalid_argument("--framebuffer must be float or multipass");
@@ -114,7 +131,7 @@ int run(const Args& a) {
     std::fprintf(stderr, "relight-viewer: preparing %s\n", a.scene.c_str());
     const std::unique_ptr<Relighting> prepared = prepareRelighting(sf, o);
     Session session(*prepared, edit);
-    for (const std::string& act : a.actions) runAction(session, act);
+    for (const Action& act : actions) runAction(session, act);
     GpuRatioDisplay display(session.prepared());
     FrameRenderer frame(session, display);
     frame.view = view;

@@ -18,14 +18,20 @@ function(copy_room dir)
   endforeach()
 endfunction()
 
-# Runs relight with the arguments after `expected_rc`; its stdout and stderr go to `out`.
-function(relight out expected_rc)
-  execute_process(COMMAND "${RELIGHT}" ${ARGN} OUTPUT_VARIABLE o ERROR_VARIABLE e
-                  RESULT_VARIABLE rc)
+# Runs the command after `expected_rc` and checks its exit code; its stdout and stderr go
+# to `out`.
+function(run_checked out expected_rc)
+  execute_process(COMMAND ${ARGN} OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
   if(NOT rc EQUAL expected_rc)
-    message(FATAL_ERROR "relight ${ARGN}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
+    message(FATAL_ERROR "${ARGN}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
   endif()
   set(${out} "${o}${e}" PARENT_SCOPE)
+endfunction()
+
+# Runs relight with the arguments after `expected_rc` (run_checked).
+function(relight out expected_rc)
+  run_checked(o ${expected_rc} "${RELIGHT}" ${ARGN})
+  set(${out} "${o}" PARENT_SCOPE)
 endfunction()
 
 function(expect text regex what)

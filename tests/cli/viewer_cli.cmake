@@ -19,14 +19,10 @@ file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(cache "${WORK}/prepared.bin")
 
-# Runs the viewer under xvfb-run; stdout and stderr to `out`.
+# Runs the viewer under xvfb-run (run_checked).
 function(viewer out expected_rc)
-  execute_process(COMMAND "${XVFB_RUN}" -a -s "-screen 0 1280x1024x24" "${VIEWER}" ${ARGN}
-                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
-  if(NOT rc EQUAL expected_rc)
-    message(FATAL_ERROR "relight-viewer ${ARGN}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
-  endif()
-  set(${out} "${o}${e}" PARENT_SCOPE)
+  run_checked(o ${expected_rc} "${XVFB_RUN}" -a -s "-screen 0 1280x1024x24" "${VIEWER}" ${ARGN})
+  set(${out} "${o}" PARENT_SCOPE)
 endfunction()
 
 # One 8-bit step is 1/255 = 0.00392: idiff fails on any pixel further apart than 0.004.

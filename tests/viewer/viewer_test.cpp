@@ -62,6 +62,16 @@ int maxStepDifference(const Image& a, const Image& b, Keep keep, int* differing 
 
 const auto kAllPixels = [](int) { return true; };
 
+/// What `relight render` shows for the session: the CPU ratio display of its vertex ratios
+/// with the virtual parts' overlay (relight/dynamic_relighting.h, render()).
+Image cpuDisplay(Session& session) {
+    const PreparedImage& P = session.prepared();
+    Image img = renderRatio(P.display, P.photo, session.vertexRatios(), session.realRadiance(),
+                            P.photoRadiance);
+    applyOverlay(img, session.overlay());
+    return img;
+}
+
 class ViewerGpu : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
@@ -156,12 +166,8 @@ TEST_F(ViewerGpu, VirtualPartsMatchTheCpuDisplay) {
     FrameRenderer frame(session, display);
     frame.render();
     const Image gpu = frame.read();
-    Image cpu = renderRatio(P.display, P.photo, session.vertexRatios(), session.realRadiance(),
-                            P.photoRadiance);
-    const VirtualOverlay o = session.overlay();
-    ASSERT_FALSE(o.empty());
-    applyOverlay(cpu, o);
-    EXPECT_LE(maxStepDifference(gpu, cpu, kAllPixels), 1);
+    ASSERT_FALSE(session.overlay().empty());
+    EXPECT_LE(maxStepDifference(gpu, cpuDisplay(session), kAllPixels), 1);
 }
 
 TEST_F(ViewerGpu, DebugViewBMatchesTheCpuView) {
@@ -217,10 +223,7 @@ TEST_F(ViewerGpu, DraggedBoxFollowsThePointer) {
     const Image after = frame.read();
     EXPECT_NEAR(during - before, 40.0, 12.0);  // perspective: the box's far side moves less
     EXPECT_NEAR(boxCentre(), during, 0.5);
-    Image cpu = renderRatio(P.display, P.photo, session.vertexRatios(), session.realRadiance(),
-                            P.photoRadiance);
-    applyOverlay(cpu, session.overlay());
-    EXPECT_LE(maxStepDifference(after, cpu, kAllPixels), 1);
+    EXPECT_LE(maxStepDifference(after, cpuDisplay(session), kAllPixels), 1);
 }
 
 }  // namespace
