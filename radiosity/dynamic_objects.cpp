@@ -87,7 +87,7 @@ void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, Dynam
             continue;
         }
         // A passive link between two elements (not from a light: those stay at the leaves)
-        // that the object now blocks entirely carries nothing: as refineLink() would keep it
+        // that the object now blocks entirely carries nothing: as refineLinks() would keep it
         // unrefined, it becomes active again in place of its subtree (Drettakis & Sillion
         // 1997: passive links are reactivated at no cost, F is kept).
         const Node& R = h_.nodes[L.receiver];
@@ -147,17 +147,12 @@ void HierarchicalSolver::linkObject(int cluster, int oldRoot, DynamicUpdate& rep
     // 1. What the object gathers from the scene, then its radiosity from those links alone
     //    (the refinement of what it shoots needs it: the oracle weighs B_s).
     Link gather = makeLink(cluster, oldRoot);
-    refineLink(gather, links_);
-    for (size_t i = first; i < links_.size(); ++i) {
-        const Link& l = links_[i];
-        h_.nodes[l.receiver].H += h_.nodes[l.source].B * (l.F * static_cast<double>(l.V));
-    }
+    refineLinks({gather});
+    for (size_t i = first; i < links_.size(); ++i) gatherInto(links_[i]);
     pushPull(cluster, Rgb{});
     // 2. What it shoots into the scene, and its light onto itself.
     Link shoot = makeLink(oldRoot, cluster);
-    refineLink(shoot, links_);
-    Link self = makeLink(cluster, cluster);
-    refineLink(self, links_);
+    refineLinks({shoot, makeLink(cluster, cluster)});
     if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves(first);
     report.linksNew += static_cast<int>(links_.size() - first);
     for (size_t i = first; i < links_.size(); ++i) {
@@ -185,9 +180,11 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     rec.lights = scene_.lights.size();
     rec.B.reserve(h_.nodes.size());
     rec.H.reserve(h_.nodes.size());
+    rec.Hv.reserve(h_.nodes.size());
     for (const Node& n : h_.nodes) {
         rec.B.push_back(n.B);
         rec.H.push_back(n.H);
+        rec.Hv.push_back(n.Hv);
     }
     rec.name = name;
     rec.light = lightRadiance != nullptr;
@@ -239,8 +236,10 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
 
     cutLinks(box, first, report);
     const size_t sorted = links_.size() - static_cast<size_t>(report.linksReactivated);
+    const size_t firstNode = static_cast<size_t>(oldRoot);
     linkObject(cluster, oldRoot, report);
     buildReceiverIndex(sorted);
+    boundGather(firstNode);  // the object's own leaves; the scene's keep their bound
     inserted_.back().shadowLeaves = report.shadowLeaves;
 
     const auto t0 = Clock::now();
@@ -270,6 +269,7 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
     for (size_t n = 0; n < rec.B.size(); ++n) {
         h_.nodes[n].B = rec.B[n];
         h_.nodes[n].H = rec.H[n];
+        h_.nodes[n].Hv = rec.Hv[n];
     }
     frozenNodes_ = rec.frozenNodes;
     buildReceiverIndex(links_.size());

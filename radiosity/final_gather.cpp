@@ -7,6 +7,7 @@
 
 #include "radiosity/form_factor.h"
 #include "radiosity/rng.h"
+#include "radiosity/transfer.h"
 
 namespace radiosity {
 
@@ -83,14 +84,7 @@ void gatherWeights(const HierarchicalSolver& solver, int polygon, const Vec3& x,
             if (!S.isCluster()) {
                 F = pointToPolygon(x, n, S.v.data(), S.vertexCount, S.normal);
             } else {
-                const Vec3 d = S.centre - x;
-                const double d2 = glm::dot(d, d);
-                // Guard: accepted cluster links join disjoint bounding spheres, so x (inside
-                // the receiver's) is away from the source's centre; a degenerate input
-                // gives 0 rather than infinity.
-                if (!(d2 > 1e-24)) continue;
-                const double cosR = glm::dot(n, d) / std::sqrt(d2);
-                F = S.area * cosR / (4.0 * std::numbers::pi * d2);
+                F = pointToNode(x, n, S);  // the link's own bounded estimate, from x
             }
             if (!(F > 0)) continue;
             const double V =

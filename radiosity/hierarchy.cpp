@@ -5,6 +5,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
+
 namespace radiosity {
 
 namespace {
@@ -29,13 +31,59 @@ void finishGeometry(Node& e) {
     e.bounds = Bounds3{};
     for (int i = 0; i < e.vertexCount; ++i) e.bounds.extend(e.v[i]);
     e.area = elementArea(e);
+    const Vec3& n = e.normal;
+    e.vectorArea = e.area * n;
+    e.normalMoment = {e.area * n.x * n.x, e.area * n.y * n.y, e.area * n.z * n.z,
+                      e.area * n.x * n.y, e.area * n.x * n.z, e.area * n.y * n.z};
     e.centre = elementCentroid(e);
     e.radius = 0;
     for (int i = 0; i < e.vertexCount; ++i)
         e.radius = std::max(e.radius, glm::length(e.v[i] - e.centre));
 }
 
+/// A cluster's box, area, orientation moments and bounding sphere from its children.
+void aggregateChildren(std::vector<Node>& nodes, int node) {
+    Node& c = nodes[node];
+    c.bounds = Bounds3{};
+    c.area = 0;
+    c.vectorArea = Vec3{0, 0, 0};
+    c.normalMoment = {};
+    for (int k = 0; k < c.childCount; ++k) {
+        const Node& ch = nodes[c.firstChild + k];
+        c.bounds.extend(ch.bounds);
+        c.area += ch.area;
+        c.vectorArea += ch.vectorArea;
+        for (int i = 0; i < 6; ++i) c.normalMoment[i] += ch.normalMoment[i];
+    }
+    c.centre = c.bounds.empty() ? Vec3{0, 0, 0} : c.bounds.centre();
+    c.radius = c.bounds.empty() ? 0 : 0.5 * glm::length(c.bounds.diagonal());
+    // Principal frame: eigenvectors of sum A n n^T (symmetric, so orthonormal).
+    const auto& m = c.normalMoment;
+    Eigen::Matrix3d M;
+    M << m[0], m[3], m[4], m[3], m[1], m[5], m[4], m[5], m[2];
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(M);
+    if (eig.info() == Eigen::Success && std::isfinite(eig.eigenvectors().sum())) {
+        for (int a = 0; a < 3; ++a) {
+            const auto col = eig.eigenvectors().col(a);
+            c.frame[a] = glm::normalize(Vec3{col(0), col(1), col(2)});
+        }
+    }
+}
+
 }  // namespace
+
+double projectedArea(const Node& node, const Vec3& v) {
+    if (!node.isCluster()) return node.area * std::max(0.0, glm::dot(node.normal, v));
+    const auto& M = node.normalMoment;
+    const double vMv = M[0] * v.x * v.x + M[1] * v.y * v.y + M[2] * v.z * v.z +
+                       2 * (M[3] * v.x * v.y + M[4] * v.x * v.z + M[5] * v.y * v.z);
+    const double absProjected = std::sqrt(std::max(0.0, node.area * vMv));
+    const double facing = 0.5 * (absProjected + glm::dot(node.vectorArea, v));
+    const Vec3 d = node.bounds.empty() ? Vec3{0, 0, 0} : node.bounds.diagonal();
+    const double box =
+        std::abs(v.x) * d.y * d.z + std::abs(v.y) * d.x * d.z + std::abs(v.z) * d.x * d.y;
+    return std::clamp(facing, 0.0, box);
+}
 
 Vec3 pointOnElement(const Node& e, double u, double v) {
     if (e.vertexCount == 4) {
@@ -123,17 +171,7 @@ void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
         buildCluster(first, begin, mid, maxPerCluster, centroids);
         buildCluster(first + 1, mid, end, maxPerCluster, centroids);
     }
-    // Bounds, area and bounding sphere of the cluster from its children.
-    Node& c = nodes[node];
-    c.bounds = Bounds3{};
-    c.area = 0;
-    for (int k = 0; k < c.childCount; ++k) {
-        const Node& ch = nodes[c.firstChild + k];
-        c.bounds.extend(ch.bounds);
-        c.area += ch.area;
-    }
-    c.centre = c.bounds.empty() ? Vec3{0, 0, 0} : c.bounds.centre();
-    c.radius = c.bounds.empty() ? 0 : 0.5 * glm::length(c.bounds.diagonal());
+    aggregateChildren(nodes, node);
 }
 
 void Hierarchy::initElement(Node& e, const Polygon& p, int polygonIndex) {
@@ -192,6 +230,7 @@ bool Hierarchy::subdivide(int node) {
         child.E = parent.E;
         child.B = parent.B;
         child.emitting = parent.emitting;
+        child.gatherScale = parent.gatherScale;
         finishGeometry(child);
         nodes.push_back(child);
     }
@@ -250,11 +289,7 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
     root.childCount = 2;
     root.polyBegin = 0;
     root.polyEnd = total;
-    root.bounds = nodes[n0].bounds;
-    root.bounds.extend(nodes[n0 + 1].bounds);
-    root.area = nodes[n0].area + nodes[n0 + 1].area;
-    root.centre = root.bounds.centre();
-    root.radius = 0.5 * glm::length(root.bounds.diagonal());
+    aggregateChildren(nodes, kRoot);
     root.level = 0;
     // The root's averages, from its two children only (the rest is unchanged).
     const double a0 = nodes[n0].area, a1 = nodes[n0 + 1].area;

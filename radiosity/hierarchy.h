@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "radiosity/directional_irradiance.h"
 #include "radiosity/rgb.h"
 #include "radiosity/scene.h"
 #include "radiosity/vec.h"
@@ -39,11 +40,23 @@ struct Node {
     double radius = 0;        ///< bounding-sphere radius about `centre` (metres)
     Bounds3 bounds;
     double area = 0;  ///< element: its area; cluster: total area of its polygons (m^2)
+    /// Orientation of the node's surfaces, for projectedArea(): the vector area
+    /// sum A_i n_i (m^2) and the second moment sum A_i n_i n_i^T (m^2; xx, yy, zz, xy, xz,
+    /// yz) over its polygons (one term for an element).
+    Vec3 vectorArea{0, 0, 0};
+    std::array<double, 6> normalMoment{};
+    /// Cluster: its principal frame of orientation, the eigenvectors of normalMoment
+    /// (rows: unit axes), in which its directional irradiance is binned.
+    std::array<Vec3, 3> frame{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
 
     Rgb rho;  ///< reflectance (cluster: area-weighted mean)
     Rgb E;    ///< emittance, radiosity units (cluster: area-weighted mean)
     Rgb B;    ///< radiosity, radiosity units (cluster: area-weighted mean of its contents)
-    Rgb H;    ///< irradiance gathered through this node's own links in the last gather
+    Rgb H;    ///< element: irradiance gathered through its own links in the last gather
+    DirectionalIrradiance Hv;  ///< cluster: irradiance gathered through its own links
+    /// Leaf element: factor on everything it gathers, 1/G where the form factors of all
+    /// the links above it sum to G > 1, else 1 (HierarchicalSolver, "energy bound").
+    double gatherScale = 1;
     bool emitting = false;  ///< an emitter with E > 0 lies in this node
 
     bool isCluster() const { return kind == NodeKind::cluster; }
@@ -124,6 +137,22 @@ class Hierarchy {
     };
     std::vector<Attached> attached_;  // a stack: detachLastObject() pops
 };
+
+/// Area of the node's surfaces facing direction v (unit), projected onto the plane
+/// perpendicular to v (m^2): the area a distant observer in direction v sees, without the
+/// surfaces' mutual occlusion. Exact for an element, A max(0, n.v). For a cluster:
+///     sum A_i max(0, n_i.v) = 1/2 sum A_i |n_i.v| + 1/2 a.v     (a: vectorArea)
+/// and, by Cauchy-Schwarz, sum A_i |n_i.v| <= sqrt(A v^T M v) (M: normalMoment), exact
+/// when the surfaces are parallel (a face cluster) and 15 % high for a sphere. The result
+/// is at most the cross-section of the cluster's box in direction v, which no set of
+/// surfaces inside it can exceed as seen from outside (Smits, Arvo & Greenberg 1994).
+double projectedArea(const Node& node, const Vec3& v);
+
+/// Direction v (world) in the cluster's principal frame.
+inline Vec3 toFrame(const Node& cluster, const Vec3& v) {
+    return {glm::dot(cluster.frame[0], v), glm::dot(cluster.frame[1], v),
+            glm::dot(cluster.frame[2], v)};
+}
 
 /// Whether point x (on the element's plane) lies in element e, edges included to within
 /// tol x edge length.

@@ -9,8 +9,51 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
+
+#include <unistd.h>
 
 namespace radiosity {
+
+namespace {
+
+/// What the cluster ancestors of a polygon's root element hand it: each one's directional
+/// irradiance taken by the element's normal in that cluster's frame.
+template <class OwnHv>
+Rgb fromClusters(const Hierarchy& h, int element, const OwnHv& ownHv) {
+    const Node& e = h.nodes[element];
+    Rgb H;
+    for (int a = e.parent; a >= 0; a = h.nodes[a].parent) {
+        const DirectionalIrradiance& d = ownHv(a);
+        if (!d.isZero()) H += d.onto(toFrame(h.nodes[a], e.normal));
+    }
+    return H;
+}
+
+/// The irradiance at every element node from what each node gathered itself (ownH for an
+/// element, ownHv for a cluster), handed down as pushPull() hands it: element children
+/// inherit their parent's total, and a polygon's root element takes what its cluster
+/// ancestors gathered (fromClusters). Parents do not always precede their children in the
+/// node array (an attached object's cluster), hence the explicit stack.
+template <class OwnH, class OwnHv>
+std::vector<Rgb> pushDown(const Hierarchy& h, const OwnH& ownH, const OwnHv& ownHv) {
+    const auto& nodes = h.nodes;
+    std::vector<Rgb> out(nodes.size());
+    std::vector<int> stack{Hierarchy::kRoot};
+    while (!stack.empty()) {
+        const int node = stack.back();
+        stack.pop_back();
+        const Node& n = nodes[node];
+        if (!n.isCluster()) {
+            const bool root = n.parent < 0 || nodes[n.parent].isCluster();
+            out[node] = ownH(node) + (root ? fromClusters(h, node, ownHv) : out[n.parent]);
+        }
+        for (int k = 0; k < n.childCount; ++k) stack.push_back(n.firstChild + k);
+    }
+    return out;
+}
+
+}  // namespace
 
 HierarchicalSolver::HierarchicalSolver(Scene scene, SolverOptions options)
     : scene_(std::move(scene)),
@@ -20,7 +63,16 @@ HierarchicalSolver::HierarchicalSolver(Scene scene, SolverOptions options)
     vis_ = std::make_unique<Visibility>(scene_);
     transfer_ = std::make_unique<TransferEvaluator>(h_, *vis_, options_.transfer);
     minArea_ = options_.minArea > 0 ? options_.minArea : 2e-5 * scene_.totalArea();
+    maxMemory_ = options_.maxMemory > 0 ? options_.maxMemory : defaultMemoryBudget();
+    maxLinks_ = options_.maxLinks > 0 ? options_.maxLinks : maxMemory_ / sizeof(Link);
     timing_.timeBuild = secondsSince(t0);
+}
+
+size_t defaultMemoryBudget() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    // Unknown (an unusual system): 4 GiB, what the 200 k-triangle room needs.
+    if (pages <= 0 || pageSize <= 0) return size_t{4} << 30;
+    return static_cast<size_t>(0.4 * static_cast<double>(pages) * static_cast<double>(pageSize));
 }
 
 HierarchicalSolver::~HierarchicalSolver() = default;
@@ -46,103 +98,170 @@ Link HierarchicalSolver::makeLink(int r, int s) const {
     return link;
 }
 
-HierarchicalSolver::Decision HierarchicalSolver::oracle(const Link& link) const {
+HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     const int r = link.receiver, s = link.source;
     const Node& R = h_.nodes[r];
     const Node& S = h_.nodes[s];
     // Skip what cannot carry light: a receiver that reflects nothing (emitting faces, black
     // surfaces), a source element that neither emits nor reflects (a light that is off).
-    if (!R.isCluster() && R.rho.maxComponent() <= 0) return Decision::drop;
-    if (!S.isCluster() && S.rho.maxComponent() <= 0 && !S.emitting) return Decision::drop;
-    if (r == s) return R.isCluster() ? Decision::splitReceiver : Decision::drop;
+    if (!R.isCluster() && R.rho.maxComponent() <= 0) return {Decision::drop, 0};
+    if (!S.isCluster() && S.rho.maxComponent() <= 0 && !S.emitting) return {Decision::drop, 0};
+    // A cluster is never linked to itself: its self-interaction is refined into the pairs
+    // of its children (an element does not light itself: planar).
+    if (r == s) return {R.isCluster() ? Decision::splitReceiver : Decision::drop, kForced};
     // Links from lights go to elements, never to clusters (Loscos et al. 2000, §2.3 and
     // §5.2): shadow boundaries need per-element visibility of each source.
-    if (S.isCluster() && S.emitting) return Decision::splitSource;
-    if (!S.isCluster() && S.emitting && R.isCluster()) return Decision::splitReceiver;
+    if (S.isCluster() && S.emitting) return {Decision::splitSource, kForced};
+    if (!S.isCluster() && S.emitting && R.isCluster()) return {Decision::splitReceiver, kForced};
 
     // BF criterion (HSA91), power form: rho_r B_s F A_r against epsilon times the emitted
-    // power. F is the oracle's bound (conservative for clusters).
+    // power. F is the oracle's bound (conservative for clusters), A_r the receiver's area
+    // that intercepts the source's light.
     const double F = transfer_->bound(r, s, link.F);
-    const double value = R.rho.maxComponent() * S.B.maxComponent() * F * R.area;
-    if (!(value > powerThreshold_)) return Decision::accept;
+    const double value =
+        R.rho.maxComponent() * S.B.maxComponent() * F * transfer_->receiverArea(r, s);
+
+    // A link with a cluster end stands for its contents by one direction and one disc
+    // (transfer.h): good only in the far field. Where the source may subtend a wide
+    // angle (its bound F above kFarField), surfaces of other orientations see parts of
+    // it that the centre's direction misses: refine, whatever the power.
+    const bool farField = !(R.isCluster() || S.isCluster()) || F <= kFarField;
+    if (farField && !(value > powerThreshold_)) return {Decision::accept, value};
 
     const bool splitR = canSplit(r), splitS = canSplit(s);
-    if (!splitR && !splitS) return Decision::accept;
+    if (!splitR && !splitS) return {Decision::accept, value};
     if (R.isCluster() || S.isCluster()) {
         // Open clusters first; of two clusters the larger one.
         if (R.isCluster() && S.isCluster())
-            return R.radius >= S.radius ? Decision::splitReceiver : Decision::splitSource;
-        return R.isCluster() ? Decision::splitReceiver : Decision::splitSource;
+            return {R.radius >= S.radius ? Decision::splitReceiver : Decision::splitSource, value};
+        return {R.isCluster() ? Decision::splitReceiver : Decision::splitSource, value};
     }
-    if (!splitR) return Decision::splitSource;
-    if (!splitS) return Decision::splitReceiver;
+    if (!splitR) return {Decision::splitSource, value};
+    if (!splitS) return {Decision::splitReceiver, value};
     // Of two elements, split the larger: it subtends the larger angle from the other
     // (F_rs > F_sr <=> A_s > A_r by reciprocity).
-    return R.area >= S.area ? Decision::splitReceiver : Decision::splitSource;
+    return {R.area >= S.area ? Decision::splitReceiver : Decision::splitSource, value};
 }
 
-void HierarchicalSolver::refineLink(const Link& linkIn, std::vector<Link>& out) {
-    Link link = linkIn;
-    const Decision d = oracle(link);
-    if (d == Decision::drop) return;
-    const bool evaluated = link.rays > 0 || link.shaftEmpty;
-    if (d == Decision::accept) {
-        if (!evaluated) transfer_->visibility(link);
-        out.push_back(link);
-        return;
-    }
-    const Node& R0 = h_.nodes[link.receiver];
-    const Node& S0 = h_.nodes[link.source];
-    const bool forced =
-        link.receiver == link.source || (S0.emitting && (S0.isCluster() || R0.isCluster()));
-    const bool bothElements = !R0.isCluster() && !S0.isCluster();
-    if (!forced && bothElements) {
-        // A link between two elements that is entirely blocked carries nothing: no need
-        // to refine it. That verdict must rest on all maxRays rays, not on the first few
-        // (4 blocked rays happen 1 time in 10 for a link that is 45 % visible). Cluster
-        // links are refined whatever their sampled visibility.
-        const bool sure = link.shaftEmpty || link.rays >= transfer_->options().maxRays;
-        if (!evaluated || (link.type == VisibilityType::invisible && !sure))
-            transfer_->visibility(link, /*thorough=*/true);
-        if (link.type == VisibilityType::invisible) {
-            out.push_back(link);
-            return;
-        }
-    }
-    changedInRefine_ = true;
-    passive_.push_back(link);  // Drettakis & Sillion 1997: keep it for dynamic updates
-    const int me = static_cast<int>(passive_.size()) - 1;
+size_t HierarchicalSolver::memoryUsed(size_t queued) const {
+    return h_.nodes.size() * sizeof(Node) +
+           (links_.size() + passive_.size() + queued) * sizeof(Link) +
+           queued * sizeof(double);  // the queue's keys
+}
 
-    const int r = link.receiver, s = link.source;
-    if (d == Decision::splitReceiver && h_.nodes[r].isLeaf()) h_.subdivide(r);
-    if (d == Decision::splitSource && h_.nodes[s].isLeaf()) h_.subdivide(s);
-    const Node& R = h_.nodes[r];
-    const Node& S = h_.nodes[s];
+bool HierarchicalSolver::withinBudget(size_t queued) const {
+    return links_.size() + passive_.size() + queued < maxLinks_ && memoryUsed(queued) < maxMemory_;
+}
 
-    auto child = [&](int rc, int sc) {
-        if (!transfer_->facing(rc, sc)) return;
-        Link c = makeLink(rc, sc);
-        c.parent = me;
-        if (link.shaftEmpty) {
-            // The shaft of two sub-volumes lies in the convex hull of the parents'
-            // volumes, which held no occluder: the child is visible too.
-            c.shaftEmpty = true;
-            c.type = VisibilityType::visible;
-            c.V = 1;
-        }
-        refineLink(c, out);
+void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
+    // Refinement by priority (Stamminger et al. 1999; Gibson & Hubbold 1996): the link of
+    // largest oracle value is refined first, so that when the budget of links and memory
+    // runs out, what is left unrefined is where the oracle's error is smallest. Ties are
+    // broken by the nodes' ids: the order, and so the node ids made by subdivision, do
+    // not depend on anything but the input.
+    struct Entry {
+        double value;
+        Link link;
     };
-    if (r == s) {
-        // A cluster linked to itself: every ordered pair of its children.
-        for (int i = 0; i < R.childCount; ++i)
-            for (int j = 0; j < R.childCount; ++j) child(R.firstChild + i, R.firstChild + j);
-    } else if (d == Decision::splitReceiver) {
-        const int first = R.firstChild, count = R.childCount;
-        for (int i = 0; i < count; ++i) child(first + i, s);
-    } else {
-        const int first = S.firstChild, count = S.childCount;
-        for (int j = 0; j < count; ++j) child(r, first + j);
+    const auto lower = [](const Entry& a, const Entry& b) {
+        if (a.value != b.value) return a.value < b.value;
+        if (a.link.receiver != b.link.receiver) return a.link.receiver > b.link.receiver;
+        return a.link.source > b.link.source;
+    };
+    std::vector<Entry> queue;
+    queue.reserve(seeds.size());
+    const auto push = [&](const Link& l) {
+        queue.push_back({oracle(l).value, l});
+        std::push_heap(queue.begin(), queue.end(), lower);
+    };
+    for (const Link& l : seeds) push(l);
+    seeds = {};
+    std::vector<size_t> pending;  // accepted links whose visibility is still to be evaluated
+    const auto accept = [&](const Link& l) {
+        if (l.rays == 0 && !l.shaftEmpty) pending.push_back(links_.size());
+        links_.push_back(l);
+    };
+    while (!queue.empty()) {
+        std::pop_heap(queue.begin(), queue.end(), lower);
+        Link link = queue.back().link;
+        queue.pop_back();
+        const Verdict v = oracle(link);
+        if (v.decision == Decision::drop) continue;
+        const bool forced = v.value == kForced;
+        if (v.decision == Decision::accept) {
+            accept(link);
+            continue;
+        }
+        if (!forced && !withinBudget(queue.size())) {
+            // Out of budget: keep the link as it is; what is still queued has a smaller
+            // oracle value.
+            budgetReached_ = true;
+            accept(link);
+            continue;
+        }
+        const Node& R0 = h_.nodes[link.receiver];
+        const Node& S0 = h_.nodes[link.source];
+        if (!forced && !R0.isCluster() && !S0.isCluster()) {
+            // A link between two elements that is entirely blocked carries nothing: no need
+            // to refine it. That verdict must rest on all maxRays rays, not on the first few
+            // (4 blocked rays happen 1 time in 10 for a link that is 45 % visible). Cluster
+            // links are refined whatever their sampled visibility.
+            const bool evaluated = link.rays > 0 || link.shaftEmpty;
+            const bool sure = link.shaftEmpty || link.rays >= transfer_->options().maxRays;
+            if (!evaluated || (link.type == VisibilityType::invisible && !sure))
+                transfer_->visibility(link, /*thorough=*/true);
+            if (link.type == VisibilityType::invisible) {
+                links_.push_back(link);
+                continue;
+            }
+        }
+        changedInRefine_ = true;
+        passive_.push_back(link);  // Drettakis & Sillion 1997: keep it for dynamic updates
+        const int me = static_cast<int>(passive_.size()) - 1;
+
+        const int r = link.receiver, s = link.source;
+        if (v.decision == Decision::splitReceiver && h_.nodes[r].isLeaf()) h_.subdivide(r);
+        if (v.decision == Decision::splitSource && h_.nodes[s].isLeaf()) h_.subdivide(s);
+        const Node& R = h_.nodes[r];
+        const Node& S = h_.nodes[s];
+        const auto child = [&](int rc, int sc) {
+            if (!transfer_->facing(rc, sc)) return;
+            push(childLink(link, me, rc, sc));
+        };
+        if (r == s) {
+            // A cluster linked to itself: every ordered pair of its children.
+            for (int i = 0; i < R.childCount; ++i)
+                for (int j = 0; j < R.childCount; ++j) child(R.firstChild + i, R.firstChild + j);
+        } else if (v.decision == Decision::splitReceiver) {
+            for (int i = 0; i < R.childCount; ++i) child(R.firstChild + i, s);
+        } else {
+            for (int j = 0; j < S.childCount; ++j) child(r, S.firstChild + j);
+        }
     }
+    evaluateVisibility(pending);
+}
+
+Link HierarchicalSolver::childLink(const Link& parent, int parentIndex, int r, int s) const {
+    Link c = makeLink(r, s);
+    c.parent = parentIndex;
+    if (parent.shaftEmpty) {
+        // The shaft of two sub-volumes lies in the convex hull of the parents' volumes,
+        // which held no occluder: the child is visible too.
+        c.shaftEmpty = true;
+        c.type = VisibilityType::visible;
+        c.V = 1;
+    }
+    return c;
+}
+
+void HierarchicalSolver::evaluateVisibility(const std::vector<size_t>& pending) {
+    // Each link's rays come from a generator seeded by its two nodes: evaluating them in
+    // parallel gives the same result as one by one.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pending.size(), 16),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t i = range.begin(); i != range.end(); ++i)
+                              transfer_->visibility(links_[pending[i]]);
+                      });
 }
 
 bool HierarchicalSolver::refineAll() {
@@ -150,7 +269,7 @@ bool HierarchicalSolver::refineAll() {
     std::vector<Link> old;
     old.swap(links_);
     links_.reserve(old.size() * 2);
-    for (const Link& l : old) refineLink(l, links_);
+    refineLinks(std::move(old));
     return changedInRefine_;
 }
 
@@ -177,24 +296,11 @@ void HierarchicalSolver::pushLightLinksToLeaves(size_t from) {
             for (int k = R.childCount - 1; k >= 0; --k) {
                 const int rc = R.firstChild + k;
                 if (!transfer_->facing(rc, link.source)) continue;
-                Link c = makeLink(rc, link.source);
-                c.parent = me;
-                if (link.shaftEmpty) {
-                    c.shaftEmpty = true;
-                    c.type = VisibilityType::visible;
-                    c.V = 1;
-                }
-                stack.push_back(c);
+                stack.push_back(childLink(link, me, rc, link.source));
             }
         }
     }
-    // Each link's rays come from a generator seeded by its two nodes: evaluating them in
-    // parallel gives the same result as one by one.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, pending.size(), 16),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              transfer_->visibility(links_[pending[i]]);
-                      });
+    evaluateVisibility(pending);
 }
 
 void HierarchicalSolver::buildReceiverIndex(size_t sortedPrefix) {
@@ -229,13 +335,22 @@ std::span<const Link> HierarchicalSolver::linksOf(int node) const {
 
 void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
     Node& n = h_.nodes[node];
-    const Rgb H = Hdown + n.H;
-    if (n.isLeaf()) {
-        if (!n.isCluster()) n.B = n.E + n.rho * H;
-        return;
+    Rgb H;
+    if (!n.isCluster()) {
+        // An element: what its ancestor elements gathered and its own links; a polygon's
+        // root element also what the clusters above it gathered, by its orientation.
+        const bool root = n.parent < 0 || h_.nodes[n.parent].isCluster();
+        H = Hdown + n.H +
+            (root ? fromClusters(
+                        h_, node,
+                        [&](int a) -> const DirectionalIrradiance& { return h_.nodes[a].Hv; })
+                  : Rgb{});
+        if (n.isLeaf()) {
+            n.B = n.E + n.rho * H * n.gatherScale;
+            return;
+        }
     }
-    // Push: children inherit the irradiance gathered above them (an isotropic cluster
-    // hands it to its contents unchanged). Pull: B is the area-weighted mean.
+    // Push down, pull B up as the area-weighted mean.
     Rgb B;
     double area = 0;
     const int first = n.firstChild, count = n.childCount;
@@ -248,22 +363,30 @@ void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
     h_.nodes[node].B = area > 0 ? B * (1.0 / area) : Rgb{};  // guard: no area below
 }
 
+void HierarchicalSolver::gatherInto(const Link& l) {
+    Node& R = h_.nodes[l.receiver];
+    const Node& S = h_.nodes[l.source];
+    const Rgb H = S.B * (l.F * static_cast<double>(l.V));
+    if (R.isCluster())
+        R.Hv.add(H, toFrame(R, linkDirection(R, S)));
+    else
+        R.H += H;
+}
+
 double HierarchicalSolver::sweep() {
     if (indexDirty_) finishSplits();
     auto t0 = Clock::now();
-    for (Node& n : h_.nodes) n.H = Rgb{};
+    for (Node& n : h_.nodes) {
+        n.H = Rgb{};
+        n.Hv = DirectionalIrradiance{};
+    }
     // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
     // result does not depend on the thread count.
     tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
                       [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i) {
-                              Rgb H;
-                              for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
-                                  const Link& l = links_[k];
-                                  H += h_.nodes[l.source].B * (l.F * static_cast<double>(l.V));
-                              }
-                              h_.nodes[receivers_[i]].H = H;
-                          }
+                          for (size_t i = range.begin(); i != range.end(); ++i)
+                              for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k)
+                                  gatherInto(links_[k]);
                       });
     timing_.timeGather += secondsSince(t0);
     t0 = Clock::now();
@@ -274,6 +397,100 @@ double HierarchicalSolver::sweep() {
     return root.B.maxComponent() * root.area;
 }
 
+std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& value,
+                                                bool bounded) const {
+    if (indexDirty_) throw std::logic_error("gatherDown: call finishSplits() after splitForLights");
+    const auto& nodes = h_.nodes;
+    std::vector<Rgb> H(nodes.size());
+    std::vector<DirectionalIrradiance> Hv(nodes.size());
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, receivers_.size(), 64),
+        [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                const int r = receivers_[i];
+                for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
+                    const Link& l = links_[k];
+                    const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
+                    if (nodes[r].isCluster())
+                        Hv[r].add(h, toFrame(nodes[r], linkDirection(nodes[r], nodes[l.source])));
+                    else
+                        H[r] += h;
+                }
+            }
+        });
+    std::vector<Rgb> out = pushDown(
+        h_, [&](int n) -> const Rgb& { return H[n]; },
+        [&](int n) -> const DirectionalIrradiance& { return Hv[n]; });
+    if (bounded)
+        for (size_t n = 0; n < nodes.size(); ++n)
+            if (!nodes[n].isCluster() && nodes[n].isLeaf()) out[n] *= nodes[n].gatherScale;
+    return out;
+}
+
+void HierarchicalSolver::boundGather(size_t firstNode) {
+    // G: what each leaf gathers when every source that reflects has radiosity 1. Light
+    // that comes straight from an emitting face (which reflects nothing) is left out: it
+    // feeds nothing back, and the real-shadow correction may scale it above V = 1 on
+    // purpose (scaleLightLinks).
+    const auto& nodes = h_.nodes;
+    const std::vector<Rgb> G = gatherDown(
+        [&](int s) {
+            const Node& S = nodes[s];
+            return Rgb::gray(S.isCluster() || S.rho.maxComponent() > 0 ? 1.0 : 0.0);
+        },
+        false);
+    double rhoMax = 0;
+    for (const Node& e : nodes)
+        if (!e.isCluster() && e.isLeaf()) rhoMax = std::max(rhoMax, e.rho.maxComponent());
+    boundedLeaves_ = 0;
+    maxGather_ = 1;
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        Node& e = h_.nodes[n];
+        if (e.isCluster() || !e.isLeaf()) continue;
+        const double g = G[n].maxComponent(), rho = e.rho.maxComponent();
+        maxGather_ = std::max(maxGather_, g);
+        if (n >= firstNode) {
+            // rho s G <= rho_max: the leaf passes on at most rho_max of the brightest
+            // radiosity it sees, as in a physical scene of the same reflectances.
+            e.gatherScale = rho * g > rhoMax && rho * g > 0 ? rhoMax / (rho * g) : 1.0;
+        }
+        if (e.gatherScale < 1) ++boundedLeaves_;
+    }
+}
+
+void HierarchicalSolver::throwNotConverged(int sweeps, double power, double delta) const {
+    // Name the leaf whose radiosity is largest relative to the brightest emitter: where
+    // light piles up.
+    int worst = -1;
+    double worstB = -1;
+    for (size_t n = 0; n < h_.nodes.size(); ++n) {
+        const Node& e = h_.nodes[n];
+        if (e.isCluster() || !e.isLeaf()) continue;
+        const double b = (e.B - e.E).maxComponent();
+        if (!(b <= worstB)) {  // NaN first
+            worstB = b;
+            worst = static_cast<int>(n);
+        }
+    }
+    std::string where = "no element";
+    if (worst >= 0) {
+        const Node& e = h_.nodes[worst];
+        const Polygon& p = scene_.polygons[e.polygon];
+        const std::vector<Rgb> G = gatherDown([](int) { return Rgb::gray(1.0); }, true);
+        where = "element " + std::to_string(worst) + " of polygon " + std::to_string(e.polygon) +
+                (p.object >= 0 ? " (object '" + scene_.objects[p.object] + "')" : "") +
+                ": reflected radiosity " + std::to_string(worstB) + ", reflectance " +
+                std::to_string(e.rho.maxComponent()) + ", its links' form factors sum to " +
+                std::to_string(G[worst].maxComponent());
+    }
+    char head[256];
+    std::snprintf(head, sizeof head,
+                  "radiosity did not converge after %d gather/push-pull sweeps (total power "
+                  "%.6g, still changing by %.3g per sweep); largest: ",
+                  sweeps, power, delta);
+    throw SolverError(head + where);
+}
+
 int HierarchicalSolver::gatherPushPull() {
     // Jacobi sweeps converge geometrically, P_k -> P with ratio q (about the mean
     // reflectance). Stopping when the last change is small is not enough for rho -> 1:
@@ -282,15 +499,19 @@ int HierarchicalSolver::gatherPushPull() {
     if (!(scene_.emittedPower().maxComponent() > 0)) {
         // No light on: the solution is B = 0 (E = 0 everywhere). Sweeps would only decay
         // towards it geometrically, never meeting a relative tolerance.
-        for (Node& n : h_.nodes) n.H = Rgb{};
+        for (Node& n : h_.nodes) {
+            n.H = Rgb{};
+            n.Hv = DirectionalIrradiance{};
+        }
         pushPull(Hierarchy::kRoot, Rgb{});
         return 1;
     }
     double previous = -1, previousDelta = -1;
     int count = 0;
-    while (count < options_.maxSweeps) {
+    while (true) {
         const double power = sweep();
         ++count;
+        if (!std::isfinite(power)) throwNotConverged(count, power, power);
         if (previous >= 0) {
             const double delta = std::abs(power - previous);
             double q = previousDelta > 0 ? delta / previousDelta : 0.5;
@@ -299,6 +520,7 @@ int HierarchicalSolver::gatherPushPull() {
             if (delta <= options_.tolerance * std::abs(power) &&
                 remaining <= options_.tolerance * std::abs(power))
                 break;
+            if (count >= options_.maxSweeps) throwNotConverged(count, power, delta);
             previousDelta = delta;
         }
         previous = power;
@@ -318,7 +540,10 @@ void HierarchicalSolver::solve() {
     }
     if (!(emitted > 0)) {
         // No light: every radiosity is zero. Nothing to refine.
-        for (Node& n : h_.nodes) n.H = Rgb{};
+        for (Node& n : h_.nodes) {
+            n.H = Rgb{};
+            n.Hv = DirectionalIrradiance{};
+        }
         pushPull(Hierarchy::kRoot, Rgb{});
         return;
     }
@@ -329,21 +554,22 @@ void HierarchicalSolver::solve() {
             if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
         }
         buildReceiverIndex();
+        boundGather();
         timing_.timeRefine += secondsSince(t0);
         ++timing_.refineRounds;
         const int sweeps = gatherPushPull();
-        char msg[200];
-        std::snprintf(msg, sizeof msg, "refine round %d: %zu links, %d leaves, %d sweeps",
-                      round + 1, links_.size(), h_.leafCount(), sweeps);
+        char msg[256];
+        std::snprintf(msg, sizeof msg, "refine round %d: %zu links, %d leaves, %d sweeps%s",
+                      round + 1, links_.size(), h_.leafCount(), sweeps,
+                      budgetReached_ ? " (refinement budget reached)" : "");
         report(msg);
         if (!changed) break;
     }
 }
 
 void HierarchicalSolver::addLinksFromSource(int node) {
-    Link l = makeLink(Hierarchy::kRoot, node);
     changedInRefine_ = false;
-    refineLink(l, links_);
+    refineLinks({makeLink(Hierarchy::kRoot, node)});
 }
 
 void HierarchicalSolver::setLightRadiance(int light, const Rgb& radiance) {
@@ -378,6 +604,7 @@ void HierarchicalSolver::setLightRadiances(std::span<const Rgb> radiance) {
     if (added) {
         if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
         buildReceiverIndex();
+        boundGather();
     }
     gatherPushPull();
 }
@@ -387,9 +614,14 @@ Rgb HierarchicalSolver::radiosityAt(int polygon, const Vec3& x) const {
 }
 
 Rgb HierarchicalSolver::irradianceAt(int polygon, const Vec3& x) const {
+    const int leaf = h_.locateLeaf(polygon, x);
+    const Vec3& normal = h_.nodes[leaf].normal;
     Rgb H;
-    for (int n = h_.locateLeaf(polygon, x); n >= 0; n = h_.nodes[n].parent) H += h_.nodes[n].H;
-    return H;
+    for (int n = leaf; n >= 0; n = h_.nodes[n].parent) {
+        const Node& a = h_.nodes[n];
+        H += a.isCluster() ? a.Hv.onto(toFrame(a, normal)) : a.H;
+    }
+    return H * h_.nodes[leaf].gatherScale;
 }
 
 void HierarchicalSolver::setReflectance(int polygon, const Rgb& rho) {
@@ -421,23 +653,22 @@ SolverStats HierarchicalSolver::stats() const {
     s.shaftTests = transfer_->counters.shaftTests.load();
     s.shaftEmpty = transfer_->counters.shaftEmpty.load();
     s.emittedPower = scene_.emittedPower();
-    // Energy balance: walk down with the irradiance gathered above each leaf.
-    struct Walk {
-        const Hierarchy& h;
-        SolverStats& s;
-        void operator()(int node, const Rgb& Hdown) const {
-            const Node& n = h.nodes[node];
-            const Rgb H = Hdown + n.H;
-            if (n.isLeaf()) {
-                if (n.isCluster()) return;
-                s.absorbedPower += (Rgb::gray(1.0) - n.rho) * H * n.area;
-                s.radiosityPower += n.B * n.area;
-                return;
-            }
-            for (int k = 0; k < n.childCount; ++k) (*this)(n.firstChild + k, H);
-        }
-    };
-    Walk{h_, s}(Hierarchy::kRoot, Rgb{});
+    // Energy balance: what each leaf gathered in the last sweep.
+    const std::vector<Rgb> H = pushDown(
+        h_, [&](int n) -> const Rgb& { return h_.nodes[n].H; },
+        [&](int n) -> const DirectionalIrradiance& { return h_.nodes[n].Hv; });
+    for (size_t n = 0; n < h_.nodes.size(); ++n) {
+        const Node& e = h_.nodes[n];
+        if (e.isCluster() || !e.isLeaf()) continue;
+        s.absorbedPower += (Rgb::gray(1.0) - e.rho) * H[n] * (e.area * e.gatherScale);
+        s.radiosityPower += e.B * e.area;
+    }
+    s.boundedLeaves = boundedLeaves_;
+    s.maxGather = maxGather_;
+    s.budgetReached = budgetReached_;
+    s.memoryBytes = memoryUsed(0);
+    s.maxLinks = maxLinks_;
+    s.maxMemory = maxMemory_;
     return s;
 }
 

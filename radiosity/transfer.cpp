@@ -32,6 +32,20 @@ double maxInFront(const Node& node, const Vec3& n, const Vec3& p0) {
 
 }  // namespace
 
+Vec3 linkDirection(const Node& R, const Node& S) {
+    const Vec3 d = S.centre - R.centre;
+    const double len = glm::length(d);
+    return len > 0 ? d / len : Vec3{0, 0, 0};
+}
+
+double pointToNode(const Vec3& x, const Vec3& n, const Node& S) {
+    const Vec3 d = S.centre - x;
+    const double d2 = glm::dot(d, d);
+    if (!(d2 > 0)) return 0.0;  // x at the source's centre: no direction
+    const Vec3 w = d / std::sqrt(d2);
+    return discFormFactor(glm::dot(n, w), 1.0, d2, projectedArea(S, -w));
+}
+
 bool TransferEvaluator::facing(int r, int s) const {
     const Node& R = h_.nodes[r];
     const Node& S = h_.nodes[s];
@@ -53,22 +67,38 @@ double TransferEvaluator::formFactor(int r, int s) const {
     }
     const Vec3 d = S.centre - R.centre;
     const double d2 = glm::dot(d, d);
-    // Accepted cluster links join disjoint bounding spheres (see bound()), so d2 > 0; the
-    // guard keeps a degenerate input finite.
-    if (!(d2 > 1e-24)) return 0.0;
+    // Coincident centres (two clusters about one point): no direction to weigh a
+    // receiver's cosine by; such a link is always refined (bound() is 1), and meanwhile
+    // carries nothing.
+    if (!(d2 > 0)) return 0.0;
     const Vec3 w = d / std::sqrt(d2);
-    const double cosR = R.isCluster() ? 0.25 : std::max(0.0, glm::dot(R.normal, w));
-    const double cosS = S.isCluster() ? 0.25 : std::max(0.0, -glm::dot(S.normal, w));
-    return S.area * cosR * cosS / (kPi * d2);
+    const double As = projectedArea(S, -w);
+    // The receiver's cosine for an element; for a cluster the gather applies each of its
+    // surfaces' own (vector irradiance).
+    const double cosR = R.isCluster() ? 1.0 : glm::dot(R.normal, w);
+    return discFormFactor(cosR, 1.0, d2, As);
 }
 
 double TransferEvaluator::bound(int r, int s, double F) const {
     const Node& R = h_.nodes[r];
     const Node& S = h_.nodes[s];
     if (!R.isCluster() && !S.isCluster()) return F;
-    const double dMin = glm::length(S.centre - R.centre) - R.radius - S.radius;
-    if (!(dMin > 0)) return std::numeric_limits<double>::infinity();
-    return S.area / (kPi * dMin * dMin);
+    const Vec3 d = S.centre - R.centre;
+    const double dist = glm::length(d);
+    const double dMin = dist - R.radius - S.radius;
+    if (!(dMin > 0)) return 1.0;
+    const double As = projectedArea(S, -d / dist);
+    return std::min(1.0, As / (kPi * dMin * dMin));
+}
+
+double TransferEvaluator::receiverArea(int r, int s) const {
+    const Node& R = h_.nodes[r];
+    if (!R.isCluster()) return R.area;
+    const Vec3 d = h_.nodes[s].centre - R.centre;
+    const double dist = glm::length(d);
+    // Coincident centres: no direction; the whole area is the safe (larger) estimate.
+    if (!(dist > 0)) return R.area;
+    return projectedArea(R, d / dist);
 }
 
 bool TransferEvaluator::shaftQuery(const Shaft& shaft, int node, int skipA, int skipB,
@@ -123,20 +153,33 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     int permR[256], permS[256];
     shuffledStrata(rng, k, permR);
     shuffledStrata(rng, k, permS);
+    int m = 0;  // mutually facing pairs found, compacted to the front in draw order
     for (int i = 0; i < maxRays; ++i) {
         const int a = permR[i], b = permS[i];
         // Only mutually facing point pairs carry light between one-sided surfaces; a ray
         // from the back of a block's face would run through the block and count as
-        // blocked. Redraw within the strata up to 8 times to find one.
+        // blocked, biasing V low. Redraw within the strata up to 8 times to find one;
+        // a pair never found is left out of the estimate rather than counted blocked.
         for (int attempt = 0; attempt < 8; ++attempt) {
             const double u0 = ((a % k) + rng.uniform()) / k, v0 = ((a / k) + rng.uniform()) / k;
             const double u1 = ((b % k) + rng.uniform()) / k, v1 = ((b / k) + rng.uniform()) / k;
             Vec3 n0, n1;
-            from[i] = h_.samplePoint(r, u0, v0, rng.uniform(), &n0);
-            to[i] = h_.samplePoint(s, u1, v1, rng.uniform(), &n1);
-            const Vec3 d = to[i] - from[i];
-            if (glm::dot(n0, d) > 0 && glm::dot(n1, d) < 0) break;
+            from[m] = h_.samplePoint(r, u0, v0, rng.uniform(), &n0);
+            to[m] = h_.samplePoint(s, u1, v1, rng.uniform(), &n1);
+            const Vec3 d = to[m] - from[m];
+            if (glm::dot(n0, d) > 0 && glm::dot(n1, d) < 0) {
+                ++m;
+                break;
+            }
         }
+    }
+    if (m == 0) {
+        // No part of the two faces the other: nothing passes, and no more rays would say
+        // otherwise.
+        link.rays = static_cast<uint8_t>(maxRays);
+        link.V = 0;
+        link.type = VisibilityType::invisible;
+        return;
     }
     // Rays between two elements ignore hits on the elements' own polygons (grazing
     // rays near a shared edge would otherwise count as blocked).
@@ -144,7 +187,7 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     const int polyS = h_.nodes[s].isCluster() ? -1 : h_.nodes[s].polygon;
     int cast = 0;
     const int visible =
-        vis_.visibleAdaptive(from, to, thorough ? maxRays : minRays, maxRays, cast, polyR, polyS);
+        vis_.visibleAdaptive(from, to, thorough ? m : std::min(minRays, m), m, cast, polyR, polyS);
     counters.rays.fetch_add(static_cast<uint64_t>(cast), std::memory_order_relaxed);
     link.rays = static_cast<uint8_t>(std::min(cast, 255));
     link.V = static_cast<float>(visible) / static_cast<float>(cast);

@@ -5,20 +5,27 @@
 // quadrature points to the source polygon (form_factor.h). Every link of a receiver uses
 // the same points, so in a closed enclosure the links of one receiver sum to 1 exactly.
 //
-// Links with a cluster end use Sillion's isotropic cluster (Sillion 1995): a cluster of
-// total surface area A emits as if its surfaces faced every direction equally, with
-// projected area A/4 (the mean of max(0, cos) over the sphere), and distributes the
-// irradiance it receives equally to its contents, each absorbing 1/4 of the perpendicular
-// irradiance on average. With d the distance between the two centres:
-//   element r <- cluster s: F = A_s cos_r / (4 pi d^2)
-//   cluster r <- element s: F = A_s cos_s / (4 pi d^2)
-//   cluster r <- cluster s: F = A_s / (16 pi d^2)
-// Energy is conserved on average over orientations, not per element: the oracle refines
-// every cluster link that carries a significant share of the power.
+// Links with a cluster end use bounded estimates (Sillion 1995, with the bounds of Smits,
+// Arvo & Greenberg 1994). With w the unit direction from the receiver's centre to the
+// source's, d the distance between the centres and A_s = projectedArea(s, -w) the area of
+// the source's surfaces facing the receiver, projected (hierarchy.h: exact for an element,
+// bounded by the cluster's box cross-section), the source is replaced by a disc of that
+// area facing the receiver, whose exact on-axis form factor is (discFormFactor)
+//     F_perp = A_s / (pi d^2 + A_s)  <=  1.
+//   element r <- any s:   F = max(0, n_r . w) F_perp     (the receiver's cosine)
+//   cluster r <- any s:   F = F_perp; the gather bins B_s F V by its direction w in the
+//                         cluster's directional irradiance, and each surface inside takes
+//                         it by its own normal (directional_irradiance.h), so that no
+//                         surface facing away is lit.
+// Each transfer is thus at most what a surface facing the source squarely could gather
+// from a disc of the source's projected area, finite at any distance (no 1/d^2 blow-up
+// when clusters touch). What no per-link bound can ensure -- that the links of one
+// receiver, unoccluded estimates of sources that may hide each other, sum to at most 1 --
+// the solver enforces per leaf (HierarchicalSolver's energy bound).
 //
-// The oracle's bound for a cluster end is conservative: cos <= 1 and the distance between
-// the bounding spheres, F <= A_s / (pi d_min^2), infinite when the spheres overlap, so
-// that no cluster link is kept between overlapping volumes.
+// The oracle's bound for a link with a cluster end is conservative: the source's projected
+// area at the distance between the bounding spheres, A_s / (pi d_min^2), capped at 1 (a
+// form factor cannot exceed 1), and 1 when the spheres overlap.
 //
 // Visibility (Loscos et al. 2000, §2.3): first a shaft between the two bounding boxes
 // (Haines & Wallace 1991) is tested against the cluster hierarchy; if it holds no other
@@ -53,6 +60,14 @@ struct TransferCounters {
     std::atomic<uint64_t> rays{0};         ///< "Visibility/Rays" cast for links
 };
 
+/// Unit direction from R's centre to S's (zero when they coincide): the direction a
+/// cluster receiver's vector irradiance takes from the link R <- S.
+Vec3 linkDirection(const Node& R, const Node& S);
+/// Bounded estimate of the form factor from point x (unit normal n) to a node S seen from
+/// afar: discFormFactor(max(0, n.w), 1, d^2, projectedArea(S, -w)), the same estimate as a
+/// link's for an element receiver (used by per-point gathers through cluster sources).
+double pointToNode(const Vec3& x, const Vec3& n, const Node& S);
+
 class TransferEvaluator {
   public:
     TransferEvaluator(const Hierarchy& h, const Visibility& vis, TransferOptions options)
@@ -65,8 +80,13 @@ class TransferEvaluator {
     /// Unoccluded transfer coefficient F of the link r <- s (see above).
     double formFactor(int r, int s) const;
     /// Conservative bound on F used by the refinement oracle: formFactor() for two
-    /// elements, A_s / (pi d_min^2) (or +inf) when one end is a cluster.
+    /// elements, min(1, A_s / (pi d_min^2)) (1 when the spheres overlap) when one end is a
+    /// cluster.
     double bound(int r, int s, double F) const;
+    /// The area of receiver r that intercepts what it gathers from s (m^2), for the
+    /// oracle's power estimate rho B F A: an element's area, or a cluster's area facing
+    /// the source, projected (projectedArea).
+    double receiverArea(int r, int s) const;
     /// Fills V, type, rays and shaftEmpty of `link`. `thorough` casts all maxRays at
     /// once: used where a verdict of INVISIBLE would stop refinement, so that it rests on
     /// maxRays blocked rays rather than on the first few.

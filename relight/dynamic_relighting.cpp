@@ -67,22 +67,12 @@ std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
     // H_ind(node): what the node and its ancestors gather through links whose source is not
     // an emitting element (light links are the direct light, evaluated per vertex).
     const auto& nodes = solver_.hierarchy().nodes;
-    std::vector<Rgb> own(nodes.size());
-    for (const radiosity::Link& l : solver_.links()) {
-        const Node& S = nodes[l.source];
-        if (!S.isCluster() && S.emitting) continue;
-        own[l.receiver] += S.B * (l.F * static_cast<double>(l.V));
-    }
-    std::vector<Rgb> out(nodes.size());
-    std::vector<int> stack{radiosity::Hierarchy::kRoot};
-    while (!stack.empty()) {
-        const int n = stack.back();
-        stack.pop_back();
-        const Node& node = nodes[n];
-        out[n] = own[n] + (node.parent >= 0 ? out[node.parent] : Rgb{});
-        for (int k = 0; k < node.childCount; ++k) stack.push_back(node.firstChild + k);
-    }
-    return out;
+    return solver_.gatherDown(
+        [&](int s) {
+            const Node& S = nodes[s];
+            return !S.isCluster() && S.emitting ? Rgb{} : S.B;
+        },
+        /*bounded=*/true);
 }
 
 int DynamicRelighting::addLight(const VirtualLight& light) {

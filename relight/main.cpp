@@ -20,6 +20,11 @@ namespace {
 /// The options of the preparation, the same for `prepare` and `render`.
 void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
     app->add_option("--epsilon", p.epsilon, "BF refinement threshold")->check(CLI::PositiveNumber);
+    app->add_option("--max-links", p.maxLinks,
+                    "refinement budget in links (default: what fits in --max-memory)");
+    app->add_option("--max-memory", p.maxMemoryMB,
+                    "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
+        ->check(CLI::NonNegativeNumber);
     app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     app->add_flag("!--no-refinement", p.shadowRefinement,
                   "skip the texture-based refinement of shadow boundaries (§4.2)");
@@ -42,6 +47,12 @@ int main(int argc, char** argv) {
     solve
         ->add_option("--min-area", sa.minArea,
                      "smallest element area in m^2 (0: 2e-5 of the scene's area)")
+        ->check(CLI::NonNegativeNumber);
+    solve->add_option("--max-links", sa.maxLinks,
+                      "refinement budget in links (default: what fits in --max-memory)");
+    solve
+        ->add_option("--max-memory", sa.maxMemoryMB,
+                     "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
         ->check(CLI::NonNegativeNumber);
     solve->add_option("--min-rays", sa.minRays, "visibility rays per link, first round")
         ->check(CLI::Range(1, 256));

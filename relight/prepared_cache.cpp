@@ -88,6 +88,10 @@ void hashOptions(Fnv1a& h, const ShadowRemovalOptions& o) {
 
 void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.f64(o.epsilon);
+    // The budget in force, not the option: a default that comes from the machine's memory
+    // gives the same state on machines of the same memory only.
+    h.i64(static_cast<int64_t>(o.maxLinks));
+    h.i64(static_cast<int64_t>(o.maxMemory > 0 ? o.maxMemory : radiosity::defaultMemoryBudget()));
     h.i64(o.spp);
     h.i64(o.minRays);
     h.i64(o.maxRays);

@@ -53,6 +53,8 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
 
     radiosity::SolverOptions so;
     so.epsilon = o.epsilon;
+    so.maxLinks = o.maxLinks;
+    so.maxMemory = o.maxMemory;
     so.transfer.minRays = o.minRays;
     so.transfer.maxRays = o.maxRays;
     so.progress = o.progress;
@@ -89,6 +91,10 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     say("radiosity solution of the photo's lights");
     r->solver->solve();
     P.times.solve = since(t0);
+    if (const auto st = r->solver->stats(); st.budgetReached)
+        say("warning: the refinement budget was reached (" + std::to_string(st.links) + " links, " +
+            std::to_string(st.memoryBytes >> 20) +
+            " MiB): the solution is coarser where the oracle's error was smallest");
 
     t0 = Clock::now();
     say("reflectance from the photo");

@@ -49,7 +49,9 @@ namespace relight {
 
 struct RelightOptions {
     double epsilon = 1e-4;  ///< BF refinement threshold (radiosity/solver.h)
-    int spp = 16;           ///< item-buffer samples per pixel
+    /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
+    size_t maxLinks = 0, maxMemory = 0;
+    int spp = 16;  ///< item-buffer samples per pixel
     int minRays = 4, maxRays = 16;
     int reflectanceRounds = 12;
     /// Reflectance per leaf element from its texture after refinement (relight/reflectance.h),

@@ -17,6 +17,8 @@ struct SolveArgs {
     std::string scene;
     double epsilon = 1e-3;
     double minArea = 0;
+    size_t maxLinks = 0;     ///< refinement budget in links (0: from the memory budget)
+    double maxMemoryMB = 0;  ///< refinement budget in MiB (0: 40 % of the machine's memory)
     int minRays = 4, maxRays = 16;
     int spp = 16;
     int reflectanceRounds = 12;
@@ -43,6 +45,8 @@ struct CacheArgs {
 /// The preparation options that `prepare` and `render` share (part of the cache's key).
 struct PrepareOptionArgs {
     double epsilon = 1e-4;
+    size_t maxLinks = 0;
+    double maxMemoryMB = 0;
     int spp = 16;
     bool shadowRefinement = true;
     bool shadowRemoval = true;

@@ -32,6 +32,8 @@ std::string fitsScene(const PreparedImage& p, const SceneFile& sf) {
 RelightOptions PrepareOptionArgs::relightOptions() const {
     RelightOptions o;
     o.epsilon = epsilon;
+    o.maxLinks = maxLinks;
+    o.maxMemory = static_cast<size_t>(maxMemoryMB * 1048576.0);
     o.spp = spp;
     o.shadowRefinement = shadowRefinement;
     o.shadowRemoval = shadowRemoval;

@@ -27,6 +27,8 @@ int runSolve(const SolveArgs& a) {
     radiosity::SolverOptions o;
     o.epsilon = a.epsilon;
     o.minArea = a.minArea;
+    o.maxLinks = a.maxLinks;
+    o.maxMemory = static_cast<size_t>(a.maxMemoryMB * 1048576.0);
     o.transfer.minRays = a.minRays;
     o.transfer.maxRays = a.maxRays;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
@@ -109,6 +111,11 @@ int runSolve(const SolveArgs& a) {
                 st.absorbedPower.average(),
                 emitted > 0 ? 100 * st.absorbedPower.average() / emitted : 0.0,
                 st.radiosityPower.average());
+    std::printf("energy bound: %d leaves scaled, largest form-factor sum %.3f\n", st.boundedLeaves,
+                st.maxGather);
+    std::printf("budget: %.1f of %.1f MiB, %zu of %zu links%s\n", st.memoryBytes / 1048576.0,
+                st.maxMemory / 1048576.0, static_cast<size_t>(st.links + st.passiveLinks),
+                st.maxLinks, st.budgetReached ? ": REACHED, refinement stopped" : "");
     if (!a.output.empty()) {
         needItems();
         needLighting();
@@ -119,36 +126,44 @@ int runSolve(const SolveArgs& a) {
                     img.height, items.spp);
     }
     if (!a.report.empty()) {
-        nlohmann::json j = {{"scene", a.scene},
-                            {"epsilon", a.epsilon},
-                            {"min_area_m2", solver.minArea()},
-                            {"elements", st.elements},
-                            {"leaves", st.leaves},
-                            {"clusters", st.clusters},
-                            {"links",
-                             {{"total", st.links},
-                              {"visible", st.linksVisible},
-                              {"partial", st.linksPartial},
-                              {"invisible", st.linksInvisible},
-                              {"passive", st.passiveLinks}}},
-                            {"rays", st.rays},
-                            {"form_factors", st.formFactors},
-                            {"shafts", {{"tests", st.shaftTests}, {"empty", st.shaftEmpty}}},
-                            {"time_s",
-                             {{"build", st.timeBuild},
-                              {"refine_visibility", st.timeRefine},
-                              {"gather", st.timeGather},
-                              {"push_pull", st.timePushPull},
-                              {"reflectance_total", tReflectance},
-                              {"per_pixel_lighting", tLighting},
-                              {"total", since(tAll)}}},
-                            {"sweeps", st.sweeps},
-                            {"refine_rounds", st.refineRounds},
-                            {"energy",
-                             {{"emitted", rgbJson(st.emittedPower)},
-                              {"absorbed", rgbJson(st.absorbedPower)},
-                              {"radiosity_power", rgbJson(st.radiosityPower)}}},
-                            {"reflectance", reflectanceJson}};
+        nlohmann::json j = {
+            {"scene", a.scene},
+            {"epsilon", a.epsilon},
+            {"min_area_m2", solver.minArea()},
+            {"elements", st.elements},
+            {"leaves", st.leaves},
+            {"clusters", st.clusters},
+            {"links",
+             {{"total", st.links},
+              {"visible", st.linksVisible},
+              {"partial", st.linksPartial},
+              {"invisible", st.linksInvisible},
+              {"passive", st.passiveLinks}}},
+            {"rays", st.rays},
+            {"form_factors", st.formFactors},
+            {"shafts", {{"tests", st.shaftTests}, {"empty", st.shaftEmpty}}},
+            {"time_s",
+             {{"build", st.timeBuild},
+              {"refine_visibility", st.timeRefine},
+              {"gather", st.timeGather},
+              {"push_pull", st.timePushPull},
+              {"reflectance_total", tReflectance},
+              {"per_pixel_lighting", tLighting},
+              {"total", since(tAll)}}},
+            {"sweeps", st.sweeps},
+            {"budget",
+             {{"reached", st.budgetReached},
+              {"max_links", st.maxLinks},
+              {"max_memory_bytes", st.maxMemory},
+              {"memory_bytes", st.memoryBytes}}},
+            {"energy_bound",
+             {{"bounded_leaves", st.boundedLeaves}, {"max_form_factor_sum", st.maxGather}}},
+            {"refine_rounds", st.refineRounds},
+            {"energy",
+             {{"emitted", rgbJson(st.emittedPower)},
+              {"absorbed", rgbJson(st.absorbedPower)},
+              {"radiosity_power", rgbJson(st.radiosityPower)}}},
+            {"reflectance", reflectanceJson}};
         writeJsonAtomic(a.report, j);
         std::printf("wrote %s\n", a.report.c_str());
     }

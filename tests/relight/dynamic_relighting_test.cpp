@@ -18,9 +18,16 @@ namespace {
 const std::string kRoom = RELIGHT_DATA_DIR "/room";
 
 /// The room prepared once with coarse settings, changeable (sessions insert into its solver
-/// and take their parts out when they end).
+/// and take their parts out when they end). epsilon 3e-4 rather than the other tests' 1e-3:
+/// a virtual light's indirect light reaches the walls through far-field cluster links,
+/// whose single-direction estimate scores 0.056 on virtual_light_only at 1e-3, 0.038 at
+/// 3e-4 and 0.032 at the default 1e-4 (bench/RESULTS.md).
 Relighting& room() {
-    static const auto r = prepareRelighting(loadScene(kRoom), test::coarseOptions());
+    static const auto r = [] {
+        RelightOptions o = test::coarseOptions();
+        o.epsilon = 3e-4;
+        return prepareRelighting(loadScene(kRoom), o);
+    }();
     return *r;
 }
 

@@ -1,0 +1,257 @@
+// Energy bound of the clustered solver: bounded cluster transfers, directional irradiance,
+// the contraction bound per leaf, the refinement budget, and no light leaking round a
+// corner (solver.h, transfer.h, directional_irradiance.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "furnace.h"
+#include "radiosity/reference_solver.h"
+#include "radiosity/solver.h"
+
+using namespace radiosity;
+using radiosity::test::boxFacesInward;
+
+namespace {
+
+/// Cuts quad q (4 corners, counter-clockwise) into an n x n grid of triangle pairs, as a
+/// reconstructed mesh comes; appends them to the scene as object `object`.
+void addCutQuad(Scene& s, const std::vector<Vec3>& q, int n, int object, const Rgb& rho) {
+    auto at = [&](double u, double v) {
+        return (1 - u) * (1 - v) * q[0] + u * (1 - v) * q[1] + u * v * q[2] + (1 - u) * v * q[3];
+    };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double u0 = double(i) / n, u1 = double(i + 1) / n;
+            const double v0 = double(j) / n, v1 = double(j + 1) / n;
+            s.polygons.push_back(makePolygon({at(u0, v0), at(u1, v0), at(u1, v1)}, object, rho));
+            s.polygons.push_back(makePolygon({at(u0, v0), at(u1, v1), at(u0, v1)}, object, rho));
+        }
+}
+
+/// A 4 x 3 x 2.5 m closed room, each face cut into `cut` x `cut` triangle pairs, with a
+/// 1.2 x 0.8 x 0.7 m box standing on the floor (faces outward, bottom in contact with the
+/// floor) and a 0.4 x 0.4 m lamp 1 cm under the ceiling facing down.
+Scene cutRoom(int cut, double rho) {
+    Scene s;
+    s.objects = {"room", "box", "lamp"};
+    for (const auto& f : boxFacesInward(4, 3, 2.5)) addCutQuad(s, f, cut, 0, Rgb::gray(rho));
+    // The box: inward faces of a box, reversed, face outward.
+    const Vec3 o{1.0, 1.0, 0.0};
+    for (auto f : boxFacesInward(1.2, 0.8, 0.7)) {
+        std::reverse(f.begin(), f.end());
+        for (Vec3& p : f) p += o;
+        addCutQuad(s, f, std::max(1, cut / 2), 1, Rgb::gray(rho));
+    }
+    const double z = 2.49;
+    Polygon lamp =
+        makePolygon({{2.8, 1.3, z}, {2.8, 1.7, z}, {3.2, 1.7, z}, {3.2, 1.3, z}}, 2, Rgb{});
+    lamp.light = 0;
+    s.lights.push_back({"lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(10.0)});
+    s.polygons.push_back(lamp);
+    return s;
+}
+
+}  // namespace
+
+TEST(ProjectedArea, ExactForElementsAndFaceClusters) {
+    Scene s;
+    s.objects = {"wall"};
+    // A 2 x 1 m wall facing +y, cut into triangles: one face cluster.
+    addCutQuad(s, {{0, 0, 0}, {0, 0, 1}, {2, 0, 1}, {2, 0, 0}}, 3, 0, Rgb::gray(0.5));
+    Hierarchy h(s, 64);
+    const Node& root = h.nodes[Hierarchy::kRoot];
+    ASSERT_NEAR(root.area, 2.0, 1e-12);
+    const Vec3 v = glm::normalize(Vec3{0.3, 1.0, 0.2});
+    // Parallel surfaces: sum A max(0, n.v) = A (n.v), exactly.
+    EXPECT_NEAR(projectedArea(root, v), 2.0 * v.y, 1e-9);
+    EXPECT_NEAR(projectedArea(root, -v), 0.0, 1e-9);  // seen from behind: nothing
+    const Node& e = h.nodes[h.polygonRoot[0]];
+    EXPECT_NEAR(projectedArea(e, v), e.area * v.y, 1e-15);
+}
+
+TEST(ProjectedArea, ClosedBoxWithinItsTrueAreaAndCrossSection) {
+    // Outward box 1 x 2 x 3: seen from direction v it shows sum A_i max(0, n_i.v), which
+    // equals its cross-section |v.x| 6 + |v.y| 3 + |v.z| 2. The estimate may not be below
+    // the truth by more than rounding nor above the box's cross-section.
+    Scene s;
+    s.objects = {"box"};
+    for (auto f : boxFacesInward(1, 2, 3)) {
+        std::reverse(f.begin(), f.end());
+        s.polygons.push_back(makePolygon(f, 0, Rgb::gray(0.5)));
+    }
+    Hierarchy h(s, 64);
+    const Node& root = h.nodes[Hierarchy::kRoot];
+    for (const Vec3 d : {Vec3{1, 0, 0}, Vec3{1, 1, 0}, Vec3{1, -2, 3}, Vec3{0, 0, -1}}) {
+        const Vec3 v = glm::normalize(d);
+        const double truth = std::abs(v.x) * 6 + std::abs(v.y) * 3 + std::abs(v.z) * 2;
+        EXPECT_NEAR(projectedArea(root, v), truth, 1e-9) << v.x << " " << v.y << " " << v.z;
+    }
+}
+
+TEST(DirectionalIrradiance, ExactAlongTheFrameAndNeverAboveTheIrradiance) {
+    DirectionalIrradiance d;
+    const Vec3 w1 = glm::normalize(Vec3{0.2, 0.3, 1.0}), w2 = glm::normalize(Vec3{0.5, -0.1, -1});
+    d.add(Rgb::gray(2.0), w1);
+    d.add(Rgb::gray(1.0), w2);
+    // A surface facing +z sees only the first source: 2 w1.z, exactly.
+    EXPECT_NEAR(d.onto({0, 0, 1}).r, 2.0 * w1.z, 1e-12);
+    EXPECT_NEAR(d.onto({0, 0, -1}).r, 1.0 * -w2.z, 1e-12);
+    // Any normal: no more than the sum of the perpendicular irradiances (Cauchy-Schwarz).
+    for (const Vec3 n : {Vec3{1, 1, 1}, Vec3{-1, 0.5, 0.2}, Vec3{0.3, -0.9, 0.1}})
+        EXPECT_LE(d.onto(glm::normalize(n)).r, 3.0 + 1e-12);
+}
+
+TEST(EnergyBound, CutRoomConvergesAndLinksAreBounded) {
+    // The room cut into 2 x 2 (then 8 x 8) triangle pairs per face, rho 0.95: before the
+    // bound, a cluster linked to a touching neighbour gathered F = 2.1 and the sweeps grew
+    // without end. Every link now has F <= 1, no cluster is linked to itself, the solve
+    // converges, and what is absorbed does not exceed what the lamp emits. (How much of it
+    // is absorbed -- a closed room should absorb all of it -- is not yet asserted: the
+    // bound loses light where sampled visibility makes G exceed 1, 22-34 % of the lamp's
+    // power here at rho 0.95; see bench/RESULTS.md.)
+    for (int cut : {2, 8}) {
+        HierarchicalSolver solver(cutRoom(cut, 0.95), {});
+        ASSERT_NO_THROW(solver.solve()) << cut;
+        for (const Link& l : solver.links()) {
+            ASSERT_LE(l.F, 1.0) << cut;
+            ASSERT_GE(l.F, 0.0) << cut;
+            const Node& R = solver.hierarchy().nodes[l.receiver];
+            ASSERT_FALSE(l.receiver == l.source && R.isCluster()) << cut;
+        }
+        const SolverStats st = solver.stats();
+        for (const Node& n : solver.hierarchy().nodes) ASSERT_TRUE(n.B.isFinite());
+        // Absorbed <= emitted: a closed room cannot absorb more than its lamp gives; 0.5 %
+        // covers the sampled visibility of the lamp's links.
+        EXPECT_LE(st.absorbedPower.r, 1.005 * st.emittedPower.r) << cut;
+        // The bound: rho s G <= rho_max (0.95) on every leaf.
+        const auto G = solver.gatherDown(
+            [&](int s) {
+                const Node& S = solver.hierarchy().nodes[s];
+                return Rgb::gray(S.isCluster() || S.rho.maxComponent() > 0 ? 1.0 : 0.0);
+            },
+            true);
+        for (size_t n = 0; n < G.size(); ++n) {
+            const Node& e = solver.hierarchy().nodes[n];
+            if (e.isCluster() || !e.isLeaf()) continue;
+            ASSERT_LE(e.rho.maxComponent() * G[n].maxComponent(), 0.95 * (1 + 1e-9)) << n;
+        }
+    }
+}
+
+TEST(EnergyBound, NonConvergenceIsAnErrorNamingTheElement) {
+    // Two sweeps cannot settle a rho = 0.9 room to 1e-12: the solve must stop with an error
+    // that says what did not converge, not return a half-converged answer.
+    SolverOptions o;
+    o.maxSweeps = 2;
+    o.tolerance = 1e-12;
+    HierarchicalSolver solver(cutRoom(1, 0.9), o);
+    try {
+        solver.solve();
+        FAIL() << "expected SolverError";
+    } catch (const SolverError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("did not converge after 2"), std::string::npos) << what;
+        EXPECT_NE(what.find("polygon"), std::string::npos) << what;
+        EXPECT_NE(what.find("object '"), std::string::npos) << what;
+    }
+}
+
+TEST(Budget, RefinementStopsAtTheLinkBudgetAndSaysSo) {
+    SolverOptions o;
+    o.epsilon = 1e-5;
+    HierarchicalSolver free(cutRoom(2, 0.7), o);
+    free.solve();
+    const size_t unbounded = free.links().size() + free.passiveLinks().size();
+    o.maxLinks = unbounded / 4;
+    HierarchicalSolver solver(cutRoom(2, 0.7), o);
+    solver.solve();
+    const SolverStats st = solver.stats();
+    EXPECT_FALSE(free.stats().budgetReached);
+    EXPECT_TRUE(st.budgetReached);
+    // Within the budget, but for the splits the method must make whatever the budget: the
+    // links from lights pushed down to the leaves, one active and at most one passive per
+    // (emitting element, leaf) pair.
+    size_t lightElements = 0;
+    for (const Node& n : solver.hierarchy().nodes)
+        if (!n.isCluster() && n.isLeaf() && n.emitting) ++lightElements;
+    const size_t used = solver.links().size() + solver.passiveLinks().size();
+    EXPECT_LE(used, o.maxLinks + 2 * lightElements * static_cast<size_t>(st.leaves))
+        << used << " links, budget " << o.maxLinks << ", leaves " << st.leaves;
+    EXPECT_LT(used, unbounded);
+    for (const Node& n : solver.hierarchy().nodes) ASSERT_TRUE(n.B.isFinite());
+}
+
+TEST(Budget, MemoryBudgetIsRespected) {
+    SolverOptions o;
+    o.epsilon = 1e-5;
+    o.maxMemory = size_t{2} << 20;  // 2 MiB of nodes and links
+    HierarchicalSolver solver(cutRoom(4, 0.7), o);
+    solver.solve();
+    const SolverStats st = solver.stats();
+    EXPECT_TRUE(st.budgetReached);
+    // The forced splits (light links to leaves) may pass it by what they need.
+    EXPECT_LE(st.memoryBytes, o.maxMemory + st.leaves * (2 * sizeof(Link) + sizeof(Node)));
+}
+
+namespace {
+
+/// An L-shaped enclosure, 1 m high: arm A along x ([0,4] x [0,1]), arm B along y
+/// ([0,1] x [1,4]); closed, all faces inward, rho 0.6, one lamp under the ceiling at the
+/// far end of arm A.
+Scene lRoom() {
+    Scene s;
+    s.objects = {"L", "lamp"};
+    const Rgb rho = Rgb::gray(0.6);
+    auto quad = [&](std::vector<Vec3> q) { s.polygons.push_back(makePolygon(q, 0, rho)); };
+    const double H = 1.0;
+    // Floor (+z) and ceiling (-z) of both arms.
+    quad({{0, 0, 0}, {4, 0, 0}, {4, 1, 0}, {0, 1, 0}});
+    quad({{0, 1, 0}, {1, 1, 0}, {1, 4, 0}, {0, 4, 0}});
+    quad({{0, 0, H}, {0, 1, H}, {4, 1, H}, {4, 0, H}});
+    quad({{0, 1, H}, {0, 4, H}, {1, 4, H}, {1, 1, H}});
+    // Walls along the outline (0,0) (4,0) (4,1) (1,1) (1,4) (0,4), each facing inward.
+    const std::vector<Vec3> outline{{0, 0, 0}, {4, 0, 0}, {4, 1, 0},
+                                    {1, 1, 0}, {1, 4, 0}, {0, 4, 0}};
+    for (size_t i = 0; i < outline.size(); ++i) {
+        const Vec3 a = outline[i], b = outline[(i + 1) % outline.size()];
+        quad({a, a + Vec3{0, 0, H}, b + Vec3{0, 0, H}, b});
+    }
+    const double z = H - 0.01;
+    Polygon lamp =
+        makePolygon({{3.4, 0.3, z}, {3.4, 0.7, z}, {3.8, 0.7, z}, {3.8, 0.3, z}}, 1, Rgb{});
+    lamp.light = 0;
+    s.lights.push_back({"lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(10.0)});
+    s.polygons.push_back(lamp);
+    return s;
+}
+
+}  // namespace
+
+// Not yet met, so not run: the hierarchical solution lights arm B 2.3 times as brightly as
+// the reference (0.0046 against 0.0020; bench/RESULTS.md). The target of the next step.
+TEST(Leaks, DISABLED_LShapedRoomLitInOneArmMatchesTheReference) {
+    // Arm B is lit only by light that turned the corner. A cluster link that handed its
+    // irradiance to surfaces facing away, or carried no visibility, lit it 2-4 times too
+    // brightly. Mean radiosity of arm B's far half (y > 2.5: floor, ceiling and walls)
+    // against the full-matrix reference: within 10 %.
+    const Scene s = lRoom();
+    HierarchicalSolver solver(s, {});
+    solver.solve();
+    ReferenceOptions ro;
+    ro.maxArea = 0.04;
+    ReferenceSolver ref(s, ro);
+    ref.solve();
+    double hr = 0, truth = 0, area = 0;
+    const Hierarchy& h = ref.hierarchy();
+    for (int leaf : ref.leaves()) {
+        const Node& e = h.nodes[leaf];
+        if (e.centre.y < 2.5 || e.emitting) continue;
+        hr += solver.radiosityAt(e.polygon, e.centre).r * e.area;
+        truth += e.B.r * e.area;
+        area += e.area;
+    }
+    ASSERT_GT(area, 4.0);
+    ASSERT_GT(truth, 0.0);
+    EXPECT_NEAR(hr / truth, 1.0, 0.10) << "HR " << hr / area << " reference " << truth / area;
+}
