@@ -149,7 +149,7 @@ void HierarchicalSolver::linkObject(int cluster, int oldRoot, DynamicUpdate& rep
     Link gather = makeLink(cluster, oldRoot);
     refineLinks({gather});
     for (size_t i = first; i < links_.size(); ++i) gatherInto(links_[i]);
-    pushPull(cluster, Rgb{});
+    pushPull(cluster, Rgb{}, Rgb{});
     // 2. What it shoots into the scene, and its light onto itself.
     Link shoot = makeLink(oldRoot, cluster);
     refineLinks({shoot, makeLink(cluster, cluster)});
@@ -185,6 +185,7 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
         rec.B.push_back(n.B);
         rec.H.push_back(n.H);
         rec.Hv.push_back(n.Hv);
+        rec.Hd.push_back(n.Hd);
     }
     rec.name = name;
     rec.light = lightRadiance != nullptr;
@@ -270,6 +271,7 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
         h_.nodes[n].B = rec.B[n];
         h_.nodes[n].H = rec.H[n];
         h_.nodes[n].Hv = rec.Hv[n];
+        h_.nodes[n].Hd = rec.Hd[n];
     }
     frozenNodes_ = rec.frozenNodes;
     buildReceiverIndex(links_.size());

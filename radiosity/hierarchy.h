@@ -52,11 +52,16 @@ struct Node {
     Rgb rho;  ///< reflectance (cluster: area-weighted mean)
     Rgb E;    ///< emittance, radiosity units (cluster: area-weighted mean)
     Rgb B;    ///< radiosity, radiosity units (cluster: area-weighted mean of its contents)
-    Rgb H;    ///< element: irradiance gathered through its own links in the last gather
+    /// Element: irradiance gathered through its own links in the last gather from sources
+    /// that reflect (Hd: from those that do not, the lamps' emitting faces).
+    Rgb H, Hd;
     DirectionalIrradiance Hv;  ///< cluster: irradiance gathered through its own links
-    /// Leaf element: factor on everything it gathers, 1/G where the form factors of all
-    /// the links above it sum to G > 1, else 1 (HierarchicalSolver, "energy bound").
+    /// Leaf element: factor on what it gathers from sources that reflect, seen / G
+    /// (HierarchicalSolver, "energy bound"); 1 until measured.
     double gatherScale = 1;
+    /// Leaf element: the fraction of its cosine-weighted hemisphere in which it sees the
+    /// front of a reflecting surface, measured by ray casting; -1 until measured.
+    double seen = -1;
     bool emitting = false;  ///< an emitter with E > 0 lies in this node
 
     bool isCluster() const { return kind == NodeKind::cluster; }

@@ -1,4 +1,5 @@
 #include "radiosity/solver.h"
+#include "radiosity/rng.h"
 #include "radiosity/stopwatch.h"
 
 #include <tbb/blocked_range.h>
@@ -8,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -54,6 +56,12 @@ std::vector<Rgb> pushDown(const Hierarchy& h, const OwnH& ownH, const OwnHv& own
 }
 
 }  // namespace
+
+bool reflects(const Node& source) {
+    // A cluster never holds an emitter on a link (the oracle splits those), so it stands
+    // for reflecting surfaces.
+    return source.isCluster() || source.rho.maxComponent() > 0;
+}
 
 HierarchicalSolver::HierarchicalSolver(Scene scene, SolverOptions options)
     : scene_(std::move(scene)),
@@ -102,9 +110,10 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     const int r = link.receiver, s = link.source;
     const Node& R = h_.nodes[r];
     const Node& S = h_.nodes[s];
-    // Skip what cannot carry light: a receiver that reflects nothing (emitting faces, black
-    // surfaces), a source element that neither emits nor reflects (a light that is off).
-    if (!R.isCluster() && R.rho.maxComponent() <= 0) return {Decision::drop, 0};
+    // Skip what cannot carry light: a source element that neither emits nor reflects (a
+    // light that is off). A receiver that reflects nothing (a lamp's face, a black surface)
+    // keeps its links: they change no radiosity, and are accepted at once (its power
+    // value is 0), but they say what it absorbs, so that the energy balance is whole.
     if (!S.isCluster() && S.rho.maxComponent() <= 0 && !S.emitting) return {Decision::drop, 0};
     // A cluster is never linked to itself: its self-interaction is refined into the pairs
     // of its children (an element does not light itself: planar).
@@ -124,8 +133,11 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     // A link with a cluster end stands for its contents by one direction and one disc
     // (transfer.h): good only in the far field. Where the source may subtend a wide
     // angle (its bound F above kFarField), surfaces of other orientations see parts of
-    // it that the centre's direction misses: refine, whatever the power.
-    const bool farField = !(R.isCluster() || S.isCluster()) || F <= kFarField;
+    // it that the centre's direction misses: refine at a tenth of the power threshold
+    // (not at any power: the neighbouring clusters of one finely cut wall touch, yet
+    // exchange next to nothing).
+    const bool farField = !(R.isCluster() || S.isCluster()) || F <= kFarField ||
+                          !(value > kNearFieldPower * powerThreshold_);
     if (farField && !(value > powerThreshold_)) return {Decision::accept, value};
 
     const bool splitR = canSplit(r), splitS = canSplit(s);
@@ -333,9 +345,9 @@ std::span<const Link> HierarchicalSolver::linksOf(int node) const {
             static_cast<size_t>(receiverStart_[i + 1] - receiverStart_[i])};
 }
 
-void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
+void HierarchicalSolver::pushPull(int node, const Rgb& Hdown, const Rgb& HdDown) {
     Node& n = h_.nodes[node];
-    Rgb H;
+    Rgb H, Hd;
     if (!n.isCluster()) {
         // An element: what its ancestor elements gathered and its own links; a polygon's
         // root element also what the clusters above it gathered, by its orientation.
@@ -345,8 +357,9 @@ void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
                         h_, node,
                         [&](int a) -> const DirectionalIrradiance& { return h_.nodes[a].Hv; })
                   : Rgb{});
+        Hd = HdDown + n.Hd;
         if (n.isLeaf()) {
-            n.B = n.E + n.rho * H * n.gatherScale;
+            n.B = n.E + n.rho * (Hd + H * n.gatherScale);
             return;
         }
     }
@@ -355,7 +368,7 @@ void HierarchicalSolver::pushPull(int node, const Rgb& Hdown) {
     double area = 0;
     const int first = n.firstChild, count = n.childCount;
     for (int k = 0; k < count; ++k) {
-        pushPull(first + k, H);
+        pushPull(first + k, H, Hd);
         const Node& c = h_.nodes[first + k];
         B += c.B * c.area;
         area += c.area;
@@ -369,15 +382,17 @@ void HierarchicalSolver::gatherInto(const Link& l) {
     const Rgb H = S.B * (l.F * static_cast<double>(l.V));
     if (R.isCluster())
         R.Hv.add(H, toFrame(R, linkDirection(R, S)));
-    else
+    else if (reflects(S))
         R.H += H;
+    else
+        R.Hd += H;
 }
 
 double HierarchicalSolver::sweep() {
     if (indexDirty_) finishSplits();
     auto t0 = Clock::now();
     for (Node& n : h_.nodes) {
-        n.H = Rgb{};
+        n.H = n.Hd = Rgb{};
         n.Hv = DirectionalIrradiance{};
     }
     // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
@@ -390,7 +405,7 @@ double HierarchicalSolver::sweep() {
                       });
     timing_.timeGather += secondsSince(t0);
     t0 = Clock::now();
-    pushPull(Hierarchy::kRoot, Rgb{});
+    pushPull(Hierarchy::kRoot, Rgb{}, Rgb{});
     timing_.timePushPull += secondsSince(t0);
     ++timing_.sweeps;
     const Node& root = h_.nodes[Hierarchy::kRoot];
@@ -401,29 +416,39 @@ std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& v
                                                 bool bounded) const {
     if (indexDirty_) throw std::logic_error("gatherDown: call finishSplits() after splitForLights");
     const auto& nodes = h_.nodes;
-    std::vector<Rgb> H(nodes.size());
+    std::vector<Rgb> H(nodes.size()), Hd(nodes.size());
     std::vector<DirectionalIrradiance> Hv(nodes.size());
-    tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, receivers_.size(), 64),
-        [&](const tbb::blocked_range<size_t>& range) {
-            for (size_t i = range.begin(); i != range.end(); ++i) {
-                const int r = receivers_[i];
-                for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
-                    const Link& l = links_[k];
-                    const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
-                    if (nodes[r].isCluster())
-                        Hv[r].add(h, toFrame(nodes[r], linkDirection(nodes[r], nodes[l.source])));
-                    else
-                        H[r] += h;
-                }
-            }
-        });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t i = range.begin(); i != range.end(); ++i) {
+                              const int r = receivers_[i];
+                              const Node& R = nodes[r];
+                              for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
+                                  const Link& l = links_[k];
+                                  const Node& S = nodes[l.source];
+                                  const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
+                                  if (R.isCluster())
+                                      Hv[r].add(h, toFrame(R, linkDirection(R, S)));
+                                  else if (reflects(S))
+                                      H[r] += h;
+                                  else
+                                      Hd[r] += h;
+                              }
+                          }
+                      });
     std::vector<Rgb> out = pushDown(
         h_, [&](int n) -> const Rgb& { return H[n]; },
         [&](int n) -> const DirectionalIrradiance& { return Hv[n]; });
-    if (bounded)
-        for (size_t n = 0; n < nodes.size(); ++n)
-            if (!nodes[n].isCluster() && nodes[n].isLeaf()) out[n] *= nodes[n].gatherScale;
+    const std::vector<Rgb> direct = pushDown(
+        h_, [&](int n) -> const Rgb& { return Hd[n]; },
+        [](int) -> const DirectionalIrradiance& {
+            static const DirectionalIrradiance none;
+            return none;
+        });
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        const bool leaf = !nodes[n].isCluster() && nodes[n].isLeaf();
+        out[n] = direct[n] + out[n] * (bounded && leaf ? nodes[n].gatherScale : 1.0);
+    }
     return out;
 }
 
@@ -433,29 +458,73 @@ void HierarchicalSolver::boundGather(size_t firstNode) {
     // feeds nothing back, and the real-shadow correction may scale it above V = 1 on
     // purpose (scaleLightLinks).
     const auto& nodes = h_.nodes;
-    const std::vector<Rgb> G = gatherDown(
-        [&](int s) {
-            const Node& S = nodes[s];
-            return Rgb::gray(S.isCluster() || S.rho.maxComponent() > 0 ? 1.0 : 0.0);
-        },
-        false);
-    double rhoMax = 0;
-    for (const Node& e : nodes)
-        if (!e.isCluster() && e.isLeaf()) rhoMax = std::max(rhoMax, e.rho.maxComponent());
+    const std::vector<Rgb> G =
+        gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 1.0 : 0.0); }, false);
+    std::vector<int> unmeasured;
+    for (size_t n = firstNode; n < nodes.size(); ++n)
+        if (!nodes[n].isCluster() && nodes[n].isLeaf() && nodes[n].seen < 0)
+            unmeasured.push_back(static_cast<int>(n));
+    measureSeen(unmeasured);
     boundedLeaves_ = 0;
     maxGather_ = 1;
     for (size_t n = 0; n < nodes.size(); ++n) {
         Node& e = h_.nodes[n];
         if (e.isCluster() || !e.isLeaf()) continue;
-        const double g = G[n].maxComponent(), rho = e.rho.maxComponent();
+        const double g = G[n].maxComponent();
         maxGather_ = std::max(maxGather_, g);
         if (n >= firstNode) {
-            // rho s G <= rho_max: the leaf passes on at most rho_max of the brightest
-            // radiosity it sees, as in a physical scene of the same reflectances.
-            e.gatherScale = rho * g > rhoMax && rho * g > 0 ? rhoMax / (rho * g) : 1.0;
+            // seen / G, at most kMaxRenormalisation: where the links miss much of what the
+            // leaf sees (few links, all blocked) they are not scaled up without end.
+            e.gatherScale = g > 0 ? std::min(e.seen / g, kMaxRenormalisation) : 1.0;
         }
-        if (e.gatherScale < 1) ++boundedLeaves_;
+        if (std::abs(e.gatherScale - 1) > 0.05) ++boundedLeaves_;
     }
+}
+
+void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {
+    // Malley's method: points uniform on the unit disc, lifted to the hemisphere, are
+    // cosine-distributed; strata of a k x k grid on the square, mapped to the disc by
+    // the concentric map (Shirley & Chiu 1997), and a random point of the leaf per ray.
+    const double diag = glm::length(h_.nodes[Hierarchy::kRoot].bounds.diagonal());
+    const double tMin = 1e-6 * diag;  // above Embree's float rounding (visibility.h)
+    constexpr int k = 8;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 16), [&](const auto& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            Node& e = h_.nodes[leaves[i]];
+            Rng rng(0xC0FFEEull ^ (static_cast<uint64_t>(leaves[i]) * 0x9E3779B97F4A7C15ull));
+            // An orthonormal frame about the normal.
+            const Vec3 n = e.normal;
+            const Vec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3{1, 0, 0})
+                                                              : glm::cross(n, Vec3{0, 1, 0}));
+            const Vec3 b = glm::cross(n, t);
+            int hits = 0;
+            for (int cell = 0; cell < k * k; ++cell) {
+                const double a = 2 * ((cell % k) + rng.uniform()) / k - 1;
+                const double c = 2 * ((cell / k) + rng.uniform()) / k - 1;
+                // Concentric square-to-disc map.
+                double r, phi;
+                if (a == 0 && c == 0) {
+                    r = 0;
+                    phi = 0;
+                } else if (std::abs(a) > std::abs(c)) {
+                    r = a;
+                    phi = (std::numbers::pi / 4) * (c / a);
+                } else {
+                    r = c;
+                    phi = std::numbers::pi / 2 - (std::numbers::pi / 4) * (a / c);
+                }
+                const double x = r * std::cos(phi), y = r * std::sin(phi);
+                const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
+                const Vec3 dir = x * t + y * b + z * n;
+                const Vec3 org = pointOnElement(e, rng.uniform(), rng.uniform());
+                const Visibility::Hit hit = vis_->intersect(org, dir, tMin);
+                if (hit.polygon < 0 || hit.polygon == e.polygon) continue;
+                const Polygon& p = scene_.polygons[hit.polygon];
+                if (glm::dot(p.normal, dir) < 0 && p.rho.maxComponent() > 0) ++hits;
+            }
+            e.seen = static_cast<double>(hits) / (k * k);
+        }
+    });
 }
 
 void HierarchicalSolver::throwNotConverged(int sweeps, double power, double delta) const {
@@ -500,10 +569,10 @@ int HierarchicalSolver::gatherPushPull() {
         // No light on: the solution is B = 0 (E = 0 everywhere). Sweeps would only decay
         // towards it geometrically, never meeting a relative tolerance.
         for (Node& n : h_.nodes) {
-            n.H = Rgb{};
+            n.H = n.Hd = Rgb{};
             n.Hv = DirectionalIrradiance{};
         }
-        pushPull(Hierarchy::kRoot, Rgb{});
+        pushPull(Hierarchy::kRoot, Rgb{}, Rgb{});
         return 1;
     }
     double previous = -1, previousDelta = -1;
@@ -541,10 +610,10 @@ void HierarchicalSolver::solve() {
     if (!(emitted > 0)) {
         // No light: every radiosity is zero. Nothing to refine.
         for (Node& n : h_.nodes) {
-            n.H = Rgb{};
+            n.H = n.Hd = Rgb{};
             n.Hv = DirectionalIrradiance{};
         }
-        pushPull(Hierarchy::kRoot, Rgb{});
+        pushPull(Hierarchy::kRoot, Rgb{}, Rgb{});
         return;
     }
     for (int round = 0; round < options_.maxRefineRounds; ++round) {
@@ -616,12 +685,13 @@ Rgb HierarchicalSolver::radiosityAt(int polygon, const Vec3& x) const {
 Rgb HierarchicalSolver::irradianceAt(int polygon, const Vec3& x) const {
     const int leaf = h_.locateLeaf(polygon, x);
     const Vec3& normal = h_.nodes[leaf].normal;
-    Rgb H;
+    Rgb H, Hd;
     for (int n = leaf; n >= 0; n = h_.nodes[n].parent) {
         const Node& a = h_.nodes[n];
         H += a.isCluster() ? a.Hv.onto(toFrame(a, normal)) : a.H;
+        Hd += a.isCluster() ? Rgb{} : a.Hd;
     }
-    return H * h_.nodes[leaf].gatherScale;
+    return Hd + H * h_.nodes[leaf].gatherScale;
 }
 
 void HierarchicalSolver::setReflectance(int polygon, const Rgb& rho) {
@@ -657,10 +727,16 @@ SolverStats HierarchicalSolver::stats() const {
     const std::vector<Rgb> H = pushDown(
         h_, [&](int n) -> const Rgb& { return h_.nodes[n].H; },
         [&](int n) -> const DirectionalIrradiance& { return h_.nodes[n].Hv; });
+    const std::vector<Rgb> Hd = pushDown(
+        h_, [&](int n) -> const Rgb& { return h_.nodes[n].Hd; },
+        [](int) -> const DirectionalIrradiance& {
+            static const DirectionalIrradiance none;
+            return none;
+        });
     for (size_t n = 0; n < h_.nodes.size(); ++n) {
         const Node& e = h_.nodes[n];
         if (e.isCluster() || !e.isLeaf()) continue;
-        s.absorbedPower += (Rgb::gray(1.0) - e.rho) * H[n] * (e.area * e.gatherScale);
+        s.absorbedPower += (Rgb::gray(1.0) - e.rho) * (Hd[n] + H[n] * e.gatherScale) * e.area;
         s.radiosityPower += e.B * e.area;
     }
     s.boundedLeaves = boundedLeaves_;

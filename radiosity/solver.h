@@ -20,17 +20,21 @@
 // orientation (directional_irradiance.h), so nothing gathers light it faces away from.
 // Links of one receiver are still unoccluded estimates of sources that may hide one
 // another, with sampled visibility, and a leaf also gathers through its parents' links
-// (averaged over the parents): the sum G of the form factors above a leaf is 1 only to
-// within those errors (1 +- 0.2 is seen next to contact edges). So after each refinement
-// the solver gathers a radiosity of 1 from every source that reflects: where a leaf of
-// reflectance rho gathers rho G above rho_max (the scene's largest reflectance), its
-// gathered irradiance is scaled by rho_max / (rho G) (gatherScale; stats().boundedLeaves
-// counts them, stats().maxGather is the largest G). Then no leaf passes on more than
-// rho_max of the brightest radiosity it sees, so gather/push-pull contracts by rho_max
-// per sweep and converges for any rho < 1, as a physical scene would. (Scaling every
-// leaf with G > 1 down to 1 instead would destroy the light of the half of the noise
-// above 1: about 9 % of the power of the bundled room.) A gather that still fails to
-// converge (maxSweeps)
+// (averaged over the parents): the sum G of the form factors above a leaf is right only to
+// within those errors (1 +- 0.2 next to contact edges). What a leaf can gather at most is
+// known, though: the fraction `seen` of its cosine-weighted hemisphere in which it sees the
+// front of a reflecting surface (1 in a closed room, less by an opening or a lamp),
+// measured once per leaf with 64 cosine-distributed rays. So after each refinement the
+// solver gathers a radiosity of 1 from every source that reflects, and scales what each
+// leaf gathers from such sources by seen / G (gatherScale, at most kMaxRenormalisation;
+// stats().boundedLeaves counts the leaves moved by more than 5 %, stats().maxGather is the
+// largest G). The form factors of every leaf then sum to seen <= 1: no leaf gathers more
+// than a surface can, none loses what its links miss (a one-sided clamp at 1 would destroy
+// the light of the half of the errors above 1, 9 % of the bundled room's power), and
+// gather/push-pull contracts by the largest reflectance per sweep, so it converges for any
+// rho < 1. Direct light from the lamps' faces (sources that do not reflect) is not scaled:
+// its links are exact form factors to the lamp, and the real-shadow correction scales them
+// on purpose (scaleLightLinks). A gather that still fails to converge (maxSweeps) stops
 // with SolverError naming the element that did not settle.
 //
 // Budget (Stamminger, Schirmacher, Slusallek & Seidel 1999): refinement stops splitting
@@ -103,8 +107,9 @@ struct SolverStats {
     Rgb emittedPower;    ///< sum E A over lights (radiosity units x m^2)
     Rgb absorbedPower;   ///< sum (1 - rho) H A over leaves
     Rgb radiosityPower;  ///< sum B A over leaves
-    /// Energy bound: leaves whose gather was scaled (rho G > rho_max), and the largest sum
-    /// G of the form factors of the links above a leaf from sources that reflect.
+    /// Energy bound: leaves whose gather was scaled by more than 5 % (seen / G), and the
+    /// largest sum G of the form factors of the links above a leaf from sources that
+    /// reflect.
     int boundedLeaves = 0;
     double maxGather = 1;
     bool budgetReached = false;          ///< refinement stopped at maxLinks / maxMemory
@@ -192,10 +197,7 @@ class HierarchicalSolver {
     /// Reflectance edit of one leaf element (per-element reflectance estimated from its
     /// texture, Loscos et al. 2000, §4.4); call pullReflectance() after a batch of them.
     void setElementReflectance(int leaf, const Rgb& rho);
-    void pullReflectance() {
-        h_.pullAverages(Hierarchy::kRoot);
-        if (started_ && !indexDirty_) boundGather();  // reflectances changed rho_max and rho G
-    }
+    void pullReflectance() { h_.pullAverages(Hierarchy::kRoot); }
 
     /// The irradiance every element node receives (element nodes: the sum over the links
     /// of the node and of all its ancestors, a cluster ancestor's through its vector
@@ -256,6 +258,10 @@ class HierarchicalSolver {
     /// a cone of half-angle asin(sqrt(0.1)) = 18 degrees, where one direction stands for
     /// all of it to within cos(18) = 0.95.
     static constexpr double kFarField = 0.1;
+    /// Fraction of the power threshold above which a near-field cluster link is refined.
+    static constexpr double kNearFieldPower = 0.1;
+    /// Largest factor by which the energy bound scales a leaf's gather up.
+    static constexpr double kMaxRenormalisation = 2.0;
     Verdict oracle(const Link& link) const;
     Link makeLink(int r, int s) const;
     /// A child of `parent` (passive_[parentIndex]) between r and s; visible without rays
@@ -272,6 +278,8 @@ class HierarchicalSolver {
     /// Energy bound: sets gatherScale of the leaf elements with id >= firstNode from the
     /// sum G of their links' form factors (see the header).
     void boundGather(size_t firstNode = 0);
+    /// Ray casts the `seen` fraction of these leaf elements (64 cosine-distributed rays).
+    void measureSeen(const std::vector<int>& leaves);
     [[noreturn]] void throwNotConverged(int sweeps, double power, double delta) const;
     bool refineAll();
     void pushLightLinksToLeaves(size_t from = 0);
@@ -282,7 +290,7 @@ class HierarchicalSolver {
     /// Sorts links_ by receiver (stable) and indexes them; links_[0, sortedPrefix) must
     /// already be sorted (the rest is sorted and merged in, linear time).
     void buildReceiverIndex(size_t sortedPrefix = 0);
-    void pushPull(int node, const Rgb& Hdown);
+    void pushPull(int node, const Rgb& Hdown, const Rgb& HdDown);
     bool canSplit(int node) const;
     void report(const std::string& msg) const;
 
@@ -317,6 +325,7 @@ class HierarchicalSolver {
         size_t passive = 0, polygons = 0, objects = 0, lights = 0;
         std::vector<Rgb> B, H;  ///< per node before
         std::vector<DirectionalIrradiance> Hv;
+        std::vector<Rgb> Hd;
         std::vector<int> retired;       ///< passive links retired by this insertion
         std::vector<int> shadowLeaves;  ///< DynamicUpdate::shadowLeaves of the insertion
         std::string name;

@@ -31,24 +31,46 @@ void addCutQuad(Scene& s, const std::vector<Vec3>& q, int n, int object, const R
 
 /// A 4 x 3 x 2.5 m closed room, each face cut into `cut` x `cut` triangle pairs, with a
 /// 1.2 x 0.8 x 0.7 m box standing on the floor (faces outward, bottom in contact with the
-/// floor) and a 0.4 x 0.4 m lamp 1 cm under the ceiling facing down.
-Scene cutRoom(int cut, double rho) {
+/// floor; left out without `box`). The lamp is the middle cell of the ceiling cut 3 x 3,
+/// facing down: no surface shows its back to the room, so that what the room does not
+/// absorb is an error.
+Scene cutRoom(int cut, double rho, bool box = true) {
     Scene s;
     s.objects = {"room", "box", "lamp"};
-    for (const auto& f : boxFacesInward(4, 3, 2.5)) addCutQuad(s, f, cut, 0, Rgb::gray(rho));
-    // The box: inward faces of a box, reversed, face outward.
+    const auto faces = boxFacesInward(4, 3, 2.5);
+    for (size_t f = 0; f < faces.size(); ++f) {
+        if (f != 1) {
+            addCutQuad(s, faces[f], cut, 0, Rgb::gray(rho));
+            continue;
+        }
+        const auto& q = faces[f];  // the ceiling, cut 3 x 3
+        auto at = [&](double u, double v) {
+            return (1 - u) * (1 - v) * q[0] + u * (1 - v) * q[1] + u * v * q[2] +
+                   (1 - u) * v * q[3];
+        };
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                const std::vector<Vec3> cell{at(i / 3.0, j / 3.0), at((i + 1) / 3.0, j / 3.0),
+                                             at((i + 1) / 3.0, (j + 1) / 3.0),
+                                             at(i / 3.0, (j + 1) / 3.0)};
+                if (i != 1 || j != 1) {
+                    addCutQuad(s, cell, std::max(1, cut / 3), 0, Rgb::gray(rho));
+                    continue;
+                }
+                Polygon lamp = makePolygon(cell, 2, Rgb{});
+                lamp.light = 0;
+                s.lights.push_back(
+                    {"lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(10.0)});
+                s.polygons.push_back(lamp);
+            }
+    }
+    if (!box) return s;
     const Vec3 o{1.0, 1.0, 0.0};
     for (auto f : boxFacesInward(1.2, 0.8, 0.7)) {
-        std::reverse(f.begin(), f.end());
+        std::reverse(f.begin(), f.end());  // inward faces reversed face outward
         for (Vec3& p : f) p += o;
         addCutQuad(s, f, std::max(1, cut / 2), 1, Rgb::gray(rho));
     }
-    const double z = 2.49;
-    Polygon lamp =
-        makePolygon({{2.8, 1.3, z}, {2.8, 1.7, z}, {3.2, 1.7, z}, {3.2, 1.3, z}}, 2, Rgb{});
-    lamp.light = 0;
-    s.lights.push_back({"lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(10.0)});
-    s.polygons.push_back(lamp);
     return s;
 }
 
@@ -106,10 +128,7 @@ TEST(EnergyBound, CutRoomConvergesAndLinksAreBounded) {
     // The room cut into 2 x 2 (then 8 x 8) triangle pairs per face, rho 0.95: before the
     // bound, a cluster linked to a touching neighbour gathered F = 2.1 and the sweeps grew
     // without end. Every link now has F <= 1, no cluster is linked to itself, the solve
-    // converges, and what is absorbed does not exceed what the lamp emits. (How much of it
-    // is absorbed -- a closed room should absorb all of it -- is not yet asserted: the
-    // bound loses light where sampled visibility makes G exceed 1, 22-34 % of the lamp's
-    // power here at rho 0.95; see bench/RESULTS.md.)
+    // converges, and the room absorbs what the lamp emits.
     for (int cut : {2, 8}) {
         HierarchicalSolver solver(cutRoom(cut, 0.95), {});
         ASSERT_NO_THROW(solver.solve()) << cut;
@@ -121,21 +140,41 @@ TEST(EnergyBound, CutRoomConvergesAndLinksAreBounded) {
         }
         const SolverStats st = solver.stats();
         for (const Node& n : solver.hierarchy().nodes) ASSERT_TRUE(n.B.isFinite());
-        // Absorbed <= emitted: a closed room cannot absorb more than its lamp gives; 0.5 %
-        // covers the sampled visibility of the lamp's links.
+        // No gain: a closed room cannot absorb more than its lamp emits (0.5 %: the lamp's
+        // links' sampled visibility). Less it does, here: a floor element straddling the
+        // box's footprint has one radiosity over its covered and uncovered parts, and what
+        // the covered part sends is lost under the box (87-94 % absorbed at rho 0.95,
+        // bench/RESULTS.md); see ClosedRoomAbsorbsWhatItsLampEmits for the room alone.
         EXPECT_LE(st.absorbedPower.r, 1.005 * st.emittedPower.r) << cut;
-        // The bound: rho s G <= rho_max (0.95) on every leaf.
+        // The bound: on every leaf the form factors from sources that reflect sum, after
+        // scaling, to at most 1 (to `seen`, unless the scale hit its cap).
+        const auto& nodes = solver.hierarchy().nodes;
         const auto G = solver.gatherDown(
             [&](int s) {
-                const Node& S = solver.hierarchy().nodes[s];
+                const Node& S = nodes[s];
                 return Rgb::gray(S.isCluster() || S.rho.maxComponent() > 0 ? 1.0 : 0.0);
             },
             true);
         for (size_t n = 0; n < G.size(); ++n) {
-            const Node& e = solver.hierarchy().nodes[n];
+            const Node& e = nodes[n];
             if (e.isCluster() || !e.isLeaf()) continue;
-            ASSERT_LE(e.rho.maxComponent() * G[n].maxComponent(), 0.95 * (1 + 1e-9)) << n;
+            ASSERT_LE(G[n].maxComponent(), 1.0 + 1e-9) << n;
+            ASSERT_LE(G[n].maxComponent(), e.seen + 1e-9) << n;
         }
+    }
+}
+
+TEST(EnergyBound, ClosedRoomAbsorbsWhatItsLampEmits) {
+    // The room alone, cut into triangles, rho 0.95: light bounces about 14 times before it
+    // is absorbed, so a form-factor sum 1 % short per bounce would lose 13 %. With every
+    // leaf's sum scaled to what it sees, the room absorbs what the lamp emits within 1 %
+    // (the lamp's own links: exact form factors, visibility from 4-16 rays; the 64 rays of
+    // `seen`).
+    for (int cut : {1, 8}) {
+        HierarchicalSolver solver(cutRoom(cut, 0.95, /*box=*/false), {});
+        solver.solve();
+        const SolverStats st = solver.stats();
+        EXPECT_NEAR(st.absorbedPower.r / st.emittedPower.r, 1.0, 0.01) << cut;
     }
 }
 
