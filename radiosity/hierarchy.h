@@ -60,8 +60,9 @@ struct Node {
     /// (HierarchicalSolver, "energy bound"); 1 until measured.
     double gatherScale = 1;
     /// Leaf element: the fraction of its cosine-weighted hemisphere in which it sees the
-    /// front of a reflecting surface, measured by ray casting; -1 until measured.
-    double seen = -1;
+    /// front of a surface, measured by ray casting (-1 until measured), and the
+    /// standard error of that measurement (0 when every ray or none saw one).
+    double seen = -1, seenError = 0;
     bool emitting = false;  ///< an emitter with E > 0 lies in this node
 
     bool isCluster() const { return kind == NodeKind::cluster; }

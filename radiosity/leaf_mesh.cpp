@@ -8,12 +8,11 @@ namespace radiosity {
 
 namespace {
 
-// Exact key of a corner: its polygon and the bits of its coordinates.
+// Exact key of a corner position: the bits of its coordinates.
 struct CornerKey {
-    int polygon;
     double x, y, z;
     bool operator==(const CornerKey& o) const {
-        return polygon == o.polygon && std::memcmp(&x, &o.x, 3 * sizeof(double)) == 0;
+        return std::memcmp(&x, &o.x, 3 * sizeof(double)) == 0;
     }
 };
 
@@ -21,7 +20,7 @@ struct CornerKeyHash {
     size_t operator()(const CornerKey& k) const {
         uint64_t b[3];
         std::memcpy(b, &k.x, sizeof b);
-        uint64_t h = static_cast<uint64_t>(k.polygon) * 0x9e3779b97f4a7c15ull;
+        uint64_t h = 0x9e3779b97f4a7c15ull;
         for (uint64_t w : b) h = (h ^ w) * 0xbf58476d1ce4e5b9ull + (h >> 29);
         return static_cast<size_t>(h);
     }
@@ -32,7 +31,8 @@ struct CornerKeyHash {
 LeafMesh::LeafMesh(const Hierarchy& h) : LeafMesh(h, 0) {}
 
 LeafMesh::LeafMesh(const Hierarchy& h, int firstNode) : h_(h), corners_(h.nodes.size()) {
-    std::unordered_map<CornerKey, int, CornerKeyHash> index;
+    // The vertices at one position, each with the normal of the polygon that made it.
+    std::unordered_map<CornerKey, std::vector<int>, CornerKeyHash> index;
     for (size_t n = 0; n < static_cast<size_t>(std::max(firstNode, 0)) && n < h.nodes.size(); ++n)
         corners_[n] = {-1, -1, -1, -1};
     for (size_t n = static_cast<size_t>(std::max(firstNode, 0)); n < h.nodes.size(); ++n) {
@@ -41,13 +41,23 @@ LeafMesh::LeafMesh(const Hierarchy& h, int firstNode) : h_(h), corners_(h.nodes.
         if (e.isCluster() || !e.isLeaf()) continue;
         for (int i = 0; i < e.vertexCount; ++i) {
             // +0.0 folds -0.0 into 0.0 so that the bit patterns of equal corners agree.
-            const CornerKey key{e.polygon, e.v[i].x + 0.0, e.v[i].y + 0.0, e.v[i].z + 0.0};
-            auto [it, added] = index.try_emplace(key, static_cast<int>(vertices_.size()));
-            if (added) {
+            const CornerKey key{e.v[i].x + 0.0, e.v[i].y + 0.0, e.v[i].z + 0.0};
+            std::vector<int>& here = index[key];
+            int id = -1;
+            for (int v : here) {
+                const Node& owner = h.nodes[ownerLeaf_[v]];
+                if (owner.polygon == e.polygon || glm::dot(owner.normal, e.normal) >= kSmoothCos) {
+                    id = v;
+                    break;
+                }
+            }
+            if (id < 0) {
+                id = static_cast<int>(vertices_.size());
+                here.push_back(id);
                 vertices_.push_back({e.v[i], e.polygon});
                 ownerLeaf_.push_back(static_cast<int>(n));
             }
-            corners_[n][i] = it->second;
+            corners_[n][i] = id;
         }
     }
 }

@@ -6,7 +6,12 @@
 // graphics hardware (Gouraud); the same smooth reading is the cheapest one that does not
 // draw the element grid. A corner shared by neighbouring leaves of one polygon is one vertex:
 // subdivision computes a shared edge midpoint with the same floating-point expression on
-// both sides, so equal corners are bit-identical and are matched exactly. Where a large
+// both sides, so equal corners are bit-identical and are matched exactly. Neighbouring
+// polygons whose normals are within 25 degrees (kSmoothCos) share their common corners
+// too: a wall that a reconstruction cut into triangles (or a gently curved surface) is
+// interpolated as one surface, and the relit photo does not show the triangulation; at a
+// sharper edge (a box's 90 degrees) each side keeps its own vertex. A shared vertex's
+// `polygon` is the first one that made it. Where a large
 // leaf meets the edges of smaller ones (a T-vertex), the large leaf interpolates between its
 // own corners only; the small crack this leaves is the one the paper's display has too.
 #pragma once
@@ -22,6 +27,10 @@ namespace radiosity {
 
 class LeafMesh {
   public:
+    /// Cosine of the largest angle between the normals of two polygons whose common
+    /// corners are one vertex.
+    static constexpr double kSmoothCos = 0.9063077870366499;  // cos(25 degrees)
+
     /// Collects the leaf corners of every polygon of `h` (the hierarchy as it stands).
     explicit LeafMesh(const Hierarchy& h);
     /// The same for the leaves whose node id is at least `firstNode` only (the nodes of the

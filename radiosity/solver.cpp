@@ -127,8 +127,10 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     // power. F is the oracle's bound (conservative for clusters), A_r the receiver's area
     // that intercepts the source's light.
     const double F = transfer_->bound(r, s, link.F);
-    const double value =
-        R.rho.maxComponent() * S.B.maxComponent() * F * transfer_->receiverArea(r, s);
+    // Near field, the receiver's area facing the source's centre says little (a box's side
+    // facing away from the floor's centre still sees half the floor): all of it counts.
+    const double Ar = F > kFarField ? R.area : transfer_->receiverArea(r, s);
+    const double value = R.rho.maxComponent() * S.B.maxComponent() * F * Ar;
 
     // A link with a cluster end stands for its contents by one direction and one disc
     // (transfer.h): good only in the far field. Where the source may subtend a wide
@@ -460,6 +462,9 @@ void HierarchicalSolver::boundGather(size_t firstNode) {
     const auto& nodes = h_.nodes;
     const std::vector<Rgb> G =
         gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 1.0 : 0.0); }, false);
+    // Gd: the same from the sources that do not reflect (the lamps): exact form factors.
+    const std::vector<Rgb> Gd =
+        gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 0.0 : 1.0); }, false);
     std::vector<int> unmeasured;
     for (size_t n = firstNode; n < nodes.size(); ++n)
         if (!nodes[n].isCluster() && nodes[n].isLeaf() && nodes[n].seen < 0)
@@ -473,9 +478,15 @@ void HierarchicalSolver::boundGather(size_t firstNode) {
         const double g = G[n].maxComponent();
         maxGather_ = std::max(maxGather_, g);
         if (n >= firstNode) {
-            // seen / G, at most kMaxRenormalisation: where the links miss much of what the
-            // leaf sees (few links, all blocked) they are not scaled up without end.
-            e.gatherScale = g > 0 ? std::min(e.seen / g, kMaxRenormalisation) : 1.0;
+            // G is moved into the interval the rays allow, seen - Gd +- 2 standard errors
+            // (and never above 1 - Gd): a G that the measurement cannot tell from the truth
+            // is kept, one it says is wrong is corrected. At most kMaxRenormalisation: where the
+            // links miss much of what the leaf sees they are not scaled up without end.
+            // What reflecting sources fill: what the leaf sees, less the lamps it sees.
+            const double gd = Gd[n].maxComponent(), target = e.seen - gd;
+            const double lo = std::max(0.0, target - 2 * e.seenError);
+            const double hi = std::max(lo, std::min(1.0 - gd, target + 2 * e.seenError));
+            e.gatherScale = g > 0 ? std::min(std::clamp(g, lo, hi) / g, kMaxRenormalisation) : 1.0;
         }
         if (std::abs(e.gatherScale - 1) > 0.05) ++boundedLeaves_;
     }
@@ -486,8 +497,8 @@ void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {
     // cosine-distributed; strata of a k x k grid on the square, mapped to the disc by
     // the concentric map (Shirley & Chiu 1997), and a random point of the leaf per ray.
     const double diag = glm::length(h_.nodes[Hierarchy::kRoot].bounds.diagonal());
-    const double tMin = 1e-6 * diag;  // above Embree's float rounding (visibility.h)
-    constexpr int k = 8;
+    const double tMin = 1e-6 * diag;       // above Embree's float rounding (visibility.h)
+    constexpr int kFirst = 8, kMore = 16;  // 64 rays; 256 where they disagree
     tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 16), [&](const auto& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
             Node& e = h_.nodes[leaves[i]];
@@ -497,32 +508,41 @@ void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {
             const Vec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3{1, 0, 0})
                                                               : glm::cross(n, Vec3{0, 1, 0}));
             const Vec3 b = glm::cross(n, t);
-            int hits = 0;
-            for (int cell = 0; cell < k * k; ++cell) {
-                const double a = 2 * ((cell % k) + rng.uniform()) / k - 1;
-                const double c = 2 * ((cell / k) + rng.uniform()) / k - 1;
-                // Concentric square-to-disc map.
-                double r, phi;
-                if (a == 0 && c == 0) {
-                    r = 0;
-                    phi = 0;
-                } else if (std::abs(a) > std::abs(c)) {
-                    r = a;
-                    phi = (std::numbers::pi / 4) * (c / a);
-                } else {
-                    r = c;
-                    phi = std::numbers::pi / 2 - (std::numbers::pi / 4) * (a / c);
+            int hits = 0, cast = 0;
+            const auto castRays = [&](int k) {
+                for (int cell = 0; cell < k * k; ++cell) {
+                    const double a = 2 * ((cell % k) + rng.uniform()) / k - 1;
+                    const double c = 2 * ((cell / k) + rng.uniform()) / k - 1;
+                    // Concentric square-to-disc map.
+                    double r, phi;
+                    if (a == 0 && c == 0) {
+                        r = 0;
+                        phi = 0;
+                    } else if (std::abs(a) > std::abs(c)) {
+                        r = a;
+                        phi = (std::numbers::pi / 4) * (c / a);
+                    } else {
+                        r = c;
+                        phi = std::numbers::pi / 2 - (std::numbers::pi / 4) * (a / c);
+                    }
+                    const double x = r * std::cos(phi), y = r * std::sin(phi);
+                    const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
+                    const Vec3 dir = x * t + y * b + z * n;
+                    const Vec3 org = pointOnElement(e, rng.uniform(), rng.uniform());
+                    const Visibility::Hit hit = vis_->intersect(org, dir, tMin);
+                    if (hit.polygon < 0 || hit.polygon == e.polygon) continue;
+                    const Polygon& p = scene_.polygons[hit.polygon];
+                    if (glm::dot(p.normal, dir) < 0) ++hits;  // a front: reflecting or a lamp
                 }
-                const double x = r * std::cos(phi), y = r * std::sin(phi);
-                const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
-                const Vec3 dir = x * t + y * b + z * n;
-                const Vec3 org = pointOnElement(e, rng.uniform(), rng.uniform());
-                const Visibility::Hit hit = vis_->intersect(org, dir, tMin);
-                if (hit.polygon < 0 || hit.polygon == e.polygon) continue;
-                const Polygon& p = scene_.polygons[hit.polygon];
-                if (glm::dot(p.normal, dir) < 0 && p.rho.maxComponent() > 0) ++hits;
+                cast += k * k;
+            };
+            castRays(kFirst);
+            if (hits > 0 && hits < cast) {  // a partly open leaf: a finer estimate
+                hits = cast = 0;
+                castRays(kMore);
             }
-            e.seen = static_cast<double>(hits) / (k * k);
+            e.seen = static_cast<double>(hits) / cast;
+            e.seenError = std::sqrt(e.seen * (1 - e.seen) / cast);
         }
     });
 }

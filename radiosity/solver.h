@@ -23,19 +23,22 @@
 // (averaged over the parents): the sum G of the form factors above a leaf is right only to
 // within those errors (1 +- 0.2 next to contact edges). What a leaf can gather at most is
 // known, though: the fraction `seen` of its cosine-weighted hemisphere in which it sees the
-// front of a reflecting surface (1 in a closed room, less by an opening or a lamp),
-// measured once per leaf with 64 cosine-distributed rays. So after each refinement the
-// solver gathers a radiosity of 1 from every source that reflects, and scales what each
-// leaf gathers from such sources by seen / G (gatherScale, at most kMaxRenormalisation;
-// stats().boundedLeaves counts the leaves moved by more than 5 %, stats().maxGather is the
-// largest G). The form factors of every leaf then sum to seen <= 1: no leaf gathers more
-// than a surface can, none loses what its links miss (a one-sided clamp at 1 would destroy
-// the light of the half of the errors above 1, 9 % of the bundled room's power), and
-// gather/push-pull contracts by the largest reflectance per sweep, so it converges for any
-// rho < 1. Direct light from the lamps' faces (sources that do not reflect) is not scaled:
-// its links are exact form factors to the lamp, and the real-shadow correction scales them
-// on purpose (scaleLightLinks). A gather that still fails to converge (maxSweeps) stops
-// with SolverError naming the element that did not settle.
+// front of a surface (1 in a closed room), measured once per leaf by ray casting (64
+// cosine-distributed rays, 256 where they disagree), less Gd, the exact form factors of
+// its links to the lamps. So after each refinement the solver gathers a radiosity of 1
+// from every source that reflects (G) and from every lamp (Gd), and moves each leaf's G
+// into the interval seen - Gd +- 2 standard errors of the rays, never above 1 - Gd, by
+// scaling what the leaf gathers from reflecting sources (gatherScale, at most
+// kMaxRenormalisation; stats().boundedLeaves counts the leaves moved by more than 5 %,
+// stats().maxGather is the largest G). The form factors of every leaf then sum to at most
+// 1: no leaf gathers more than a surface can, none loses what its links miss (a one-sided
+// clamp at 1 would destroy the light of the half of the errors above 1, 9 % of the
+// bundled room's power), and gather/push-pull contracts by the largest reflectance per
+// sweep, so it converges for any rho < 1. Direct light from the lamps' faces (sources
+// that do not reflect) is not scaled: its links are exact form factors to the lamp, and
+// the real-shadow correction scales them on purpose (scaleLightLinks). A gather
+// that still fails to converge (maxSweeps) stops with SolverError naming the element that did not
+// settle.
 //
 // Budget (Stamminger, Schirmacher, Slusallek & Seidel 1999): refinement stops splitting
 // when the links (active, passive and queued) reach maxLinks or the nodes and links reach
