@@ -13,6 +13,13 @@ find_package(glm REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 2 REQUIRED)
 find_package(TBB REQUIRED)
+# PLY and glTF geometry (relight/mesh_reader.h). Debian's config also needs draco's, which
+# libassimp-dev pulls in.
+find_package(assimp 5 CONFIG QUIET)
+if(NOT assimp_FOUND)
+  message(FATAL_ERROR "Assimp (the PLY and glTF reader) not found: install Debian's "
+                      "libassimp-dev (bash scripts/install-deps.sh installs every dependency)")
+endif()
 if(RELIGHT_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

@@ -11,7 +11,7 @@
 #include "relight/face_repair.h"
 #include "relight/json_reader.h"
 #include "relight/light_reader.h"
-#include "relight/obj_reader.h"
+#include "relight/mesh_reader.h"
 
 namespace relight {
 
@@ -103,8 +103,10 @@ VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::
     if (name.empty()) r.fail(fPath, "empty file name");
     v.file = editFile.parent_path() / name;
     std::error_code ec;
-    if (!fs::exists(v.file, ec)) r.fail(fPath, "OBJ file \"" + v.file.string() + "\" not found");
-    ObjFile obj = readObj(v.file);
+    if (!fs::exists(v.file, ec))
+        r.fail(fPath, "geometry file \"" + v.file.string() + "\" not found");
+    // Any format the scene's geometry may have (OBJ, PLY, glTF: mesh_reader.h).
+    ObjFile obj = readMesh(v.file).geometry;
     warnings.insert(warnings.end(), obj.warnings.begin(), obj.warnings.end());
     placeObject(v, obj, warnings);
     if (v.polygons.empty()) r.fail(fPath, "\"" + v.file.string() + "\" has no usable face");
@@ -123,7 +125,7 @@ void placeObject(VirtualObject& v, ObjFile obj, std::vector<std::string>& warnin
                             M[1][0] * p.x + M[1][1] * p.y + M[1][2] * p.z + M[1][3],
                             M[2][0] * p.x + M[2][1] * p.y + M[2][2] * p.z + M[2][3]);
     // A mirroring transform turns counter-clockwise faces clockwise: turn them back, so
-    // that each face's front side stays the one the OBJ meant.
+    // that each face's front side stays the one the file meant.
     if (det < 0)
         for (ObjFace& f : obj.faces) std::reverse(f.vertices.begin(), f.vertices.end());
     radiosity::Scene faces;

@@ -4,8 +4,8 @@
 // Every problem is an InputError naming the edit file and the JSON key path, e.g.
 //   edits/x.json: key "lights.Q": unknown light "Q" (the scene has A, B, C, D)
 // Every part is read and checked here: real-light changes, virtual lights (their emitting
-// face checked like a scene light's), virtual objects (OBJ read relative to the edit file,
-// faces checked and repaired like the scene's, placed by the transform) and removals
+// face checked like a scene light's), virtual objects (OBJ, PLY or glTF read relative to the edit
+// file, faces checked and repaired like the scene's, placed by the transform) and removals
 // (removable objects of the scene). Rendering applies all but the removals so far:
 // requireRenderable() refuses those with a clear message.
 #pragma once
@@ -38,7 +38,7 @@ struct VirtualLight {
 /// A virtual object ("add_objects"), its faces in world space.
 struct VirtualObject {
     std::string name;
-    std::filesystem::path file;  ///< the OBJ file, resolved against the edit's folder
+    std::filesystem::path file;  ///< its geometry file, resolved against the edit's folder
     Rgb reflectance;             ///< every channel in [0, 1)
     std::array<std::array<double, 4>, 4> transform{};  ///< row-major, as in the file
     /// Checked, repaired faces after the transform (object index 0, reflectance set).

@@ -134,11 +134,11 @@ struct PolygonSink {
     }
 };
 
-/// Checks one OBJ face and adds it, repaired as documented in scene_file.h.
+/// Checks one face (of any format) and adds it, repaired as documented in scene_file.h.
 void addFace(const ObjFile& obj, const ObjFace& face, PolygonSink& sink,
              std::vector<std::string>& warnings) {
     using S = PolygonCheck::Status;
-    const std::string at = obj.where(face.line);
+    const std::string at = obj.whereFace(face);
     std::vector<Vec3> c;
     for (int i : face.vertices) c.push_back(obj.positions[static_cast<size_t>(i)]);
     const size_t given = c.size();

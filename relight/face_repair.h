@@ -1,6 +1,7 @@
 // Faces of the scene format's geometry, checked and repaired (scene_file.h lists the
-// repairs): OBJ faces go into a radiosity::Scene as triangles and planar convex quads, each
-// repair reported as a warning naming the file and line. Shared by the scene loader and the
+// repairs): faces read from OBJ, PLY or glTF (mesh_reader.h) go into a radiosity::Scene as
+// triangles and planar convex quads, each repair reported as a warning naming the file and
+// the line (OBJ) or the mesh and face number (PLY, glTF). Shared by the scene loader and the
 // edit loader (virtual objects, virtual lights).
 #pragma once
 

@@ -107,6 +107,13 @@ std::string ObjFile::where(int line) const {
     return name + ":" + std::to_string(line) + ": ";
 }
 
+std::string ObjFile::whereFace(const ObjFace& face) const {
+    if (face.part < 0) return where(face.line);
+    const std::string& part = parts.at(static_cast<size_t>(face.part));
+    return name + ": " + (part.empty() ? "" : part + " ") + "face " + std::to_string(face.line) +
+           ": ";
+}
+
 ObjFile parseObj(std::istream& in, const std::string& name) {
     ObjFile obj;
     obj.name = name;

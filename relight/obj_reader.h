@@ -31,19 +31,31 @@ namespace relight {
 struct ObjFace {
     int object = -1;            ///< index into ObjFile::objects
     std::vector<int> vertices;  ///< 0-based indices into ObjFile::positions
-    int line = 0;               ///< 1-based line of the `f` statement
+    /// OBJ: 1-based line of the `f` statement. Formats without lines (PLY, glTF, read by
+    /// relight/mesh_reader.h): the face's 1-based number within its part (ObjFile::parts).
+    int line = 0;
+    int part = -1;  ///< index into ObjFile::parts; -1 for OBJ faces
 };
 
+/// The faces of one geometry file, as named objects. Made by readObj() for OBJ, and by
+/// readMesh() (relight/mesh_reader.h) for every format the scene loader takes: the scene
+/// and edit loaders consume this whatever the file's format was.
 struct ObjFile {
     std::string name;                        ///< the file as named in messages
     std::vector<radiosity::Vec3> positions;  ///< metres
-    std::vector<int> positionLines;          ///< 1-based line of each `v`
+    std::vector<int> positionLines;          ///< 1-based line of each `v` (OBJ only)
     std::vector<std::string> objects;        ///< object names, in order of first appearance
     std::vector<ObjFace> faces;
     std::vector<std::string> warnings;  ///< "FILE:LINE: ..." for ignored statements
+    /// Formats without lines: where each face comes from, e.g. `mesh "Chair" of node
+    /// "Chair.001"`, so that a message can point into the file. Empty for OBJ.
+    std::vector<std::string> parts;
 
-    /// "NAME:LINE: " — the prefix of every message about this file.
+    /// "NAME:LINE: " — the prefix of every message about a line of this OBJ file.
     std::string where(int line) const;
+    /// The prefix of every message about `face`: where(face.line) for OBJ faces,
+    /// "NAME: PART face N: " (or "NAME: face N: " for a one-part file) otherwise.
+    std::string whereFace(const ObjFace& face) const;
 };
 
 /// Reads an OBJ file; messages name it as path.string(). Throws InputError.

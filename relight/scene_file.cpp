@@ -16,7 +16,7 @@
 #include "relight/face_repair.h"
 #include "relight/json_reader.h"
 #include "relight/light_reader.h"
-#include "relight/obj_reader.h"
+#include "relight/mesh_reader.h"
 
 namespace relight {
 
@@ -180,8 +180,8 @@ SceneFile loadScene(const fs::path& dir) {
         return Rgb::gray(sf.averageReflectance.value_or(0.5));
     };
 
-    // Geometry: OBJ files relative to the scene folder. Objects of the same name in
-    // several files are one object.
+    // Geometry: OBJ, PLY or glTF files relative to the scene folder (mesh_reader.h).
+    // Objects of the same name in several files are one object.
     const json& geometry = r.array(r.require(root, "", "geometry"), "geometry", 0);
     for (size_t g = 0; g < geometry.size(); ++g) {
         const std::string gPath = element("geometry", g);
@@ -190,9 +190,14 @@ SceneFile loadScene(const fs::path& dir) {
         const fs::path objPath = dir / name;
         std::error_code ec;
         if (!fs::exists(objPath, ec))
-            r.fail(gPath, "OBJ file \"" + objPath.string() + "\" not found");
-        sf.geometryFiles.push_back(objPath);
-        const ObjFile obj = readObj(objPath);
+            r.fail(gPath, "geometry file \"" + objPath.string() + "\" not found");
+        MeshFile mesh = readMesh(objPath);
+        // The file and any it drew on (a .gltf's buffers): all are the scene's content.
+        for (const fs::path& f : mesh.files)
+            if (std::find(sf.geometryFiles.begin(), sf.geometryFiles.end(), f) ==
+                sf.geometryFiles.end())
+                sf.geometryFiles.push_back(f);
+        const ObjFile& obj = mesh.geometry;
         sf.warnings.insert(sf.warnings.end(), obj.warnings.begin(), obj.warnings.end());
         std::vector<int> globalObject;
         for (const std::string& o : obj.objects) {

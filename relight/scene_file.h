@@ -1,8 +1,9 @@
-// Scene package loading: scene.json + OBJ geometry + lights, exactly as specified in
-// ../shared/spec/scene-format.md ("relight-scene/1").
+// Scene package loading: scene.json + geometry + lights, exactly as specified in
+// ../shared/spec/scene-format.md ("relight-scene/1"). Geometry may also be PLY or glTF
+// (an extension of the spec, relight/mesh_reader.h).
 //
 // Every problem with the input is reported as an InputError whose message names the file
-// and the line (OBJ) or the JSON key path (scene.json), e.g.
+// and the line (OBJ), the mesh and face (PLY, glTF) or the JSON key path (scene.json), e.g.
 //   "data/room/room.obj:12: face references vertex 40, but only 36 are defined".
 // Documented repairs, each reported as a warning (SceneFile::warnings):
 //   - a non-planar quad is split into two triangles along its shorter diagonal;
@@ -57,8 +58,9 @@ struct SceneFile {
     /// Per light: true when scene.json says "radiance": "estimate".
     std::vector<bool> estimateRadiance;
     std::vector<std::string> warnings;  ///< documented repairs, with file and line
-    /// The OBJ files of "geometry", in scene.json's order (dir / name): with scene.json and
-    /// the photos, the files the scene's content comes from (relight/prepared_cache.h).
+    /// The geometry files of "geometry", in scene.json's order (dir / name), each followed
+    /// by the files it drew on (a .gltf's buffers): with scene.json and the photos, the
+    /// files the scene's content comes from (relight/prepared_cache.h).
     std::vector<std::filesystem::path> geometryFiles;
 
     /// Lights' on/off state in the first photo: scene.lights[i].radiance is

@@ -8,6 +8,7 @@
 
 #include "radiosity/stopwatch.h"
 #include "relight/edit_writer.h"
+#include "relight/mesh_reader.h"
 
 namespace relight::viewer {
 
@@ -76,7 +77,7 @@ Session::Session(Relighting& r, const EditFile& edit) : r_(&r) {
     for (const VirtualObject& o : edit.addObjects) {
         ObjectControl c;
         c.object = o;
-        c.geometry = readObj(o.file);
+        c.geometry = readMesh(o.file).geometry;  // any format the edit loader reads
         objects_.push_back(std::move(c));
     }
     stale_ = true;

@@ -478,7 +478,7 @@ TEST_F(EditFixture, MirroringTransformKeepsTheFacesOutward) {
 
 TEST_F(EditFixture, VirtualObjectErrorsNameTheKey) {
     EXPECT_TRUE(contains(loadError(withList("add_objects", boxObject(kIdentity))),
-                         "key \"add_objects[0].file\": OBJ file \"" +
+                         "key \"add_objects[0].file\": geometry file \"" +
                              (dir.path() / "cube.obj").string() + "\" not found"));
     dir.write("cube.obj", kCube);
     json bright = boxObject(kIdentity);
