@@ -89,6 +89,7 @@ void hashOptions(Fnv1a& h, const ShadowRemovalOptions& o) {
 void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.f64(o.epsilon);
     h.i64(o.spp);
+    h.i64(o.sampleBudget);
     h.i64(o.minRays);
     h.i64(o.maxRays);
     h.i64(o.reflectanceRounds);

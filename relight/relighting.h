@@ -49,7 +49,11 @@ namespace relight {
 
 struct RelightOptions {
     double epsilon = 1e-4;  ///< BF refinement threshold (radiosity/solver.h)
-    int spp = 16;           ///< item-buffer samples per pixel
+    int spp = 16;           ///< item-buffer samples per pixel, at most (sampleBudget)
+    /// Samples over the whole image: fewer samples per pixel, and the estimates from the
+    /// photo on a sub-grid of pixels, on large photos (SamplingPlan, relight/item_buffer.h).
+    /// 0: spp samples in every pixel, every pixel in the estimates.
+    int64_t sampleBudget = kDefaultSampleBudget;
     int minRays = 4, maxRays = 16;
     int reflectanceRounds = 12;
     /// Reflectance per leaf element from its texture after refinement (relight/reflectance.h),
@@ -74,6 +78,7 @@ struct Relighting {
     PreparedImage prepared;
     std::unique_ptr<radiosity::HierarchicalSolver> solver;
     ItemBuffer items;
+    SamplingPlan sampling;  ///< the item buffer's spp and the estimates' pixel stride
     std::unique_ptr<radiosity::LeafMesh> mesh;
     std::unique_ptr<radiosity::LightResponses> responses;
     std::unique_ptr<LeafTexture> texture;  ///< the photo per leaf
