@@ -482,6 +482,7 @@ std::optional<PreparedImage> readPreparedCache(const fs::path& file, uint64_t ke
                           " bytes after the last field");
         if (std::string e = checkPrepared(p); !e.empty())
             return reject("cache corrupt: inconsistent sizes: " + e);
+        packDisplayMap(p.display);  // derived, not stored
         return p;
     } catch (const std::exception& e) {
         // bad_alloc and friends: a cache that cannot be read is rebuilt, not fatal.
