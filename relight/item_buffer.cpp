@@ -3,9 +3,26 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace relight {
+
+SamplingPlan planSampling(int width, int height, int spp, int64_t budget) {
+    SamplingPlan plan;
+    int k = std::max(1, static_cast<int>(std::floor(std::sqrt(std::max(1, spp)))));
+    const int64_t pixels = static_cast<int64_t>(width) * height;
+    if (budget > 0)
+        while (k > 1 && int64_t{k} * k * pixels > budget) --k;
+    plan.spp = k * k;
+    if (budget > 0) {
+        auto samples = [&](int s) {
+            return int64_t{(width + s - 1) / s} * ((height + s - 1) / s) * plan.spp;
+        };
+        while (samples(plan.stride) > budget) ++plan.stride;
+    }
+    return plan;
+}
 
 ItemBuffer castItemBuffer(const Camera& camera, const radiosity::Scene& scene,
                           const radiosity::Visibility& vis, int spp) {

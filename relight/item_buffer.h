@@ -7,6 +7,7 @@
 // A sample that hits the back of a one-sided polygon, or nothing, has polygon -1.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "radiosity/scene.h"
@@ -24,6 +25,31 @@ struct ItemBuffer {
 
     int sampleIndex(int x, int y, int k) const { return (y * width + x) * spp + k; }
 };
+
+/// How densely the preparation samples a photo of a given size.
+///
+/// The item buffer's samples serve two ends. The display (relight/ratio_display.h) needs a
+/// few samples per pixel on a small photo, where one pixel covers a large part of a leaf
+/// and of a polygon edge; the paper's own display is one sample per screen pixel (Gouraud
+/// shading on the graphics hardware, Loscos et al. 2000 §5.3). The estimates from the photo
+/// (reflectance, leaf texture, shadow refinement) are means over the photo's samples, whose
+/// quality depends on the number of samples on each surface, not on the pixel count.
+/// So both are tied to a budget of samples over the whole image, the density of the bundled
+/// room at 320x240 and 16 samples per pixel (the default spp):
+///  - spp: the largest square <= the requested spp such that spp x pixels <= budget,
+///    and at least 1: 16 at 320x240, 4 at 640x480, 1 from 1280x960 on. The image plane is
+///    then sampled at least as densely as at 320x240 x 16.
+///  - stride: the estimates use the pixels (x, y) with x and y multiples of the stride,
+///    the smallest stride whose sub-grid holds at most `budget` samples: 1 up to 1280x960,
+///    4 at 4000x3000 (750,000 samples). The direct light of those samples (shadow rays,
+///    relight/lighting_buffer.h) is the costliest per-sample step of the preparation.
+/// A budget of 0 turns both off (spp as requested, stride 1).
+constexpr int64_t kDefaultSampleBudget = int64_t{16} * 320 * 240;
+struct SamplingPlan {
+    int spp = 1;     ///< item-buffer samples per pixel, a square number
+    int stride = 1;  ///< pixel stride of the estimates from the photo
+};
+SamplingPlan planSampling(int width, int height, int spp, int64_t budget);
 
 /// Casts spp rays per pixel (spp is rounded down to a square, at least 1).
 ItemBuffer castItemBuffer(const Camera& camera, const radiosity::Scene& scene,

@@ -1,5 +1,6 @@
 #include "relight/leaf_texture.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace relight {
@@ -7,7 +8,8 @@ namespace relight {
 using radiosity::Rgb;
 
 std::vector<uint8_t> usablePixels(const ItemBuffer& items, const radiosity::Scene& scene,
-                                  const Image& photo) {
+                                  const Image& photo, int stride) {
+    stride = std::max(stride, 1);
     const int w = items.width, hgt = items.height;
     std::vector<uint8_t> usable(static_cast<size_t>(w) * hgt, 0),
         nearEmitter(static_cast<size_t>(w) * hgt, 0);
@@ -25,8 +27,8 @@ std::vector<uint8_t> usablePixels(const ItemBuffer& items, const radiosity::Scen
                                 nearEmitter[static_cast<size_t>(yy) * w + xx] = 1;
                         }
             }
-    for (int y = 0; y < hgt; ++y) {
-        for (int x = 0; x < w; ++x) {
+    for (int y = 0; y < hgt; y += stride) {
+        for (int x = 0; x < w; x += stride) {
             const float* px = photo.at(x, y);
             if (!std::isfinite(px[0]) || !std::isfinite(px[1]) || !std::isfinite(px[2])) continue;
             if (nearEmitter[static_cast<size_t>(y) * w + x]) continue;

@@ -18,9 +18,11 @@
 namespace relight {
 
 /// Per pixel, 1 where the photo value can stand for the surface: finite, every sample on
-/// the same reflecting polygon, and no sample of an emitting face within one pixel.
+/// the same reflecting polygon, and no sample of an emitting face within one pixel. With a
+/// `stride` above 1 (SamplingPlan in relight/item_buffer.h) only the pixels whose x and y
+/// are multiples of it can be usable: an even sub-grid of the photo.
 std::vector<uint8_t> usablePixels(const ItemBuffer& items, const radiosity::Scene& scene,
-                                  const Image& photo);
+                                  const Image& photo, int stride = 1);
 
 class LeafTexture {
   public:

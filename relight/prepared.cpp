@@ -22,8 +22,14 @@ std::vector<Rgb> vertexRatio(const PreparedImage& p, std::span<const Rgb> H) {
 }
 
 Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance) {
+    Image out;
+    renderEdit(p, radiance, out);
+    return out;
+}
+
+void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& out) {
     const auto ratio = vertexRatio(p, vertexIrradiance(p, radiance));
-    return renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance);
+    renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance, out);
 }
 
 std::string stepTimes(const PrepareTimes& t) {

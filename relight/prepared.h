@@ -55,5 +55,7 @@ std::vector<radiosity::Rgb> vertexRatio(const PreparedImage& p, std::span<const 
 
 /// The relit photo for the lights' radiances (superposition path).
 Image renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance);
+/// The same into `out`, reused from edit to edit (renderRatio).
+void renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance, Image& out);
 
 }  // namespace relight

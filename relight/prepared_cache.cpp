@@ -93,6 +93,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.i64(static_cast<int64_t>(o.maxLinks));
     h.i64(static_cast<int64_t>(o.maxMemory > 0 ? o.maxMemory : radiosity::defaultMemoryBudget()));
     h.i64(o.spp);
+    h.i64(o.sampleBudget);
     h.i64(o.minRays);
     h.i64(o.maxRays);
     h.i64(o.reflectanceRounds);
@@ -485,6 +486,7 @@ std::optional<PreparedImage> readPreparedCache(const fs::path& file, uint64_t ke
                           " bytes after the last field");
         if (std::string e = checkPrepared(p); !e.empty())
             return reject("cache corrupt: inconsistent sizes: " + e);
+        packDisplayMap(p.display);  // derived, not stored
         return p;
     } catch (const std::exception& e) {
         // bad_alloc and friends: a cache that cannot be read is rebuilt, not fatal.

@@ -23,7 +23,8 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
     const radiosity::Scene& scene = solver.scene();
     const int np = static_cast<int>(scene.polygons.size());
     const int w = items.width, hgt = items.height;
-    const std::vector<uint8_t> usable = usablePixels(items, scene, photo);
+    // The lighting buffer's sub-grid (its stride) decides which pixels the sums take.
+    const std::vector<uint8_t> usable = usablePixels(items, scene, photo, lighting.stride);
     // What does not change between rounds: per polygon, the photo's sum and the direct
     // light's sum over the usable samples (direct light depends on the lights only).
     std::vector<Rgb> sumL(np), sumDirect(np);
@@ -47,7 +48,7 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
                     sumDirect[p] += scene.lights[l].emittance() * static_cast<double>(G[l]);
                 ++count[p];
             }
-            points[p].push_back({lighting.gatherPoint[idx0], items.spp});  // a pure pixel: one
+            points[p].push_back({lighting.gatherPointOf(idx0), items.spp});  // a pure pixel: one
         }
     }
     for (auto& list : points) {

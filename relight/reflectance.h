@@ -54,7 +54,8 @@ struct ReflectanceReport {
 /// of `lighting` (relight/lighting_buffer.h) plus indirect light gathered from the solver
 /// at up to 256 of each polygon's gather points per round. Only pixels whose samples all
 /// see one reflecting polygon, with no emitting face within one pixel and finite values,
-/// are used. A polygon needs `minSamples` photo samples to be estimated.
+/// are used, on the lighting buffer's sub-grid of pixels (its stride). A polygon needs
+/// `minSamples` photo samples to be estimated.
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const LightingBuffer& lighting, const Image& photo,

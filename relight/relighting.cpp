@@ -61,7 +61,10 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     auto t0 = Clock::now();
     r->solver = std::make_unique<radiosity::HierarchicalSolver>(r->scene.scene, so);
     say("item buffer");
-    r->items = castItemBuffer(r->scene.camera, r->solver->scene(), r->solver->visibility(), o.spp);
+    r->sampling =
+        planSampling(r->scene.camera.width, r->scene.camera.height, o.spp, o.sampleBudget);
+    r->items = castItemBuffer(r->scene.camera, r->solver->scene(), r->solver->visibility(),
+                              r->sampling.spp);
     P.times.itemBuffer = since(t0);
 
     // Lights whose radiance is "estimate": estimated before the solve, which needs their
@@ -101,15 +104,16 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     radiosity::DirectLightOptions dlo;
     dlo.minRays = o.minRays;
     dlo.maxRays = o.maxRays;
-    const LightingBuffer lighting = computeLightingBuffer(r->items, *r->solver, dlo);
+    const LightingBuffer lighting =
+        computeLightingBuffer(r->items, *r->solver, dlo, r->sampling.stride);
     estimatePolygonReflectance(*r->solver, r->scene, r->items, lighting, P.photo,
                                o.reflectanceRounds);
     P.times.reflectance = since(t0);
 
     t0 = Clock::now();
-    r->texture =
-        std::make_unique<LeafTexture>(r->solver->hierarchy(), r->solver->scene(), r->items, P.photo,
-                                      usablePixels(r->items, r->solver->scene(), P.photo));
+    r->texture = std::make_unique<LeafTexture>(
+        r->solver->hierarchy(), r->solver->scene(), r->items, P.photo,
+        usablePixels(r->items, r->solver->scene(), P.photo, r->sampling.stride));
     if (o.shadowRefinement) {
         say("texture-based refinement of shadow boundaries");
         ShadowRefinementOptions ro = o.refinement;

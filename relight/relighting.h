@@ -51,7 +51,11 @@ struct RelightOptions {
     double epsilon = 1e-4;  ///< BF refinement threshold (radiosity/solver.h)
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
-    int spp = 16;  ///< item-buffer samples per pixel
+    int spp = 16;           ///< item-buffer samples per pixel, at most (sampleBudget)
+    /// Samples over the whole image: fewer samples per pixel, and the estimates from the
+    /// photo on a sub-grid of pixels, on large photos (SamplingPlan, relight/item_buffer.h).
+    /// 0: spp samples in every pixel, every pixel in the estimates.
+    int64_t sampleBudget = kDefaultSampleBudget;
     int minRays = 4, maxRays = 16;
     int reflectanceRounds = 12;
     /// Reflectance per leaf element from its texture after refinement (relight/reflectance.h),
@@ -76,6 +80,7 @@ struct Relighting {
     PreparedImage prepared;
     std::unique_ptr<radiosity::HierarchicalSolver> solver;
     ItemBuffer items;
+    SamplingPlan sampling;  ///< the item buffer's spp and the estimates' pixel stride
     std::unique_ptr<radiosity::LeafMesh> mesh;
     std::unique_ptr<radiosity::LightResponses> responses;
     std::unique_ptr<LeafTexture> texture;  ///< the photo per leaf
