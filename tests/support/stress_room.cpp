@@ -138,6 +138,8 @@ class Placer {
     std::vector<LocalBox> taken_;  ///< solids and lamp slabs
 };
 
+class Mesher;
+
 // ---- the room's content --------------------------------------------------------------------
 
 class Builder {
@@ -168,6 +170,9 @@ class Builder {
     void placeLamps();
     bool placeCeilingLamp();
     bool placeWallLamp(LampMount mount);
+    void meshRoom(Mesher& mesher, StressRoom& room);
+    void meshSolids(Mesher& mesher, StressRoom& room);
+    void meshLamps(Mesher& mesher, StressRoom& room);
 
     const StressRoomOptions& o_;
     Random rnd_;
@@ -350,8 +355,8 @@ class Mesher {
   public:
     Mesher(StressRoom& room, Random& rnd) : room_(room), rnd_(rnd) {}
 
-    /// The 6 faces of `box`, facing out of it (inward = false) or into it (the room).
-    void box(const LocalBox& box, bool inward, int object, const Rgb& rho);
+    /// The 6 faces of a solid box, facing out of it.
+    void box(const LocalBox& box, int object, const Rgb& rho);
     /// Face of `box` on axis k at its lo or hi side, normal sign `sign` (+1: +axis).
     void face(const LocalBox& box, int k, bool hiSide, int sign, int object, const Rgb& rho);
     /// The lamp's quad: on the slab's side away from its mounting surface (on the
@@ -365,10 +370,10 @@ class Mesher {
     Random& rnd_;
 };
 
-void Mesher::box(const LocalBox& b, bool inward, int object, const Rgb& rho) {
+void Mesher::box(const LocalBox& b, int object, const Rgb& rho) {
     for (int k = 0; k < 3; ++k) {
-        face(b, k, false, inward ? 1 : -1, object, rho);
-        face(b, k, true, inward ? -1 : 1, object, rho);
+        face(b, k, false, -1, object, rho);
+        face(b, k, true, 1, object, rho);
     }
 }
 
@@ -498,6 +503,44 @@ void validate(const StressRoomOptions& o) {
 
 const char* kWallNames[4] = {"wall_y0", "wall_yD", "wall_x0", "wall_xW"};
 
+void Builder::meshRoom(Mesher& mesher, StressRoom& room) {
+    // Six faces, one object each (floor, ceiling, walls 0-3), facing inwards.
+    const LocalBox air{{0, 0, 0}, size_};
+    const int axisOf[6] = {2, 2, 1, 1, 0, 0};
+    for (int i = 0; i < 6; ++i) {
+        room.scene.objects.push_back(i == 0 ? "floor" : i == 1 ? "ceiling" : kWallNames[i - 2]);
+        const bool hiSide = i % 2 == 1;
+        mesher.face(air, axisOf[i], hiSide, hiSide ? -1 : 1, i,
+                    randomReflectance(rnd_, o_.maxReflectance));
+    }
+}
+
+void Builder::meshSolids(Mesher& mesher, StressRoom& room) {
+    for (size_t i = 0; i < solids_.size(); ++i) {
+        Solid s = solids_[i];
+        s.object = static_cast<int>(room.scene.objects.size());
+        room.scene.objects.push_back(std::string(solidKindName(s.kind)) + std::to_string(i));
+        mesher.box(s.box, s.object, randomReflectance(rnd_, o_.maxReflectance));
+        room.solids.push_back(s);
+    }
+}
+
+/// Lamps last, each its own object "light:lampN", as relight::loadScene names them.
+void Builder::meshLamps(Mesher& mesher, StressRoom& room) {
+    radiosity::Scene& scene = room.scene;
+    for (size_t i = 0; i < lamps_.size(); ++i) {
+        Lamp l = lamps_[i];
+        const std::string name = "lamp" + std::to_string(i);
+        l.light = static_cast<int>(scene.lights.size());
+        const int object = static_cast<int>(scene.objects.size());
+        scene.objects.push_back("light:" + name);
+        const Rgb radiance{rnd_.uniform(1, 4), rnd_.uniform(1, 4), rnd_.uniform(1, 4)};
+        scene.lights.push_back({name, {static_cast<int>(scene.polygons.size())}, radiance});
+        mesher.lamp(l, object);
+        room.lamps.push_back(l);
+    }
+}
+
 StressRoom Builder::build() {
     placeShelves();
     placeFloorBoxes();
@@ -514,34 +557,9 @@ StressRoom Builder::build() {
     room.origin = at - centre;
 
     Mesher mesher(room, rnd_);
-    radiosity::Scene& scene = room.scene;
-    // The room's six faces, one object each (floor, ceiling, walls 0-3), facing inwards.
-    const LocalBox air{{0, 0, 0}, size_};
-    const int axisOf[6] = {2, 2, 1, 1, 0, 0};
-    for (int i = 0; i < 6; ++i) {
-        scene.objects.push_back(i == 0 ? "floor" : i == 1 ? "ceiling" : kWallNames[i - 2]);
-        const bool hiSide = i % 2 == 1;
-        mesher.face(air, axisOf[i], hiSide, hiSide ? -1 : 1, i,
-                    randomReflectance(rnd_, o_.maxReflectance));
-    }
-    for (size_t i = 0; i < solids_.size(); ++i) {
-        Solid s = solids_[i];
-        s.object = static_cast<int>(scene.objects.size());
-        scene.objects.push_back(std::string(solidKindName(s.kind)) + std::to_string(i));
-        mesher.box(s.box, false, s.object, randomReflectance(rnd_, o_.maxReflectance));
-        room.solids.push_back(s);
-    }
-    for (size_t i = 0; i < lamps_.size(); ++i) {
-        Lamp l = lamps_[i];
-        const std::string name = "lamp" + std::to_string(i);
-        l.light = static_cast<int>(scene.lights.size());
-        const int object = static_cast<int>(scene.objects.size());
-        scene.objects.push_back("light:" + name);
-        const Rgb radiance{rnd_.uniform(1, 4), rnd_.uniform(1, 4), rnd_.uniform(1, 4)};
-        scene.lights.push_back({name, {static_cast<int>(scene.polygons.size())}, radiance});
-        mesher.lamp(l, object);
-        room.lamps.push_back(l);
-    }
+    meshRoom(mesher, room);
+    meshSolids(mesher, room);
+    meshLamps(mesher, room);
     return room;
 }
 
