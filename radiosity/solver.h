@@ -35,8 +35,10 @@
 // clamp at 1 would destroy the light of the half of the errors above 1, 9 % of the
 // bundled room's power), and gather/push-pull contracts by the largest reflectance per
 // sweep, so it converges for any rho < 1. Direct light from the lamps' faces (sources
-// that do not reflect) is not scaled: its links are exact form factors to the lamp, and
-// the real-shadow correction scales them on purpose (scaleLightLinks). A gather
+// that do not reflect) is not scaled per receiver (the real-shadow correction scales
+// those links on purpose, scaleLightLinks), but per lamp: the links from each emitting
+// face are scaled so that it delivers its whole power to the surfaces it sees
+// (normaliseLamps; the same rays measure what the face sees). A gather
 // that still fails to converge (maxSweeps) stops with SolverError naming the element that did not
 // settle.
 //
@@ -281,6 +283,10 @@ class HierarchicalSolver {
     /// Energy bound: sets gatherScale of the leaf elements with id >= firstNode from the
     /// sum G of their links' form factors (see the header).
     void boundGather(size_t firstNode = 0);
+    /// Scales the links from each emitting face so that they deliver its area times the
+    /// fraction of its hemisphere that sees a surface (solve() and new light links only:
+    /// after real-shadow removal has scaled light links on purpose it must not run).
+    void normaliseLamps();
     /// Ray casts the `seen` fraction of these leaf elements (64 cosine-distributed rays).
     void measureSeen(const std::vector<int>& leaves);
     [[noreturn]] void throwNotConverged(int sweeps, double power, double delta) const;

@@ -354,27 +354,22 @@ StressRoomOptions solveCase(uint64_t seed, double scale, bool triangles, int gri
 
 }  // namespace
 
-// Today's solver fails four of the five (measured on 2 cores, see bench/stress_rooms):
-// seed 101 absorbs 4 % more than its lamps emit; seeds 102, 104 and 105 run for more than
-// two minutes (the 5 mm room reaching 5.6 GB). The solver is being made energy-conserving
-// and bounded; these tests are what it must then pass, as written.
+// Before the energy bound four of the five failed: seed 101 absorbed 4 % more than its
+// lamps emit; seeds 102, 104 and 105 ran for more than two minutes (the 5 mm room reaching
+// 5.6 GB).
 
-// enabled once the bounded solver lands
-TEST(StressRoomSolve, DISABLED_QuadsOneMetre) {
+TEST(StressRoomSolve, QuadsOneMetre) {
     checkSolve(solveCase(101, 1, false, 1, 0, false));
 }
-// enabled once the bounded solver lands
-TEST(StressRoomSolve, DISABLED_TrianglesFiveMillimetreRoom) {
+TEST(StressRoomSolve, TrianglesFiveMillimetreRoom) {
     checkSolve(solveCase(102, 0.002, true, 2, 0, false));
 }
 TEST(StressRoomSolve, JitteredTrianglesRotated) {
     checkSolve(solveCase(103, 1, true, 2, 0.002, true));
 }
-// enabled once the bounded solver lands
-TEST(StressRoomSolve, DISABLED_QuadsHundredMetresRotated) {
+TEST(StressRoomSolve, QuadsHundredMetresRotated) {
     checkSolve(solveCase(104, 20, false, 1, 0, true));
 }
-// enabled once the bounded solver lands
-TEST(StressRoomSolve, DISABLED_JitteredTrianglesHundredMetres) {
+TEST(StressRoomSolve, JitteredTrianglesHundredMetres) {
     checkSolve(solveCase(105, 20, true, 2, 0.002, false));
 }
