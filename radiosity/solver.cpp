@@ -755,7 +755,6 @@ void HierarchicalSolver::setReflectance(int polygon, const Rgb& rho) {
         n.rho = rho;
         for (int k = 0; k < n.childCount; ++k) stack.push_back(n.firstChild + k);
     }
-    h_.pullAverages(Hierarchy::kRoot);
 }
 
 SolverStats HierarchicalSolver::stats() const {

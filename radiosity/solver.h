@@ -197,7 +197,8 @@ class HierarchicalSolver {
     std::span<const Link> linksOf(int node) const;
 
     /// Reflectance edit of one polygon: updates its elements (links are kept); call
-    /// solve() or gatherPushPull() after a batch of edits.
+    /// pullReflectance() after a batch of edits (the clusters' means), then solve() or
+    /// gatherPushPull(). (Pulling after each edit made 22 k polygons take minutes.)
     void setReflectance(int polygon, const Rgb& rho);
     /// Reflectance edit of one leaf element (per-element reflectance estimated from its
     /// texture, Loscos et al. 2000, §4.4); call pullReflectance() after a batch of them.

@@ -1,19 +1,56 @@
 #include "relight/reflectance.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numbers>
 #include <vector>
 
 #include <tbb/parallel_for.h>
 
 #include "radiosity/final_gather.h"
+#include "radiosity/leaf_mesh.h"
 #include "relight/leaf_texture.h"
 
 namespace relight {
 
 using radiosity::Rgb;
+
+namespace {
+
+/// Surfaces: polygons joined where they share a corner and their normals are within 25
+/// degrees (radiosity::LeafMesh's rule), so that a wall a reconstruction cut into
+/// triangles is one surface. Returns a surface id per polygon (union-find).
+std::vector<int> surfaceOf(const radiosity::Scene& scene) {
+    const int np = static_cast<int>(scene.polygons.size());
+    std::vector<int> parent(np);
+    for (int p = 0; p < np; ++p) parent[p] = p;
+    const auto find = [&](int p) {
+        while (parent[p] != p) p = parent[p] = parent[parent[p]];
+        return p;
+    };
+    std::map<std::array<double, 3>, std::vector<int>> atCorner;
+    for (int p = 0; p < np; ++p) {
+        const radiosity::Polygon& P = scene.polygons[p];
+        if (P.light >= 0) continue;
+        for (int i = 0; i < P.vertexCount; ++i)
+            atCorner[{P.v[i].x + 0.0, P.v[i].y + 0.0, P.v[i].z + 0.0}].push_back(p);
+    }
+    for (const auto& [corner, polys] : atCorner)
+        for (size_t i = 1; i < polys.size(); ++i)
+            for (size_t j = 0; j < i; ++j) {
+                const auto& a = scene.polygons[polys[i]];
+                const auto& b = scene.polygons[polys[j]];
+                if (glm::dot(a.normal, b.normal) >= radiosity::LeafMesh::kSmoothCos)
+                    parent[find(polys[i])] = find(polys[j]);
+            }
+    for (int p = 0; p < np; ++p) parent[p] = find(p);
+    return parent;
+}
+
+}  // namespace
 
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
@@ -59,6 +96,7 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
             kept.push_back(list[static_cast<size_t>(i * step)]);
         list.swap(kept);
     }
+    const std::vector<int> surface = surfaceOf(scene);
     for (int round = 0; round < rounds; ++round) {
         std::vector<Rgb> sumH(np);
         tbb::parallel_for(0, np, [&](int p) {
@@ -72,6 +110,15 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
             }
             sumH[p] = sumDirect[p] + (weight > 0 ? sumI * (count[p] / weight) : Rgb{});
         });
+        // A polygon with too few samples of its own (a small triangle of a reconstructed
+        // wall) takes its surface's: the sums pooled over the surface's polygons.
+        std::vector<Rgb> poolL(np), poolH(np);
+        std::vector<int> poolCount(np, 0);
+        for (int p = 0; p < np; ++p) {
+            poolL[surface[p]] += sumL[p];
+            poolH[surface[p]] += sumH[p];
+            poolCount[surface[p]] += count[p];
+        }
         // Estimates, and their area-weighted mean for the polygons the photo misses.
         std::vector<Rgb> rho(np);
         std::vector<bool> seen(np, false);
@@ -79,10 +126,13 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         double meanArea = 0;
         report.polygonsSeen = 0;
         for (int p = 0; p < np; ++p) {
-            if (scene.polygons[p].light >= 0 || count[p] < minSamples) continue;
+            if (scene.polygons[p].light >= 0) continue;
+            const bool own = count[p] >= minSamples;
+            if (!own && poolCount[surface[p]] < minSamples) continue;
+            const Rgb& L = own ? sumL[p] : poolL[surface[p]];
+            const Rgb& H = own ? sumH[p] : poolH[surface[p]];
             for (int c = 0; c < 3; ++c)  // guard: a polygon in darkness (H = 0) says nothing
-                rho[p][c] = sumH[p][c] > 0 ? std::numbers::pi * sumL[p][c] / sumH[p][c]
-                                           : scene.polygons[p].rho[c];
+                rho[p][c] = H[c] > 0 ? std::numbers::pi * L[c] / H[c] : scene.polygons[p].rho[c];
             rho[p] = clampReflectance(rho[p]);
             seen[p] = true;
             ++report.polygonsSeen;
@@ -112,10 +162,15 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
                 report.lastChange = std::max(report.lastChange, std::abs(next[c] - previous[c]));
             solver.setReflectance(p, next);
         }
-        solver.solve();
+        solver.pullReflectance();
+        // Between rounds only the radiosity changes: the links stay (re-refining 700 k
+        // links each round made a 22 k-triangle room's reflectance take a minute). The
+        // links are refined for the final reflectances once the rounds end.
+        solver.gatherPushPull();
         report.rounds = round + 1;
         if (round > 0 && report.lastChange < tolerance) break;
     }
+    solver.solve();
     return report;
 }
 

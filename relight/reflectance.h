@@ -2,7 +2,8 @@
 // L = rho H / pi on a Lambertian surface of irradiance H, so
 //     rho_p = pi sum(L) / sum(H)      over the photo samples that see polygon p,
 // with H from the radiosity solution of the lights of the photo. H itself depends on the
-// reflectances (indirect light), so solve and estimate alternate. The plain fixed point
+// reflectances (indirect light), so gather and estimate alternate (on the solver's links;
+// they are refined for the final reflectances at the end). The plain fixed point
 // rho <- pi L / H(rho) oscillates: where a surface gets a share s of its light indirectly,
 // the error changes sign each round and shrinks only by s, and a ceiling lit only by
 // bounced light (s ~ 1) never settles. Each round therefore moves half-way to the new
@@ -45,7 +46,7 @@ inline radiosity::Rgb clampReflectance(radiosity::Rgb rho) {
 
 struct ReflectanceReport {
     int rounds = 0;
-    int polygonsSeen = 0;       ///< polygons with enough photo samples
+    int polygonsSeen = 0;       ///< polygons with enough photo samples, or their surface
     int polygonsDefaulted = 0;  ///< reflecting polygons the photo does not see
     double lastChange = 0;      ///< largest reflectance change in the last round
 };
@@ -55,7 +56,9 @@ struct ReflectanceReport {
 /// at up to 256 of each polygon's gather points per round. Only pixels whose samples all
 /// see one reflecting polygon, with no emitting face within one pixel and finite values,
 /// are used, on the lighting buffer's sub-grid of pixels (its stride). A polygon needs
-/// `minSamples` photo samples to be estimated.
+/// `minSamples` photo samples to be estimated; one with fewer takes the estimate pooled
+/// over its surface (the polygons joined by shared corners within 25 degrees: a wall that
+/// a reconstruction cut into small triangles) when that has enough.
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const LightingBuffer& lighting, const Image& photo,
