@@ -51,7 +51,7 @@ struct RelightOptions {
     double epsilon = 1e-4;  ///< BF refinement threshold (radiosity/solver.h)
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
-    int spp = 16;           ///< item-buffer samples per pixel, at most (sampleBudget)
+    int spp = 16;  ///< item-buffer samples per pixel, at most (sampleBudget)
     /// Samples over the whole image: fewer samples per pixel, and the estimates from the
     /// photo on a sub-grid of pixels, on large photos (SamplingPlan, relight/item_buffer.h).
     /// 0: spp samples in every pixel, every pixel in the estimates.
