@@ -88,12 +88,20 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
             points[p].push_back({lighting.gatherPointOf(idx0), items.spp});  // a pure pixel: one
         }
     }
+    // And at most kGatherBudget points in all per round: a mesh of 22 k small triangles
+    // would otherwise gather at every usable pixel, 12 times (30 s); each polygon keeps its
+    // share, at least one point.
+    constexpr double kGatherBudget = 16384;
+    double total = 0;
+    for (const auto& list : points) total += std::min<double>(list.size(), kIndirectPoints);
+    const double share = total > kGatherBudget ? kGatherBudget / total : 1.0;
     for (auto& list : points) {
-        if (static_cast<int>(list.size()) <= kIndirectPoints) continue;
+        const int cap =
+            std::max(1, static_cast<int>(std::min<double>(list.size(), kIndirectPoints) * share));
+        if (static_cast<int>(list.size()) <= cap) continue;
         std::vector<std::pair<int, int>> kept;
-        const double step = static_cast<double>(list.size()) / kIndirectPoints;
-        for (int i = 0; i < kIndirectPoints; ++i)
-            kept.push_back(list[static_cast<size_t>(i * step)]);
+        const double step = static_cast<double>(list.size()) / cap;
+        for (int i = 0; i < cap; ++i) kept.push_back(list[static_cast<size_t>(i * step)]);
         list.swap(kept);
     }
     const std::vector<int> surface = surfaceOf(scene);
