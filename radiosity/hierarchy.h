@@ -154,6 +154,13 @@ class Hierarchy {
 /// surfaces inside it can exceed as seen from outside (Smits, Arvo & Greenberg 1994).
 double projectedArea(const Node& node, const Vec3& v);
 
+/// Whether a link's source reflects light: a cluster (the oracle splits any cluster that
+/// holds an emitter off a link, so a cluster stands for reflecting surfaces), or an
+/// element of non-zero reflectance. A lamp's face does not: its links carry direct light.
+inline bool reflects(const Node& source) {
+    return source.isCluster() || source.rho.maxComponent() > 0;
+}
+
 /// Direction v (world) in the cluster's principal frame.
 inline Vec3 toFrame(const Node& cluster, const Vec3& v) {
     return {glm::dot(cluster.frame[0], v), glm::dot(cluster.frame[1], v),

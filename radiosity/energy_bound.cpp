@@ -1,0 +1,139 @@
+// The energy bound of the clustered solver (solver.h, "Energy bound"): what each leaf
+// sees, measured by ray casting; each lamp's links scaled to deliver its power; each
+// leaf's gather moved into what it can see.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "radiosity/rng.h"
+#include "radiosity/solver.h"
+
+namespace radiosity {
+
+void HierarchicalSolver::normaliseLamps() {
+    // A lamp's face delivers all its power to what it sees: sum_r F_rs V A_r over the links
+    // from its elements (one element of the face per receiver region) must be A seen, the
+    // face's area times the fraction of its hemisphere that sees a surface (reciprocity,
+    // F_rs A_r = F_sr A_s). The links' form factors are integrated on the receivers (2 x 2
+    // points), accurate for receivers small against their distance to the lamp only: a
+    // wall 5 mm behind a lamp that faces it, as one element, gathered 9 % more than the
+    // lamp emits. The links of each emitting face are scaled to deliver exactly its power.
+    // Idempotent: a second call finds the sums right.
+    const auto& nodes = h_.nodes;
+    std::vector<double> delivered(scene_.polygons.size(), 0.0);
+    for (const Link& l : links_) {
+        const Node& S = nodes[l.source];
+        if (reflects(S)) continue;
+        delivered[S.polygon] += l.F * static_cast<double>(l.V) * nodes[l.receiver].area;
+    }
+    std::vector<int> faces;  // root elements of the emitting faces not yet measured
+    for (size_t p = 0; p < delivered.size(); ++p)
+        if (delivered[p] > 0 && nodes[h_.polygonRoot[p]].seen < 0)
+            faces.push_back(h_.polygonRoot[p]);
+    measureSeen(faces);
+    for (Link& l : links_) {
+        const Node& S = nodes[l.source];
+        if (reflects(S)) continue;
+        const Node& face = nodes[h_.polygonRoot[S.polygon]];
+        if (!(delivered[S.polygon] > 0) || !(face.seen >= 0)) continue;
+        l.F *= std::min(face.area * face.seen / delivered[S.polygon], kMaxRenormalisation);
+    }
+}
+
+void HierarchicalSolver::boundGather(size_t firstNode) {
+    // G: what each leaf gathers when every source that reflects has radiosity 1. Light
+    // that comes straight from an emitting face (which reflects nothing) is left out: it
+    // feeds nothing back, and the real-shadow correction may scale it above V = 1 on
+    // purpose (scaleLightLinks).
+    const auto& nodes = h_.nodes;
+    const std::vector<Rgb> G =
+        gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 1.0 : 0.0); }, false);
+    // Gd: the same from the sources that do not reflect (the lamps): exact form factors.
+    const std::vector<Rgb> Gd =
+        gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 0.0 : 1.0); }, false);
+    std::vector<int> unmeasured;
+    for (size_t n = firstNode; n < nodes.size(); ++n)
+        if (!nodes[n].isCluster() && nodes[n].isLeaf() && nodes[n].seen < 0)
+            unmeasured.push_back(static_cast<int>(n));
+    measureSeen(unmeasured);
+    boundedLeaves_ = 0;
+    maxGather_ = 1;
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        Node& e = h_.nodes[n];
+        if (e.isCluster() || !e.isLeaf()) continue;
+        const double g = G[n].maxComponent();
+        maxGather_ = std::max(maxGather_, g);
+        if (n >= firstNode) {
+            // G is moved into the interval the rays allow, seen - Gd +- 2 standard errors
+            // (and never above 1 - Gd): a G that the measurement cannot tell from the truth
+            // is kept, one it says is wrong is corrected. At most kMaxRenormalisation: where the
+            // links miss much of what the leaf sees they are not scaled up without end.
+            // What reflecting sources fill: what the leaf sees, less the lamps it sees.
+            const double gd = Gd[n].maxComponent(), target = e.seen - gd;
+            const double lo = std::max(0.0, target - 2 * e.seenError);
+            const double hi = std::max(lo, std::min(1.0 - gd, target + 2 * e.seenError));
+            e.gatherScale = g > 0 ? std::min(std::clamp(g, lo, hi) / g, kMaxRenormalisation) : 1.0;
+        }
+        if (std::abs(e.gatherScale - 1) > 0.05) ++boundedLeaves_;
+    }
+}
+
+void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {
+    // Malley's method: points uniform on the unit disc, lifted to the hemisphere, are
+    // cosine-distributed; strata of a k x k grid on the square, mapped to the disc by
+    // the concentric map (Shirley & Chiu 1997), and a random point of the leaf per ray.
+    const double diag = glm::length(h_.nodes[Hierarchy::kRoot].bounds.diagonal());
+    const double tMin = 1e-6 * diag;       // above Embree's float rounding (visibility.h)
+    constexpr int kFirst = 8, kMore = 16;  // 64 rays; 256 where they disagree
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 16), [&](const auto& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            Node& e = h_.nodes[leaves[i]];
+            Rng rng(0xC0FFEEull ^ (static_cast<uint64_t>(leaves[i]) * 0x9E3779B97F4A7C15ull));
+            // An orthonormal frame about the normal.
+            const Vec3 n = e.normal;
+            const Vec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3{1, 0, 0})
+                                                              : glm::cross(n, Vec3{0, 1, 0}));
+            const Vec3 b = glm::cross(n, t);
+            int hits = 0, cast = 0;
+            const auto castRays = [&](int k) {
+                for (int cell = 0; cell < k * k; ++cell) {
+                    const double a = 2 * ((cell % k) + rng.uniform()) / k - 1;
+                    const double c = 2 * ((cell / k) + rng.uniform()) / k - 1;
+                    // Concentric square-to-disc map.
+                    double r, phi;
+                    if (a == 0 && c == 0) {
+                        r = 0;
+                        phi = 0;
+                    } else if (std::abs(a) > std::abs(c)) {
+                        r = a;
+                        phi = (std::numbers::pi / 4) * (c / a);
+                    } else {
+                        r = c;
+                        phi = std::numbers::pi / 2 - (std::numbers::pi / 4) * (a / c);
+                    }
+                    const double x = r * std::cos(phi), y = r * std::sin(phi);
+                    const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
+                    const Vec3 dir = x * t + y * b + z * n;
+                    const Vec3 org = pointOnElement(e, rng.uniform(), rng.uniform());
+                    const Visibility::Hit hit = vis_->intersect(org, dir, tMin);
+                    if (hit.polygon < 0 || hit.polygon == e.polygon) continue;
+                    const Polygon& p = scene_.polygons[hit.polygon];
+                    if (glm::dot(p.normal, dir) < 0) ++hits;  // a front: reflecting or a lamp
+                }
+                cast += k * k;
+            };
+            castRays(kFirst);
+            if (hits > 0 && hits < cast) {  // a partly open leaf: a finer estimate
+                hits = cast = 0;
+                castRays(kMore);
+            }
+            e.seen = static_cast<double>(hits) / cast;
+            e.seenError = std::sqrt(e.seen * (1 - e.seen) / cast);
+        }
+    });
+}
+
+}  // namespace radiosity
