@@ -1,29 +1,300 @@
 #include "radiosity/light_response.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "radiosity/directional_irradiance.h"
+#include "radiosity/transfer.h"
+
 namespace radiosity {
 
-LightResponses::LightResponses(HierarchicalSolver& solver)
-    : lights_(static_cast<int>(solver.scene().lights.size())) {
-    const auto& nodes = solver.hierarchy().nodes;
-    std::vector<Rgb> original(lights_);
-    for (int l = 0; l < lights_; ++l) original[l] = solver.scene().lights[l].radiance;
-    // First every light on at unit radiance: links for lights that had none are refined
-    // with all lights contributing to the power threshold, as a solve with them on would.
-    std::vector<Rgb> unit(lights_, Rgb::gray(1.0));
-    solver.setLightRadiances(unit);
-    R_.assign(nodes.size() * lights_, Rgb{});
-    for (int l = 0; l < lights_; ++l) {
-        std::vector<Rgb> alone(lights_);
-        alone[l] = Rgb::gray(1.0);
-        solver.setLightRadiances(alone);
-        // setLightRadiances may have added nodes only while adding links (above, not
-        // here): the node count is fixed from now on.
-        for (size_t n = 0; n < nodes.size(); ++n) {
-            const Node& e = nodes[n];
-            R_[n * lights_ + l] = e.emitting ? e.B - e.E : e.B;
+namespace {
+
+/// What stays fixed over the sweeps: the receivers' runs of links, the clusters in
+/// top-down order, the polygons' root elements, and for each root the cluster ancestors
+/// that gather light with the root's normal in their frames (fromClusters in solver.cpp).
+struct SweepLayout {
+    std::vector<int> runStart;     ///< links of run i: [runStart[i], runStart[i + 1])
+    std::vector<int> clusterSlot;  ///< node -> its slot among the gathering clusters, or -1
+    int slots = 0;
+    std::vector<int> clustersTopDown;  ///< every cluster after its parent
+    std::vector<int> roots;            ///< polygon root elements
+    std::vector<int> ancestorStart;    ///< per root: [start[i], start[i + 1]) in the two below
+    std::vector<int> ancestorSlot;
+    std::vector<Vec3> ancestorNormal;  ///< the root's normal in that ancestor's frame
+
+    SweepLayout(const Hierarchy& h, const std::vector<Link>& links) {
+        const auto& nodes = h.nodes;
+        clusterSlot.assign(nodes.size(), -1);
+        for (size_t k = 0; k < links.size(); ++k) {
+            if (k == 0 || links[k].receiver != links[k - 1].receiver)
+                runStart.push_back(static_cast<int>(k));
+            const int r = links[k].receiver;
+            if (nodes[r].isCluster() && clusterSlot[r] < 0) clusterSlot[r] = slots++;
+        }
+        runStart.push_back(static_cast<int>(links.size()));
+        std::vector<int> stack{Hierarchy::kRoot};
+        while (!stack.empty()) {
+            const int n = stack.back();
+            stack.pop_back();
+            const Node& c = nodes[n];
+            if (!c.isCluster()) {
+                roots.push_back(n);
+                continue;
+            }
+            clustersTopDown.push_back(n);
+            for (int k = 0; k < c.childCount; ++k) stack.push_back(c.firstChild + k);
+        }
+        ancestorStart.reserve(roots.size() + 1);
+        for (int root : roots) {
+            ancestorStart.push_back(static_cast<int>(ancestorSlot.size()));
+            const Vec3& normal = nodes[root].normal;
+            for (int a = nodes[root].parent; a >= 0; a = nodes[a].parent)
+                if (clusterSlot[a] >= 0) {
+                    ancestorSlot.push_back(clusterSlot[a]);
+                    ancestorNormal.push_back(toFrame(nodes[a], normal));
+                }
+        }
+        ancestorStart.push_back(static_cast<int>(ancestorSlot.size()));
+    }
+};
+
+/// Per-light values of every node, [node * K + l].
+class PerLight {
+  public:
+    PerLight(size_t nodes, int K) : K_(K), v_(nodes * static_cast<size_t>(K)) {}
+    Rgb* operator[](size_t node) { return v_.data() + node * K_; }
+    const Rgb* operator[](size_t node) const { return v_.data() + node * K_; }
+    void clear() { std::fill(v_.begin(), v_.end(), Rgb{}); }
+    std::vector<Rgb>& values() { return v_; }
+
+  private:
+    size_t K_;
+    std::vector<Rgb> v_;
+};
+
+/// The sweeps: the same gather and push-pull as HierarchicalSolver::sweep(), with K values
+/// per node (one per light) and on arrays of their own rather than the nodes.
+class ResponseSweeps {
+  public:
+    ResponseSweeps(const Hierarchy& h, const std::vector<Link>& links, int K, PerLight& E,
+                   PerLight& B)
+        : h_(h),
+          links_(links),
+          layout_(h, links),
+          K_(K),
+          E_(E),
+          B_(B),
+          H_(h.nodes.size(), K),
+          Hd_(h.nodes.size(), K),
+          Hv_(static_cast<size_t>(layout_.slots) * K) {}
+
+    /// One gather over all links, then push-pull. Fills `power` with each light's total
+    /// reflected-plus-emitted power (max channel times area at the root).
+    void sweep(std::vector<double>& power) {
+        H_.clear();
+        Hd_.clear();
+        std::fill(Hv_.begin(), Hv_.end(), DirectionalIrradiance{});
+        gather();
+        pushToLeaves();
+        pullClusters();
+        const Node& root = h_.nodes[Hierarchy::kRoot];
+        for (int l = 0; l < K_; ++l) power[l] = B_[Hierarchy::kRoot][l].maxComponent() * root.area;
+    }
+
+    /// Cluster means of E (the leaves' values set).
+    void pullClusters(PerLight& x) const {
+        for (auto it = layout_.clustersTopDown.rbegin(); it != layout_.clustersTopDown.rend(); ++it)
+            pullMean(*it, x);
+    }
+    /// Element means below polygon roots, then clusters.
+    void pullAll(PerLight& x) const {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, layout_.roots.size(), 256),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              for (size_t i = range.begin(); i != range.end(); ++i)
+                                  pullElements(layout_.roots[i], x);
+                          });
+        pullClusters(x);
+    }
+
+  private:
+    void gather() {
+        const auto& nodes = h_.nodes;
+        const size_t runs = layout_.runStart.size() - 1;
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, runs, 64),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              for (size_t i = range.begin(); i != range.end(); ++i)
+                                  gatherRun(nodes, i);
+                          });
+    }
+
+    void gatherRun(const std::vector<Node>& nodes, size_t run) {
+        const int first = layout_.runStart[run], last = layout_.runStart[run + 1];
+        const int r = links_[first].receiver;
+        const Node& R = nodes[r];
+        const int slot = layout_.clusterSlot[r];
+        for (int k = first; k < last; ++k) {
+            const Link& link = links_[k];
+            const Node& S = nodes[link.source];
+            const double FV = link.F * static_cast<double>(link.V);
+            const Rgb* Bs = B_[link.source];
+            if (slot >= 0) {
+                const Vec3 w = toFrame(R, linkDirection(R, S));
+                DirectionalIrradiance* Hv = Hv_.data() + static_cast<size_t>(slot) * K_;
+                for (int l = 0; l < K_; ++l) Hv[l].add(Bs[l] * FV, w);
+            } else {
+                Rgb* H = reflects(S) ? H_[r] : Hd_[r];
+                for (int l = 0; l < K_; ++l) H[l] += Bs[l] * FV;
+            }
         }
     }
-    solver.setLightRadiances(original);
+
+    /// Each polygon's element tree: what its cluster ancestors gathered, by its normal,
+    /// handed down with its elements' own; leaves take B = E + rho (Hd + H gatherScale).
+    void pushToLeaves() {
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, layout_.roots.size(), 256),
+            [&](const tbb::blocked_range<size_t>& range) {
+                std::vector<Rgb> down(2 * static_cast<size_t>(K_));
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    std::fill(down.begin(), down.end(), Rgb{});
+                    for (int a = layout_.ancestorStart[i]; a < layout_.ancestorStart[i + 1]; ++a) {
+                        const DirectionalIrradiance* Hv =
+                            Hv_.data() + static_cast<size_t>(layout_.ancestorSlot[a]) * K_;
+                        const Vec3& n = layout_.ancestorNormal[a];
+                        for (int l = 0; l < K_; ++l) down[l] += Hv[l].onto(n);
+                    }
+                    pushElement(layout_.roots[i], down.data(), down.data() + K_);
+                }
+            });
+    }
+
+    void pushElement(int node, const Rgb* Hdown, const Rgb* HdDown) {
+        const Node& n = h_.nodes[node];
+        const Rgb *H = H_[node], *Hd = Hd_[node];
+        if (n.isLeaf()) {
+            Rgb* B = B_[node];
+            const Rgb* E = E_[node];
+            for (int l = 0; l < K_; ++l)
+                B[l] = E[l] + n.rho * (HdDown[l] + Hd[l] + (Hdown[l] + H[l]) * n.gatherScale);
+            return;
+        }
+        std::vector<Rgb> down(2 * static_cast<size_t>(K_));
+        for (int l = 0; l < K_; ++l) {
+            down[l] = Hdown[l] + H[l];
+            down[K_ + l] = HdDown[l] + Hd[l];
+        }
+        for (int k = 0; k < n.childCount; ++k)
+            pushElement(n.firstChild + k, down.data(), down.data() + K_);
+        pullMean(node, B_);
+    }
+
+    void pullElements(int node, PerLight& x) const {
+        const Node& n = h_.nodes[node];
+        if (n.isLeaf()) return;
+        for (int k = 0; k < n.childCount; ++k) pullElements(n.firstChild + k, x);
+        pullMean(node, x);
+    }
+
+    void pullClusters() { pullClusters(B_); }
+
+    /// x(node) = area-weighted mean of its children's (guarded: no area below gives 0).
+    void pullMean(int node, PerLight& x) const {
+        const Node& n = h_.nodes[node];
+        Rgb* out = x[node];
+        std::fill(out, out + K_, Rgb{});
+        double area = 0;
+        for (int k = 0; k < n.childCount; ++k) {
+            const int c = n.firstChild + k;
+            const double a = h_.nodes[c].area;
+            const Rgb* xc = x[c];
+            for (int l = 0; l < K_; ++l) out[l] += xc[l] * a;
+            area += a;
+        }
+        const double inv = area > 0 ? 1.0 / area : 0.0;
+        for (int l = 0; l < K_; ++l) out[l] = out[l] * inv;
+    }
+
+    const Hierarchy& h_;
+    const std::vector<Link>& links_;
+    SweepLayout layout_;
+    int K_;
+    PerLight& E_;
+    PerLight& B_;
+    PerLight H_, Hd_;
+    std::vector<DirectionalIrradiance> Hv_;
+};
+
+}  // namespace
+
+LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses* warm)
+    : lights_(static_cast<int>(solver.scene().lights.size())) {
+    solver.ensureLightLinks();
+    solver.finishSplits();  // links grouped by receiver
+    const Hierarchy& h = solver.hierarchy();
+    const Scene& scene = solver.scene();
+    const auto& nodes = h.nodes;
+    const size_t N = nodes.size();
+    if (lights_ == 0) return;
+
+    // E_l: light l's faces at radiance 1, nothing elsewhere (leaves; clusters and inner
+    // elements take area means, as the nodes' E).
+    PerLight E(N, lights_), B(N, lights_);
+    std::vector<Rgb> unit(lights_);
+    for (int l = 0; l < lights_; ++l) {
+        Light one = scene.lights[l];
+        one.radiance = Rgb::gray(1.0);
+        unit[l] = one.emittance();
+    }
+    for (size_t n = 0; n < N; ++n) {
+        const Node& e = nodes[n];
+        if (e.isCluster() || !e.isLeaf()) continue;
+        const int l = scene.polygons[e.polygon].light;
+        if (l >= 0) E[n][l] = unit[l];
+    }
+    ResponseSweeps sweeps(h, solver.links(), lights_, E, B);
+    sweeps.pullAll(E);
+    B.values() = E.values();
+    if (warm && warm->lights_ == lights_ && warm->R_.size() == B.values().size())
+        for (size_t i = 0; i < B.values().size(); ++i) B.values()[i] += warm->R_[i];
+
+    // Converged as HierarchicalSolver::gatherPushPull: for each light, the last change of
+    // its total power and the geometric estimate of what is left both below the tolerance.
+    const double tolerance = solver.options().tolerance;
+    std::vector<double> power(lights_), previous(lights_, -1), previousDelta(lights_, -1);
+    while (true) {
+        sweeps.sweep(power);
+        ++sweeps_;
+        bool converged = true;
+        for (int l = 0; l < lights_; ++l) {
+            if (!std::isfinite(power[l]))
+                throw SolverError("light responses: the response to light '" +
+                                  scene.lights[l].name + "' is not finite after " +
+                                  std::to_string(sweeps_) + " sweeps");
+            if (previous[l] < 0) {
+                converged = false;
+            } else {
+                const double delta = std::abs(power[l] - previous[l]);
+                double q = previousDelta[l] > 0 ? delta / previousDelta[l] : 0.5;
+                q = std::min(q, 0.999);  // guard: a stalled change gives a huge bound
+                const double remaining = delta * q / (1.0 - q);
+                if (delta > tolerance * power[l] || remaining > tolerance * power[l])
+                    converged = false;
+                previousDelta[l] = delta;
+            }
+            previous[l] = power[l];
+        }
+        if (converged) break;
+        if (sweeps_ >= solver.options().maxSweeps)
+            throw SolverError("light responses did not converge after " + std::to_string(sweeps_) +
+                              " gather/push-pull sweeps");
+    }
+    R_.resize(B.values().size());
+    for (size_t i = 0; i < R_.size(); ++i) R_[i] = B.values()[i] - E.values()[i];
 }
 
 Rgb LightResponses::reflected(int node, std::span<const Rgb> radiance) const {

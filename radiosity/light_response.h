@@ -5,9 +5,14 @@
 // and only re-gathers), radiosity is linear in the lights' emittances, channel by channel:
 //   B(node) = E(node) + sum_l L_l * R_l(node)
 // where L_l is light l's radiance (RGB) and R_l the radiosity that the node reflects when
-// light l alone shines with radiance 1 in every channel. R_l is found by gather/push-pull
-// on the solver's links with only light l on; a light that had no links (off when the
-// links were refined) gets its own first, so every light can be switched on later.
+// light l alone shines with radiance 1 in every channel. A light that had no links (off
+// when the links were refined) gets its own first, so every light can be switched on later.
+//
+// All R_l are found together, by gather/push-pull sweeps over the solver's links that carry
+// one value per light (a linear system with one right-hand side per light): the links are
+// read once per sweep whatever the number of lights, and the solver's own solution is left
+// as it was. (One solve per light, each ending with a re-solve of the photo's lights, was
+// most of the preparation of a 200 k-triangle room.)
 #pragma once
 
 #include <span>
@@ -19,10 +24,11 @@ namespace radiosity {
 
 class LightResponses {
   public:
-    /// Runs one gather/push-pull per light on `solver`'s links, then restores the
-    /// solver's light radiances (and re-gathers its own solution). The solver keeps any
-    /// light links this adds.
-    explicit LightResponses(HierarchicalSolver& solver);
+    /// Solves for every light's response on `solver`'s links. The solver keeps any light
+    /// links this adds; its radiances and solution are unchanged. With `warm` (responses
+    /// of the same hierarchy before a small change: new reflectances, scaled light links),
+    /// the sweeps start from them, which saves most of them.
+    explicit LightResponses(HierarchicalSolver& solver, const LightResponses* warm = nullptr);
 
     int lights() const { return lights_; }
     /// R_l(node) for l = 0..lights()-1: reflected radiosity per unit radiance of light l
@@ -33,9 +39,12 @@ class LightResponses {
     /// Reflected radiosity of `node` for the given radiance of every light:
     /// sum_l radiance[l] * R_l(node).
     Rgb reflected(int node, std::span<const Rgb> radiance) const;
+    /// Gather/push-pull sweeps the solve took.
+    int sweeps() const { return sweeps_; }
 
   private:
     int lights_ = 0;
+    int sweeps_ = 0;
     std::vector<Rgb> R_;  // [node * lights + l]
 };
 

@@ -576,16 +576,22 @@ void HierarchicalSolver::setLightRadiances(std::span<const Rgb> radiance) {
     for (size_t l = 0; l < radiance.size(); ++l) scene_.lights[l].radiance = radiance[l];
     h_.updateEmittance(scene_);
     if (!started_) return;
+    addMissingLightLinks();
+    gatherPushPull();
+}
+
+bool HierarchicalSolver::addMissingLightLinks() {
     // A light that was off when the links were refined has none: refine its own.
+    std::vector<char> linked(scene_.polygons.size(), 0);
+    for (const Link& l : links_) {
+        const Node& S = h_.nodes[l.source];
+        if (!S.isCluster()) linked[S.polygon] = 1;
+    }
     bool added = false;
-    for (size_t light = 0; light < radiance.size(); ++light) {
-        if (!(radiance[light].maxComponent() > 0)) continue;
-        for (int p : scene_.lights[light].polygons) {
-            const bool hasLinks = std::any_of(links_.begin(), links_.end(), [&](const Link& l) {
-                const Node& S = h_.nodes[l.source];
-                return !S.isCluster() && S.polygon == p;
-            });
-            if (hasLinks) continue;
+    for (const Light& light : scene_.lights) {
+        if (!(light.radiance.maxComponent() > 0)) continue;
+        for (int p : light.polygons) {
+            if (linked[p]) continue;
             if (powerThreshold_ <= 0)
                 powerThreshold_ = options_.epsilon * scene_.emittedPower().maxComponent();
             addLinksFromSource(h_.polygonRoot[p]);
@@ -598,7 +604,24 @@ void HierarchicalSolver::setLightRadiances(std::span<const Rgb> radiance) {
         normaliseLamps();
         boundGather();
     }
-    gatherPushPull();
+    return added;
+}
+
+void HierarchicalSolver::ensureLightLinks() {
+    if (!started_) return;
+    // Links are refined for every light as if all were on at radiance 1 (each light then
+    // weighs in the power threshold as it would in a solve with it on); the radiances
+    // come back afterwards, and the solution is gathered again only if links were added.
+    std::vector<Rgb> radiance(scene_.lights.size());
+    for (size_t l = 0; l < radiance.size(); ++l) {
+        radiance[l] = scene_.lights[l].radiance;
+        scene_.lights[l].radiance = Rgb::gray(1.0);
+    }
+    h_.updateEmittance(scene_);
+    const bool added = addMissingLightLinks();
+    for (size_t l = 0; l < radiance.size(); ++l) scene_.lights[l].radiance = radiance[l];
+    h_.updateEmittance(scene_);
+    if (added) gatherPushPull();
 }
 
 Rgb HierarchicalSolver::radiosityAt(int polygon, const Vec3& x) const {

@@ -156,6 +156,10 @@ class HierarchicalSolver {
     void setLightRadiance(int light, const Rgb& radiance);
     /// The same for all lights at once (one radiance per light), with one re-gather.
     void setLightRadiances(std::span<const Rgb> radiance);
+    /// Refines links for every light that has none (as if it were on, at radiance 1), so
+    /// that any light can be switched on later; radiances are kept, and the solution is
+    /// gathered again only if links were added.
+    void ensureLightLinks();
 
     /// Dynamic objects (Drettakis & Sillion 1997, as used by Loscos et al. 2000, §5.1-5.2).
     /// Inserts `polygons` (world space, checked by makePolygon; their `object` and `light`
@@ -297,6 +301,9 @@ class HierarchicalSolver {
     void linkObject(int cluster, int oldRoot, DynamicUpdate& report);
     int lightOfNode(int node) const;
     void addLinksFromSource(int node);
+    /// Links for the lights that are on and have none (see setLightRadiances); returns
+    /// whether any were added.
+    bool addMissingLightLinks();
     /// Sorts links_ by receiver (stable) and indexes them; links_[0, sortedPrefix) must
     /// already be sorted (the rest is sorted and merged in, linear time).
     void buildReceiverIndex(size_t sortedPrefix = 0);

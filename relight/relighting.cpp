@@ -147,7 +147,7 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
             estimateLeafReflectance(*r->solver, *r->mesh, *r->texture, H, o.leafReflectanceSamples);
         say("reflectance of " + std::to_string(set) + " leaf elements from their texture");
         r->solver->gatherPushPull();
-        r->responses = std::make_unique<radiosity::LightResponses>(*r->solver);
+        r->responses = std::make_unique<radiosity::LightResponses>(*r->solver, r->responses.get());
         P.lighting =
             computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, nullptr, &r->direct);
         P.times.reflectance += since(t0);

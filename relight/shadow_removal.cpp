@@ -153,7 +153,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
         }
         solver.pullReflectance();
         solver.gatherPushPull();
-        responses = std::make_unique<radiosity::LightResponses>(solver);
+        responses = std::make_unique<radiosity::LightResponses>(solver, responses.get());
     };
     {
         std::vector<Rgb> f(nv);
@@ -197,7 +197,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
         if (mean != 1.0) solver.scaleLightLinks(n, mean);
     }
     solver.gatherPushPull();
-    responses = std::make_unique<radiosity::LightResponses>(solver);
+    responses = std::make_unique<radiosity::LightResponses>(solver, responses.get());
     lighting =
         computeVertexLighting(solver, mesh, *responses, dlo, nullptr, &direct, &out.linkCorrection);
 
