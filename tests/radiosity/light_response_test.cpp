@@ -111,3 +111,39 @@ TEST(LightResponses, GatheredResponsesSumToTheFinalGather) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], direct[c], 1e-6 * direct.maxComponent());
     }
 }
+
+TEST(LightResponses, LeaveTheSolverSolutionAsItWas) {
+    // The responses are solved on arrays of their own: every node's B is bit for bit what
+    // the solve left.
+    HierarchicalSolver solver(twoLamps(true), tightOptions());
+    solver.solve();
+    std::vector<Rgb> before;
+    for (const Node& n : solver.hierarchy().nodes) before.push_back(n.B);
+    const LightResponses responses(solver);
+    ASSERT_EQ(before.size(), solver.hierarchy().nodes.size());
+    for (size_t n = 0; n < before.size(); ++n)
+        ASSERT_EQ(solver.hierarchy().nodes[n].B, before[n]) << n;
+}
+
+TEST(LightResponses, WarmStartReachesTheSameResponsesInFewerSweeps) {
+    // After a reflectance change, starting from the old responses must give the responses
+    // of a cold start (the same fixed point, to well within the 1e-6 of the superposition
+    // tests), in fewer sweeps.
+    HierarchicalSolver solver(twoLamps(true), tightOptions());
+    solver.solve();
+    const LightResponses old(solver);
+    solver.setReflectance(0, Rgb{0.45, 0.5, 0.55});
+    solver.pullReflectance();
+    const LightResponses cold(solver), warm(solver, &old);
+    double maxR = 0, maxDiff = 0;
+    for (size_t n = 0; n < solver.hierarchy().nodes.size(); ++n)
+        for (int l = 0; l < 2; ++l) {
+            const Rgb a = cold.reflected(static_cast<int>(n))[l];
+            const Rgb b = warm.reflected(static_cast<int>(n))[l];
+            maxR = std::max(maxR, a.maxComponent());
+            for (int c = 0; c < 3; ++c) maxDiff = std::max(maxDiff, std::abs(a[c] - b[c]));
+        }
+    ASSERT_GT(maxR, 0.0);
+    EXPECT_LT(maxDiff / maxR, 1e-9);
+    EXPECT_LT(warm.sweeps(), cold.sweeps());
+}
