@@ -117,6 +117,16 @@ Rgb finalGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec
     return H;
 }
 
+std::vector<GatherWeight> finalGatherWeights(const HierarchicalSolver& solver, int polygon,
+                                             const Vec3& x, int partialRays, uint64_t seed,
+                                             uint64_t* rays) {
+    std::vector<GatherWeight> out;
+    auto carries = [](int) { return true; };
+    auto acc = [&](int s, double w) { out.push_back({s, static_cast<float>(w)}); };
+    gatherWeights(solver, polygon, x, partialRays, seed, rays, carries, acc);
+    return out;
+}
+
 void finalGatherResponses(const HierarchicalSolver& solver, const LightResponses& responses,
                           int polygon, const Vec3& x, Rgb* H, int partialRays, uint64_t seed,
                           uint64_t* rays) {

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "radiosity/direct_light.h"
 #include "radiosity/light_response.h"
@@ -38,6 +39,20 @@ namespace radiosity {
 /// `rays` (optional) counts those cast.
 Rgb finalGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x,
                         int partialRays = 4, uint64_t seed = 0, uint64_t* rays = nullptr);
+
+/// The final gather's terms at x, for a gather repeated while only the radiosities change
+/// (links and subdivision fixed): H_indirect(x) = sum of w times the radiosity that node
+/// reflects (B - E for an emitter), over the returned terms. Every source is kept, whatever
+/// its radiosity now, so the rays of PARTIAL links are those of a gather in which every
+/// source carries light.
+struct GatherWeight {
+    int node;
+    float w;  ///< F(x) V(x), dimensionless (float: 8 bytes a term; a mesh's vertices hold
+              ///< hundreds of millions of them)
+};
+std::vector<GatherWeight> finalGatherWeights(const HierarchicalSolver& solver, int polygon,
+                                             const Vec3& x, int partialRays = 4, uint64_t seed = 0,
+                                             uint64_t* rays = nullptr);
 
 /// The same gather for every light at once: H[l] = indirect irradiance at x per unit
 /// radiance of light l, from `responses` (built on the same solver, same links). H holds

@@ -11,7 +11,8 @@
 // The top-level loop (solve()): starting from the root cluster linked to itself,
 //   repeat { refine every link with the current B (BF oracle), largest error first, within
 //            the budget; bound the gather; gather + push-pull until the total power
-//            changes by less than `tolerance` } until no link changes.
+//            changes by less than `tolerance` } until a round refines no link, or so few
+//            (at most kSettled = 0.1 % of them) that another round is not worth its cost.
 // Then links whose source is a light are pushed down to the leaf elements (the 2000
 // paper's shadow work needs them there).
 //
@@ -272,6 +273,8 @@ class HierarchicalSolver {
     static constexpr double kNearFieldPower = 0.1;
     /// Largest factor by which the energy bound scales a leaf's gather up.
     static constexpr double kMaxRenormalisation = 2.0;
+    /// A refinement round that refines at most this fraction of the links ends the rounds.
+    static constexpr double kSettled = 1e-3;
     Verdict oracle(const Link& link) const;
     Link makeLink(int r, int s) const;
     /// A child of `parent` (passive_[parentIndex]) between r and s; visible without rays
@@ -295,7 +298,8 @@ class HierarchicalSolver {
     /// Ray casts the `seen` fraction of these leaf elements (64 cosine-distributed rays).
     void measureSeen(const std::vector<int>& leaves);
     [[noreturn]] void throwNotConverged(int sweeps, double power, double delta) const;
-    bool refineAll();
+    /// One refinement pass over the active links; returns how many were refined.
+    size_t refineAll();
     void pushLightLinksToLeaves(size_t from = 0);
     void cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report);
     void linkObject(int cluster, int oldRoot, DynamicUpdate& report);
@@ -308,6 +312,8 @@ class HierarchicalSolver {
     /// already be sorted (the rest is sorted and merged in, linear time).
     void buildReceiverIndex(size_t sortedPrefix = 0);
     void pushPull(int node, const Rgb& Hdown, const Rgb& HdDown);
+    /// pushPull from the root: the polygons' element trees in parallel, then the clusters.
+    void pushPullAll();
     bool canSplit(int node) const;
     void report(const std::string& msg) const;
 

@@ -105,15 +105,28 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         list.swap(kept);
     }
     const std::vector<int> surface = surfaceOf(scene);
+    // The gather points' terms, once: between rounds only the radiosities change.
+    std::vector<std::vector<std::vector<radiosity::GatherWeight>>> terms(np);
+    tbb::parallel_for(0, np, [&](int p) {
+        terms[p].reserve(points[p].size());
+        for (auto [g, n] : points[p])
+            terms[p].push_back(radiosity::finalGatherWeights(solver, p, lighting.gatherPosition[g],
+                                                             4, static_cast<uint64_t>(g)));
+    });
+    const auto& nodes = solver.hierarchy().nodes;
     for (int round = 0; round < rounds; ++round) {
         std::vector<Rgb> sumH(np);
         tbb::parallel_for(0, np, [&](int p) {
             Rgb sumI;
             double weight = 0;
-            for (auto [g, n] : points[p]) {
-                sumI += radiosity::finalGatherIndirect(solver, p, lighting.gatherPosition[g], 4,
-                                                       static_cast<uint64_t>(g)) *
-                        static_cast<double>(n);
+            for (size_t i = 0; i < points[p].size(); ++i) {
+                Rgb H;
+                for (const radiosity::GatherWeight& t : terms[p][i]) {
+                    const radiosity::Node& S = nodes[t.node];
+                    H += (S.emitting ? S.B - S.E : S.B) * t.w;
+                }
+                const int n = points[p][i].second;
+                sumI += H * static_cast<double>(n);
                 weight += n;
             }
             sumH[p] = sumDirect[p] + (weight > 0 ? sumI * (count[p] / weight) : Rgb{});

@@ -173,6 +173,9 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
         P.textureFactor.assign(P.D.size(), Rgb::gray(1.0));
     }
     P.times.shadowRemoval = since(t0);
+    // The vertices' gather terms served the lightings above; edits gather afresh.
+    r->direct.termStart = {};
+    r->direct.terms = {};
 
     t0 = Clock::now();
     P.display = buildDisplayMap(r->items, *r->mesh, r->solver->scene());

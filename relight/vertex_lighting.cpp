@@ -38,6 +38,9 @@ VertexLighting computeVertexLighting(const radiosity::HierarchicalSolver& solver
     }
     if (L == 0) return out;
     std::atomic<uint64_t> gatherRays{0};
+    // The gather's terms: made with the direct light, reused by later calls.
+    std::vector<std::vector<radiosity::GatherWeight>> terms(directOut ? n : 0);
+    const bool useTerms = given && given->termStart.size() == static_cast<size_t>(n) + 1;
     tbb::parallel_for(tbb::blocked_range<int>(0, n, 64), [&](const tbb::blocked_range<int>& r) {
         std::vector<double> G(static_cast<size_t>(L)), G0(static_cast<size_t>(L));
         uint64_t rays = 0;
@@ -47,8 +50,23 @@ VertexLighting computeVertexLighting(const radiosity::HierarchicalSolver& solver
             if (solver.scene().polygons[p].light >= 0) continue;
             const radiosity::Vec3 x = mesh.insidePoint(v);
             Rgb* h = out.response.data() + static_cast<size_t>(v) * L;
-            radiosity::finalGatherResponses(solver, responses, p, x, h, 4, static_cast<uint64_t>(v),
-                                            &rays);
+            if (useTerms) {
+                for (size_t t = given->termStart[v]; t < given->termStart[v + 1]; ++t) {
+                    const radiosity::GatherWeight& g = given->terms[t];
+                    const auto R = responses.reflected(g.node);
+                    for (int l = 0; l < L; ++l) h[l] += R[l] * g.w;
+                }
+            } else if (directOut) {
+                terms[v] =
+                    radiosity::finalGatherWeights(solver, p, x, 4, static_cast<uint64_t>(v), &rays);
+                for (const radiosity::GatherWeight& g : terms[v]) {
+                    const auto R = responses.reflected(g.node);
+                    for (int l = 0; l < L; ++l) h[l] += R[l] * g.w;
+                }
+            } else {
+                radiosity::finalGatherResponses(solver, responses, p, x, h, 4,
+                                                static_cast<uint64_t>(v), &rays);
+            }
             const size_t at = static_cast<size_t>(v) * L;
             if (given) {
                 const Rgb c =
@@ -67,6 +85,17 @@ VertexLighting computeVertexLighting(const radiosity::HierarchicalSolver& solver
         }
         gatherRays += rays;
     });
+    if (directOut) {
+        directOut->termStart.assign(static_cast<size_t>(n) + 1, 0);
+        for (int v = 0; v < n; ++v)
+            directOut->termStart[v + 1] = directOut->termStart[v] + terms[v].size();
+        directOut->terms.clear();
+        directOut->terms.reserve(directOut->termStart[n]);
+        for (auto& t : terms) {
+            directOut->terms.insert(directOut->terms.end(), t.begin(), t.end());
+            t = {};
+        }
+    }
     out.rays = gatherRays.load() + direct.raysCast();
     return out;
 }

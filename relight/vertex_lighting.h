@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "radiosity/direct_light.h"
+#include "radiosity/final_gather.h"
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/light_response.h"
 #include "radiosity/solver.h"
@@ -39,13 +40,20 @@ struct VertexLighting {
 struct VertexDirect {
     int lights = 0;
     std::vector<double> visible, unoccluded;
+    /// The final gather's terms at every vertex (radiosity/final_gather.h), vertex v's in
+    /// [termStart[v], termStart[v + 1]): while the links stay, a later lighting of the same
+    /// mesh only weighs new responses by them (no ray, no form factor). Only needed while
+    /// preparing: clear them after.
+    std::vector<size_t> termStart;
+    std::vector<radiosity::GatherWeight> terms;
 };
 
 /// Evaluates h_l at every vertex of `mesh` (built on `solver`'s hierarchy), in parallel,
 /// deterministically (each vertex draws its rays from its own index). With `directOut`,
 /// also the direct light alone; with `direct` given, the direct light is taken from it
 /// (scaled per vertex by `directScale`, one per vertex and channel, when not empty: the
-/// link correction C_link of shadow removal) and only the indirect part is gathered.
+/// link correction C_link of shadow removal) and only the indirect part is gathered, by its
+/// terms when it has them (the links must be those it was made with).
 VertexLighting computeVertexLighting(const radiosity::HierarchicalSolver& solver,
                                      const radiosity::LeafMesh& mesh,
                                      const radiosity::LightResponses& responses,
