@@ -153,26 +153,35 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     int permR[256], permS[256];
     shuffledStrata(rng, k, permR);
     shuffledStrata(rng, k, permS);
-    int m = 0;  // mutually facing pairs found, compacted to the front in draw order
-    for (int i = 0; i < maxRays; ++i) {
-        const int a = permR[i], b = permS[i];
-        // Only mutually facing point pairs carry light between one-sided surfaces; a ray
-        // from the back of a block's face would run through the block and count as
-        // blocked, biasing V low. Redraw within the strata up to 8 times to find one;
-        // a pair never found is left out of the estimate rather than counted blocked.
-        for (int attempt = 0; attempt < 8; ++attempt) {
-            const double u0 = ((a % k) + rng.uniform()) / k, v0 = ((a / k) + rng.uniform()) / k;
-            const double u1 = ((b % k) + rng.uniform()) / k, v1 = ((b / k) + rng.uniform()) / k;
-            Vec3 n0, n1;
-            from[m] = h_.samplePoint(r, u0, v0, rng.uniform(), &n0);
-            to[m] = h_.samplePoint(s, u1, v1, rng.uniform(), &n1);
-            const Vec3 d = to[m] - from[m];
-            if (glm::dot(n0, d) > 0 && glm::dot(n1, d) < 0) {
-                ++m;
-                break;
+    // Mutually facing pairs, compacted to the front in draw order. They are drawn only as
+    // far as needed: the first minRays of them decide, and the rest of the set is drawn
+    // only for a link in penumbra (or `thorough`). Rays use no random numbers, so the
+    // pairs are those of drawing the whole set first. (Drawing all maxRays pairs for every
+    // link, when most need minRays, was a fifth of a 200 k-triangle room's preparation:
+    // each draw in a large cluster reads a random polygon.)
+    int m = 0, next = 0;
+    const auto draw = [&](int want) {
+        for (; next < maxRays && m < want; ++next) {
+            const int a = permR[next], b = permS[next];
+            // Only mutually facing point pairs carry light between one-sided surfaces; a
+            // ray from the back of a block's face would run through the block and count as
+            // blocked, biasing V low. Redraw within the strata up to 8 times to find one;
+            // a pair never found is left out of the estimate rather than counted blocked.
+            for (int attempt = 0; attempt < 8; ++attempt) {
+                const double u0 = ((a % k) + rng.uniform()) / k, v0 = ((a / k) + rng.uniform()) / k;
+                const double u1 = ((b % k) + rng.uniform()) / k, v1 = ((b / k) + rng.uniform()) / k;
+                Vec3 n0, n1;
+                from[m] = h_.samplePoint(r, u0, v0, rng.uniform(), &n0);
+                to[m] = h_.samplePoint(s, u1, v1, rng.uniform(), &n1);
+                const Vec3 d = to[m] - from[m];
+                if (glm::dot(n0, d) > 0 && glm::dot(n1, d) < 0) {
+                    ++m;
+                    break;
+                }
             }
         }
-    }
+    };
+    draw(thorough ? maxRays : minRays);  // m < minRays only when every stratum was tried
     if (m == 0) {
         // No part of the two faces the other: nothing passes, and no more rays would say
         // otherwise.
@@ -185,9 +194,17 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     // rays near a shared edge would otherwise count as blocked).
     const int polyR = h_.nodes[r].isCluster() ? -1 : h_.nodes[r].polygon;
     const int polyS = h_.nodes[s].isCluster() ? -1 : h_.nodes[s].polygon;
-    int cast = 0;
-    const int visible =
-        vis_.visibleAdaptive(from, to, thorough ? m : std::min(minRays, m), m, cast, polyR, polyS);
+    const int first = m;
+    int visible = vis_.visibleBatch(from, to, first, nullptr, polyR, polyS);
+    int cast = first;
+    if (visible != 0 && visible != first) {  // penumbra: the rest of the set
+        draw(maxRays);
+        if (m > first) {
+            visible +=
+                vis_.visibleBatch(from + first, to + first, m - first, nullptr, polyR, polyS);
+            cast = m;
+        }
+    }
     counters.rays.fetch_add(static_cast<uint64_t>(cast), std::memory_order_relaxed);
     link.rays = static_cast<uint8_t>(std::min(cast, 255));
     link.V = static_cast<float>(visible) / static_cast<float>(cast);
