@@ -40,6 +40,10 @@ struct PreparedImage {
     std::vector<radiosity::Rgb> photoRadiance;  ///< per light: its radiance in the photo
     // Counts for reports.
     int leaves = 0, links = 0;
+    /// The refinement budget (HierarchicalSolver's stats): whether it was reached, the
+    /// solver's nodes and links in bytes, and the budget in force.
+    int budgetReached = 0;
+    uint64_t solverBytes = 0, maxLinks = 0, maxMemory = 0;
     PrepareTimes times;
 
     size_t vertexCount() const { return D.size(); }

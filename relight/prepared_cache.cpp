@@ -254,6 +254,10 @@ void serialize(A& a, T& x) {
     a(x.photoRadiance);
     a(x.leaves);
     a(x.links);
+    a(x.budgetReached);
+    a(x.solverBytes);
+    a(x.maxLinks);
+    a(x.maxMemory);
     serialize(a, x.times);
 }
 
@@ -383,6 +387,7 @@ std::string checkPrepared(const PreparedImage& p) {
     if (p.textureFactor.size() != vertices)
         return "textureFactor has " + n(p.textureFactor.size()) + " entries, not " + n(vertices);
     if (p.leaves < 0 || p.links < 0) return "negative counts";
+    if (p.budgetReached != 0 && p.budgetReached != 1) return "budget flag neither 0 nor 1";
     return {};
 }
 

@@ -187,6 +187,10 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     const auto st = r->solver->stats();
     P.leaves = st.leaves;
     P.links = st.links;
+    P.budgetReached = st.budgetReached ? 1 : 0;
+    P.solverBytes = st.memoryBytes;
+    P.maxLinks = st.maxLinks;
+    P.maxMemory = st.maxMemory;
     return r;
 }
 

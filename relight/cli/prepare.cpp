@@ -103,6 +103,9 @@ int runPrepare(const PrepareArgs& a) {
     const PreparedState s = loadOrPrepare(sf, o, cache, /*writeMustSucceed=*/true);
     const PreparedImage& p = s.image;
     std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
+    std::printf("budget: %.1f of %.1f MiB, links within %llu%s\n", p.solverBytes / 1048576.0,
+                p.maxMemory / 1048576.0, static_cast<unsigned long long>(p.maxLinks),
+                p.budgetReached ? ": REACHED, refinement stopped" : "");
     if (s.written)
         std::printf("time: prepare %.3f s (%s)\n", s.seconds, stepTimes(p.times).c_str());
     else

@@ -22,6 +22,8 @@ relight(out 0 prepare "${room}" ${cheap})
 expect("${out}" "no cache at" "first prepare")
 expect("${out}" "wrote cache [^\n]*prepared\\.bin" "first prepare")
 expect("${out}" "leaves [0-9]+, links [0-9]+, leaf vertices [0-9]+" "first prepare")
+# The room fits far within the default budget: the line says so, without "REACHED".
+expect("${out}" "budget: [0-9.]+ of [0-9.]+ MiB, links within [0-9]+\n" "first prepare")
 if(NOT EXISTS "${cache}")
   message(FATAL_ERROR "prepare wrote no ${cache}")
 endif()
@@ -34,6 +36,14 @@ relight(out 0 render "${room}" ${cheap} -o "${WORK}/a.png" --report "${WORK}/a.j
 expect("${out}" "using cache [^\n]*prepared\\.bin" "render after prepare")
 report_cache("${WORK}/a.json" c)
 expect("${c}" "^hit$" "report of a hit")
+# The budget travels with the cache: the report of a hit still says what the solve used.
+file(READ "${WORK}/a.json" json)
+string(JSON reached GET "${json}" budget reached)
+string(JSON solverMiB GET "${json}" budget solver_mib)
+expect("${reached}" "^(OFF|false)$" "report's budget.reached")
+if(NOT solverMiB GREATER 0)
+  message(FATAL_ERROR "report's budget.solver_mib is ${solverMiB}, expected > 0")
+endif()
 
 # Another option: stale, prepared again; then the second render uses the new cache.
 relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 -o "${WORK}/b.png" --report "${WORK}/b.json")
