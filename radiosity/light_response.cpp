@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "radiosity/directional_irradiance.h"
@@ -30,9 +31,14 @@ struct SweepLayout {
     SweepLayout(const Hierarchy& h, const std::vector<Link>& links) {
         const auto& nodes = h.nodes;
         clusterSlot.assign(nodes.size(), -1);
+        std::vector<char> started(nodes.size(), 0);
         for (size_t k = 0; k < links.size(); ++k) {
-            if (k == 0 || links[k].receiver != links[k - 1].receiver)
+            if (k == 0 || links[k].receiver != links[k - 1].receiver) {
+                // One run per receiver, or two threads would add to its irradiance at once.
+                if (started[links[k].receiver]++)
+                    throw std::logic_error("LightResponses: links not grouped by receiver");
                 runStart.push_back(static_cast<int>(k));
+            }
             const int r = links[k].receiver;
             if (nodes[r].isCluster() && clusterSlot[r] < 0) clusterSlot[r] = slots++;
         }
