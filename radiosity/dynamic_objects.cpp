@@ -240,6 +240,9 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     const size_t firstNode = static_cast<size_t>(oldRoot);
     linkObject(cluster, oldRoot, report);
     buildReceiverIndex(sorted);
+    // A virtual light delivers its power as a lamp of the scene does (normaliseLamps);
+    // its links are new, so removal takes the scaling away with them.
+    if (light >= 0) normaliseLamps(first);
     boundGather(firstNode);  // the object's own leaves; the scene's keep their bound
     inserted_.back().shadowLeaves = report.shadowLeaves;
 

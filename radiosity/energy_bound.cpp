@@ -13,7 +13,7 @@
 
 namespace radiosity {
 
-void HierarchicalSolver::normaliseLamps() {
+void HierarchicalSolver::normaliseLamps(int firstPolygon) {
     // A lamp's face delivers all its power to what it sees: sum_r F_rs V A_r over the links
     // from its elements (one element of the face per receiver region) must be A seen, the
     // face's area times the fraction of its hemisphere that sees a surface (reciprocity,
@@ -26,7 +26,7 @@ void HierarchicalSolver::normaliseLamps() {
     std::vector<double> delivered(scene_.polygons.size(), 0.0);
     for (const Link& l : links_) {
         const Node& S = nodes[l.source];
-        if (reflects(S)) continue;
+        if (reflects(S) || S.polygon < firstPolygon) continue;
         delivered[S.polygon] += l.F * static_cast<double>(l.V) * nodes[l.receiver].area;
     }
     std::vector<int> faces;  // root elements of the emitting faces not yet measured

@@ -293,8 +293,10 @@ class HierarchicalSolver {
     void boundGather(size_t firstNode = 0);
     /// Scales the links from each emitting face so that they deliver its area times the
     /// fraction of its hemisphere that sees a surface (solve() and new light links only:
-    /// after real-shadow removal has scaled light links on purpose it must not run).
-    void normaliseLamps();
+    /// after real-shadow removal has scaled light links on purpose it must not run). Only
+    /// the faces from polygon `firstPolygon` on: an inserted light's, leaving the scene's
+    /// lamps (and their link corrections) alone.
+    void normaliseLamps(int firstPolygon = 0);
     /// Ray casts the `seen` fraction of these leaf elements (64 cosine-distributed rays).
     void measureSeen(const std::vector<int>& leaves);
     [[noreturn]] void throwNotConverged(int sweeps, double power, double delta) const;

@@ -175,6 +175,28 @@ TEST(EnergyBound, ClosedRoomAbsorbsWhatItsLampEmits) {
         }
 }
 
+TEST(EnergyBound, InsertedLightDeliversItsPower) {
+    // A virtual light is a lamp like the scene's: its links deliver its area times what it
+    // sees (all of its hemisphere in a closed room: every ray hits a surface), not what
+    // the links' integrated form factors happen to sum to (a few % off next to surfaces).
+    HierarchicalSolver solver(cutRoom(2, 0.7, /*box=*/false), {});
+    solver.solve();
+    const std::vector<Polygon> lamp{makePolygon(
+        {{1.5, 1.0, 1.5}, {1.5, 1.4, 1.5}, {1.9, 1.4, 1.5}, {1.9, 1.0, 1.5}}, 0, Rgb{})};
+    const Rgb radiance = Rgb::gray(2.0);
+    solver.insertObject("virtual lamp", lamp, &radiance);
+    const auto& nodes = solver.hierarchy().nodes;
+    const int p = static_cast<int>(solver.scene().polygons.size()) - 1;
+    double delivered = 0;
+    for (const Link& l : solver.links()) {
+        const Node& S = nodes[l.source];
+        if (S.isCluster() || S.polygon != p) continue;
+        delivered += l.F * static_cast<double>(l.V) * nodes[l.receiver].area;
+    }
+    // Exact to rounding: the links are scaled to it.
+    EXPECT_NEAR(delivered / solver.scene().polygons[p].area, 1.0, 1e-9);
+}
+
 TEST(EnergyBound, NonConvergenceIsAnErrorNamingTheElement) {
     // Two sweeps cannot settle a rho = 0.9 room to 1e-12: the solve must stop with an error
     // that says what did not converge, not return a half-converged answer.
