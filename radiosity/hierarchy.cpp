@@ -336,6 +336,23 @@ void Hierarchy::updateEmittance(const Scene& scene) {
     pullAverages(kRoot);
 }
 
+void Hierarchy::clustersAndRoots(std::vector<int>& clusters, std::vector<int>& roots) const {
+    clusters.clear();
+    roots.clear();
+    std::vector<int> stack{kRoot};
+    while (!stack.empty()) {
+        const int n = stack.back();
+        stack.pop_back();
+        const Node& c = nodes[n];
+        if (!c.isCluster()) {
+            roots.push_back(n);
+            continue;
+        }
+        clusters.push_back(n);
+        for (int k = 0; k < c.childCount; ++k) stack.push_back(c.firstChild + k);
+    }
+}
+
 Vec3 Hierarchy::samplePoint(int node, double u, double v, double w, Vec3* normal) const {
     const Node& n = nodes[node];
     if (!n.isCluster()) {

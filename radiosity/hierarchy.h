@@ -127,6 +127,9 @@ class Hierarchy {
     void pullAverages(int node);
 
     int leafCount() const;
+    /// The clusters in top-down order (each after its parent) and the polygons' root
+    /// elements (the element children of clusters), from a walk down from the root.
+    void clustersAndRoots(std::vector<int>& clusters, std::vector<int>& roots) const;
     int clusterCount() const { return clusterCount_; }
     int elementCount() const { return static_cast<int>(nodes.size()) - clusterCount_; }
 

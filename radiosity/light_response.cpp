@@ -43,18 +43,7 @@ struct SweepLayout {
             if (nodes[r].isCluster() && clusterSlot[r] < 0) clusterSlot[r] = slots++;
         }
         runStart.push_back(static_cast<int>(links.size()));
-        std::vector<int> stack{Hierarchy::kRoot};
-        while (!stack.empty()) {
-            const int n = stack.back();
-            stack.pop_back();
-            const Node& c = nodes[n];
-            if (!c.isCluster()) {
-                roots.push_back(n);
-                continue;
-            }
-            clustersTopDown.push_back(n);
-            for (int k = 0; k < c.childCount; ++k) stack.push_back(c.firstChild + k);
-        }
+        h.clustersAndRoots(clustersTopDown, roots);
         ancestorStart.reserve(roots.size() + 1);
         for (int root : roots) {
             ancestorStart.push_back(static_cast<int>(ancestorSlot.size()));

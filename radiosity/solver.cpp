@@ -402,18 +402,7 @@ void HierarchicalSolver::pushPullAll() {
     // clusters take their means bottom-up. The sums are those of pushPull(root) in the
     // same order, so the result does not depend on the thread count.
     std::vector<int> clusters, roots;
-    std::vector<int> stack{Hierarchy::kRoot};
-    while (!stack.empty()) {
-        const int n = stack.back();
-        stack.pop_back();
-        const Node& c = h_.nodes[n];
-        if (!c.isCluster()) {
-            roots.push_back(n);
-            continue;
-        }
-        clusters.push_back(n);
-        for (int k = 0; k < c.childCount; ++k) stack.push_back(c.firstChild + k);
-    }
+    h_.clustersAndRoots(clusters, roots);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, roots.size(), 256),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i)
