@@ -170,7 +170,7 @@ std::vector<int> parseCuts(const std::string& s) {
 int main(int argc, char** argv) {
     if (argc >= 6 && std::string(argv[2]) == "--one")
         return runOne(argv[1], std::atoi(argv[3]), std::atof(argv[4]), std::atof(argv[5]));
-    if (argc < 2) {
+    if (argc < 2 || argv[1][0] == '-') {  // no data folder, or --help
         std::fprintf(stderr,
                      "usage: mesh_size DATA [--cuts 1,2,4,16,50,150] [--jitter 0.002] "
                      "[--epsilon 1e-4] [--plot FILE.png]\n");
