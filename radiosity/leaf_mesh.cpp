@@ -26,40 +26,185 @@ struct CornerKeyHash {
     }
 };
 
+// Index of grid point (i, j) of a leaf with `k` corners split into n x n (quad) or n^2
+// (triangle) pieces; see LeafMesh::gridStart_.
+int gridIndex(int k, int n, int i, int j) {
+    return k == 4 ? j * (n + 1) + i : j * (n + 1) - j * (j - 1) / 2 + i;
+}
+
+int gridSize(int k, int n) {
+    return k == 4 ? (n + 1) * (n + 1) : (n + 1) * (n + 2) / 2;
+}
+
+// A display piece: its corners' positions and integer grid coordinates.
+struct Piece {
+    std::array<Vec3, 4> v;
+    std::array<std::array<int, 2>, 4> at;
+};
+
+Vec3 mid(const Vec3& a, const Vec3& b) {
+    return 0.5 * (a + b);
+}  // Hierarchy::subdivide's
+std::array<int, 2> mid(const std::array<int, 2>& a, const std::array<int, 2>& b) {
+    return {(a[0] + b[0]) / 2, (a[1] + b[1]) / 2};
+}
+
+// The four pieces of `p`, cut as Hierarchy::subdivide cuts an element (the same expressions,
+// so that shared points are bit-identical); the triangle's middle piece is (m01, m12, m20).
+std::array<Piece, 4> quarters(const Piece& p, int k) {
+    const auto& v = p.v;
+    const auto& a = p.at;
+    if (k == 4) {
+        const Vec3 c = 0.25 * (v[0] + v[1] + v[2] + v[3]);
+        const std::array<int, 2> ac = mid(a[0], a[2]);
+        const Vec3 m01 = mid(v[0], v[1]), m12 = mid(v[1], v[2]), m23 = mid(v[2], v[3]),
+                   m30 = mid(v[3], v[0]);
+        const auto a01 = mid(a[0], a[1]), a12 = mid(a[1], a[2]), a23 = mid(a[2], a[3]),
+                   a30 = mid(a[3], a[0]);
+        return {{{{v[0], m01, c, m30}, {a[0], a01, ac, a30}},
+                 {{m01, v[1], m12, c}, {a01, a[1], a12, ac}},
+                 {{c, m12, v[2], m23}, {ac, a12, a[2], a23}},
+                 {{m30, c, m23, v[3]}, {a30, ac, a23, a[3]}}}};
+    }
+    const Vec3 m01 = mid(v[0], v[1]), m12 = mid(v[1], v[2]), m20 = mid(v[2], v[0]);
+    const auto a01 = mid(a[0], a[1]), a12 = mid(a[1], a[2]), a20 = mid(a[2], a[0]);
+    return {{{{v[0], m01, m20, {}}, {a[0], a01, a20, {}}},
+             {{m01, v[1], m12, {}}, {a01, a[1], a12, {}}},
+             {{m20, m12, v[2], {}}, {a20, a12, a[2], {}}},
+             {{m01, m12, m20, {}}, {a01, a12, a20, {}}}}};
+}
+
+// The leaf itself as a piece, with its corners' grid coordinates for n = 2^splits.
+Piece wholeLeaf(const Node& e, int n) {
+    Piece p{e.v, {}};
+    if (e.vertexCount == 4)
+        p.at = {{{0, 0}, {n, 0}, {n, n}, {0, n}}};
+    else
+        p.at = {{{0, 0}, {n, 0}, {0, n}, {0, 0}}};
+    return p;
+}
+
 }  // namespace
 
-LeafMesh::LeafMesh(const Hierarchy& h) : LeafMesh(h, 0) {}
+LeafMesh::LeafMesh(const Hierarchy& h, const SplitRule& split) : LeafMesh(h, 0, split) {}
 
-LeafMesh::LeafMesh(const Hierarchy& h, int firstNode) : h_(h), corners_(h.nodes.size()) {
+LeafMesh::LeafMesh(const Hierarchy& h, int firstNode, const SplitRule& split)
+    : h_(h), corners_(h.nodes.size()), splits_(h.nodes.size(), 0), gridStart_(h.nodes.size(), -1) {
     // The vertices at one position, each with the normal of the polygon that made it.
     std::unordered_map<CornerKey, std::vector<int>, CornerKeyHash> index;
-    for (size_t n = 0; n < static_cast<size_t>(std::max(firstNode, 0)) && n < h.nodes.size(); ++n)
-        corners_[n] = {-1, -1, -1, -1};
-    for (size_t n = static_cast<size_t>(std::max(firstNode, 0)); n < h.nodes.size(); ++n) {
+    auto vertexAt = [&](const Vec3& p, size_t n) {
+        const Node& e = h.nodes[n];
+        // +0.0 folds -0.0 into 0.0 so that the bit patterns of equal corners agree.
+        std::vector<int>& here = index[CornerKey{p.x + 0.0, p.y + 0.0, p.z + 0.0}];
+        for (int v : here) {
+            const Node& owner = h.nodes[ownerLeaf_[v]];
+            if (owner.polygon == e.polygon || glm::dot(owner.normal, e.normal) >= kSmoothCos)
+                return v;
+        }
+        const int id = static_cast<int>(vertices_.size());
+        here.push_back(id);
+        vertices_.push_back({p, e.polygon});
+        ownerLeaf_.push_back(static_cast<int>(n));
+        return id;
+    };
+    const size_t first = static_cast<size_t>(std::max(firstNode, 0));
+    for (size_t n = 0; n < h.nodes.size(); ++n) {
         corners_[n] = {-1, -1, -1, -1};
         const Node& e = h.nodes[n];
-        if (e.isCluster() || !e.isLeaf()) continue;
-        for (int i = 0; i < e.vertexCount; ++i) {
-            // +0.0 folds -0.0 into 0.0 so that the bit patterns of equal corners agree.
-            const CornerKey key{e.v[i].x + 0.0, e.v[i].y + 0.0, e.v[i].z + 0.0};
-            std::vector<int>& here = index[key];
-            int id = -1;
-            for (int v : here) {
-                const Node& owner = h.nodes[ownerLeaf_[v]];
-                if (owner.polygon == e.polygon || glm::dot(owner.normal, e.normal) >= kSmoothCos) {
-                    id = v;
-                    break;
+        if (n < first || e.isCluster() || !e.isLeaf()) continue;
+        for (int i = 0; i < e.vertexCount; ++i) corners_[n][i] = vertexAt(e.v[i], n);
+        const int s = split ? std::clamp(split(static_cast<int>(n)), 0, kMaxSplits) : 0;
+        if (s == 0) continue;
+        splits_[n] = static_cast<uint8_t>(s);
+        const int k = e.vertexCount, side = 1 << s;
+        gridStart_[n] = static_cast<int>(grid_.size());
+        grid_.resize(grid_.size() + gridSize(k, side), -1);
+        int* ids = grid_.data() + gridStart_[n];
+        // Cut the leaf s times, recursively, and make a vertex of every piece's corners.
+        auto cut = [&](auto&& self, const Piece& p, int depth) -> void {
+            if (depth == s) {
+                for (int c = 0; c < k; ++c) {
+                    int& id = ids[gridIndex(k, side, p.at[c][0], p.at[c][1])];
+                    if (id < 0) id = vertexAt(p.v[c], n);
                 }
+                return;
             }
-            if (id < 0) {
-                id = static_cast<int>(vertices_.size());
-                here.push_back(id);
-                vertices_.push_back({e.v[i], e.polygon});
-                ownerLeaf_.push_back(static_cast<int>(n));
-            }
-            corners_[n][i] = id;
-        }
+            for (const Piece& q : quarters(p, k)) self(self, q, depth + 1);
+        };
+        cut(cut, wholeLeaf(e, side), 0);
     }
+}
+
+LeafMesh::Stencil LeafMesh::stencil(int leaf, const Vec3& x) const {
+    const Node& e = h_.nodes[leaf];
+    auto w = weights(leaf, x);
+    Stencil st;
+    st.count = e.vertexCount;
+    const int s = splits_[leaf];
+    if (s == 0) {
+        for (int i = 0; i < st.count; ++i) {
+            st.vertex[i] = corners_[leaf][i];
+            st.weight[i] = w[i];
+        }
+        return st;
+    }
+    const int side = 1 << s;
+    const int* ids = grid_.data() + gridStart_[leaf];
+    if (e.vertexCount == 4) {
+        // The bilinear (s, t) of `weights`; midpoint cuts of a bilinear patch are the
+        // patch's own parameter lines, so the piece is cell (i, j) of the grid.
+        const double u = (w[1] + w[2]) * side, t = (w[2] + w[3]) * side;
+        const int i = std::clamp(static_cast<int>(u), 0, side - 1);
+        const int j = std::clamp(static_cast<int>(t), 0, side - 1);
+        const double a = std::clamp(u - i, 0.0, 1.0), b = std::clamp(t - j, 0.0, 1.0);
+        st.vertex = {ids[gridIndex(4, side, i, j)], ids[gridIndex(4, side, i + 1, j)],
+                     ids[gridIndex(4, side, i + 1, j + 1)], ids[gridIndex(4, side, i, j + 1)]};
+        st.weight = {(1 - a) * (1 - b), a * (1 - b), a * b, (1 - a) * b};
+        return st;
+    }
+    // A triangle: descend the cuts. A corner's piece holds the points whose barycentric
+    // weight for that corner is at least 1/2, the middle piece the rest; on each piece the
+    // weights are linear again (the maps below are the inverses of the midpoint cuts).
+    Piece p = wholeLeaf(e, side);
+    for (int depth = 0; depth < s; ++depth) {
+        const auto q = quarters(p, 3);
+        int c;
+        if (w[0] >= 0.5) {
+            c = 0;
+            w = {2 * w[0] - 1, 2 * w[1], 2 * w[2], 0};
+        } else if (w[1] >= 0.5) {
+            c = 1;
+            w = {2 * w[0], 2 * w[1] - 1, 2 * w[2], 0};  // piece (m01, v1, m12)
+        } else if (w[2] >= 0.5) {
+            c = 2;
+            w = {2 * w[0], 2 * w[1], 2 * w[2] - 1, 0};  // piece (m20, m12, v2)
+        } else {
+            c = 3;
+            w = {1 - 2 * w[2], 1 - 2 * w[0], 1 - 2 * w[1], 0};  // piece (m01, m12, m20)
+        }
+        // Rounding: keep the weights a partition of unity.
+        double sum = 0;
+        for (int i = 0; i < 3; ++i) sum += (w[i] = std::max(w[i], 0.0));
+        for (int i = 0; i < 3; ++i) w[i] = sum > 0 ? w[i] / sum : 1.0 / 3;
+        p = q[c];
+    }
+    for (int i = 0; i < 3; ++i) {
+        st.vertex[i] = ids[gridIndex(3, side, p.at[i][0], p.at[i][1])];
+        st.weight[i] = w[i];
+    }
+    return st;
+}
+
+std::vector<int> LeafMesh::vertexIds(int leaf) const {
+    const Node& e = h_.nodes[leaf];
+    if (splits_[leaf] == 0) {
+        std::vector<int> ids;
+        for (int v : corners_[leaf])
+            if (v >= 0) ids.push_back(v);
+        return ids;
+    }
+    const int* first = grid_.data() + gridStart_[leaf];
+    return {first, first + gridSize(e.vertexCount, 1 << splits_[leaf])};
 }
 
 std::array<double, 4> LeafMesh::weights(int leaf, const Vec3& x) const {
@@ -100,11 +245,9 @@ std::array<double, 4> LeafMesh::weights(int leaf, const Vec3& x) const {
 }
 
 Rgb LeafMesh::interpolate(const std::vector<Rgb>& values, int polygon, const Vec3& x) const {
-    const int leaf = h_.locateLeaf(polygon, x);
-    const auto w = weights(leaf, x);
-    const auto& c = corners_[leaf];
+    const Stencil s = stencil(h_.locateLeaf(polygon, x), x);
     Rgb out;
-    for (int i = 0; i < h_.nodes[leaf].vertexCount; ++i) out += w[i] * values[c[i]];
+    for (int i = 0; i < s.count; ++i) out += s.weight[i] * values[s.vertex[i]];
     return out;
 }
 
@@ -115,9 +258,9 @@ std::vector<Rgb> LeafMesh::averageOfLeaves(const std::function<Rgb(int leaf)>& l
         if (corners_[n][0] < 0) continue;
         const Node& e = h_.nodes[n];
         const Rgb b = leafValue(static_cast<int>(n));
-        for (int i = 0; i < e.vertexCount; ++i) {
-            sum[corners_[n][i]] += e.area * b;
-            area[corners_[n][i]] += e.area;
+        for (int v : vertexIds(static_cast<int>(n))) {
+            sum[v] += e.area * b;
+            area[v] += e.area;
         }
     }
     for (size_t v = 0; v < sum.size(); ++v)

@@ -14,9 +14,21 @@
 // `polygon` is the first one that made it. Where a large
 // leaf meets the edges of smaller ones (a T-vertex), the large leaf interpolates between its
 // own corners only; the small crack this leaves is the one the paper's display has too.
+//
+// A leaf may also be displayed finer than it is solved: split s times, it is cut as
+// Hierarchy::subdivide would cut it, into 4^s pieces, and the pieces' corners are vertices
+// too. A leaf's value is one constant, but the light at its vertices (direct light with its
+// shadow rays, and the final gather; relight/vertex_lighting.h) is measured at each point,
+// so more vertices draw shadows and gradients that the leaf's single value cannot. A
+// triangle has half as many corners per element as a quad (a mesh of n triangles has about
+// n/2 vertices), so a reconstruction's triangles are drawn as coarsely as quads of twice
+// their size unless they are split. The pieces' corners are made with Hierarchy::subdivide's
+// expressions, so they are bit-identical to the corners of a neighbour that was subdivided
+// along the same edge, and a split leaf meets finer neighbours without a T-vertex.
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -31,11 +43,16 @@ class LeafMesh {
     /// corners are one vertex.
     static constexpr double kSmoothCos = 0.9063077870366499;  // cos(25 degrees)
 
-    /// Collects the leaf corners of every polygon of `h` (the hierarchy as it stands).
-    explicit LeafMesh(const Hierarchy& h);
+    /// How many times a leaf's display is split (0: its corners only; at most kMaxSplits).
+    using SplitRule = std::function<int(int leaf)>;
+    static constexpr int kMaxSplits = 4;
+
+    /// Collects the leaf corners of every polygon of `h` (the hierarchy as it stands), and
+    /// the corners of the display pieces of the leaves that `split` splits.
+    explicit LeafMesh(const Hierarchy& h, const SplitRule& split = {});
     /// The same for the leaves whose node id is at least `firstNode` only (the nodes of the
     /// objects inserted after the scene's hierarchy was built: Hierarchy::attachObject).
-    LeafMesh(const Hierarchy& h, int firstNode);
+    LeafMesh(const Hierarchy& h, int firstNode, const SplitRule& split = {});
 
     struct Vertex {
         Vec3 position;  ///< metres
@@ -51,11 +68,26 @@ class LeafMesh {
     /// clamped to the leaf (a point just outside gets its nearest boundary's weights).
     std::array<double, 4> weights(int leaf, const Vec3& x) const;
 
+    /// The vertices and weights that interpolate a value at x on `leaf`: the corners of the
+    /// display piece that holds x, with linear (triangle) or bilinear (quad) weights over
+    /// the piece; on an unsplit leaf, its corners and `weights`. Weights sum to 1.
+    struct Stencil {
+        std::array<int, 4> vertex{-1, -1, -1, -1};
+        std::array<double, 4> weight{0, 0, 0, 0};
+        int count = 0;
+    };
+    Stencil stencil(int leaf, const Vec3& x) const;
+    /// Every vertex of a leaf: its corners, or all its display pieces' corners.
+    std::vector<int> vertexIds(int leaf) const;
+    /// How many times the leaf's display is split.
+    int splits(int leaf) const { return splits_[leaf]; }
+
     /// The value at x on `polygon` interpolated from per-vertex `values`.
     Rgb interpolate(const std::vector<Rgb>& values, int polygon, const Vec3& x) const;
 
     /// Per-vertex values by the Gouraud rule: the area-weighted mean of the leaf values
-    /// `leafValue(node)` over the leaves that have the vertex as a corner.
+    /// `leafValue(node)` over the leaves that have the vertex as a corner (or as a corner of
+    /// one of their display pieces).
     std::vector<Rgb> averageOfLeaves(const std::function<Rgb(int leaf)>& leafValue) const;
 
     /// A point at vertex v moved a tiny step (1e-4 of the leaf's radius) towards the centre
@@ -67,7 +99,14 @@ class LeafMesh {
     const Hierarchy& h_;
     std::vector<Vertex> vertices_;
     std::vector<std::array<int, 4>> corners_;  // by node id; -1 where not a leaf element
-    std::vector<int> ownerLeaf_;               // by vertex: one leaf having it as a corner
+    std::vector<uint8_t> splits_;              // by node id
+    // By node id: where a split leaf's grid of vertex ids starts in grid_ (-1: not split).
+    // A quad split s times has (n+1)^2 grid points, n = 2^s, at (i, j): i along v0->v1, j
+    // along v0->v3; a triangle has (n+1)(n+2)/2, at integer barycentric coordinates (i, j)
+    // of v1 and v2 (gridIndex).
+    std::vector<int> gridStart_;
+    std::vector<int> grid_;
+    std::vector<int> ownerLeaf_;  // by vertex: one leaf having it as a corner
 };
 
 }  // namespace radiosity

@@ -124,8 +124,8 @@ void DynamicRelighting::afterUpdate(const radiosity::DynamicUpdate& u, bool allV
         std::vector<char> seen(mesh.vertices().size(), 0);
         for (int leaf : u.shadowLeaves) {
             if (static_cast<size_t>(leaf) >= realNodes_) continue;
-            for (int v : mesh.corners(leaf))
-                if (v >= 0 && !seen[v]) {
+            for (int v : mesh.vertexIds(leaf))
+                if (!seen[v]) {
                     seen[v] = 1;
                     vertices.push_back(v);
                 }

@@ -103,6 +103,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     hashOptions(h, o.refinement);
     h.i64(o.shadowRemoval ? 1 : 0);
     hashOptions(h, o.removal);
+    h.f64(o.displayPiecePixels);
 }
 
 // ---- the two directions ------------------------------------------------------------------

@@ -72,16 +72,16 @@ DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& m
                         continue;
                     }
                     const int leaf = hit.leaf;
-                    const auto w = mesh.weights(leaf, items.point[idx]);
-                    const auto& c = mesh.corners(leaf);
-                    for (int i = 0; i < mesh.hierarchy().nodes[leaf].vertexCount; ++i) {
-                        if (!(w[i] > 0)) continue;
+                    const auto st = mesh.stencil(leaf, items.point[idx]);
+                    for (int i = 0; i < st.count; ++i) {
+                        if (!(st.weight[i] > 0)) continue;
+                        const int v = st.vertex[i];
                         auto it = std::find_if(verts.begin(), verts.end(),
-                                               [&](const auto& e) { return e.first == c[i]; });
+                                               [&](const auto& e) { return e.first == v; });
                         if (it == verts.end())
-                            verts.push_back({c[i], w[i] * perSample});
+                            verts.push_back({v, st.weight[i] * perSample});
                         else
-                            it->second += w[i] * perSample;
+                            it->second += st.weight[i] * perSample;
                     }
                 }
                 band.start.push_back(static_cast<int>(band.vertex.size()));

@@ -41,6 +41,19 @@ Image loadFirstPhoto(const SceneFile& sf) {
     return photo;
 }
 
+radiosity::LeafMesh::SplitRule displaySplits(const LeafTexture& texture, const SamplingPlan& plan,
+                                             double piecePixels) {
+    if (!(piecePixels > 0)) return {};
+    const double pixelsPerSample =
+        static_cast<double>(plan.stride) * plan.stride / std::max(plan.spp, 1);
+    return [&texture, pixelsPerSample, piecePixels](int leaf) {
+        double pixels = texture.samples(leaf) * pixelsPerSample;
+        int s = 0;
+        for (; pixels >= piecePixels && s < radiosity::LeafMesh::kMaxSplits; ++s) pixels /= 4;
+        return s;
+    };
+}
+
 std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& o) {
     auto say = [&](const std::string& m) {
         if (o.progress) o.progress(m);
@@ -132,7 +145,8 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     P.times.responses = since(t0);
 
     t0 = Clock::now();
-    r->mesh = std::make_unique<radiosity::LeafMesh>(r->solver->hierarchy());
+    r->mesh = std::make_unique<radiosity::LeafMesh>(
+        r->solver->hierarchy(), displaySplits(*r->texture, r->sampling, o.displayPiecePixels));
     say("lighting at " + std::to_string(r->mesh->vertices().size()) + " leaf vertices");
     P.lighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, &r->direct);
     P.times.vertexLighting = since(t0);

@@ -66,8 +66,18 @@ struct RelightOptions {
     ShadowRefinementOptions refinement;
     bool shadowRemoval = true;  ///< real-shadow removal (relight/shadow_removal.h)
     ShadowRemovalOptions removal;
+    /// The display's resolution: a leaf is split (radiosity::LeafMesh) until each piece
+    /// covers fewer than this many photo pixels (at most LeafMesh::kMaxSplits times), and
+    /// the light is measured at every piece's corners. 0: leaf corners only.
+    double displayPiecePixels = 4;
     std::function<void(const std::string&)> progress;  ///< one line per step (may be empty)
 };
+
+/// The split rule of the display's leaf mesh: how many times a leaf is halved so that each
+/// piece covers fewer than `piecePixels` photo pixels, counted from the leaf's texture
+/// samples (samples x stride^2 / spp). Empty when piecePixels is 0.
+radiosity::LeafMesh::SplitRule displaySplits(const LeafTexture& texture, const SamplingPlan& plan,
+                                             double piecePixels);
 
 /// The whole prepared state: what rendering needs (`prepared`, cacheable) and the solver
 /// state behind it (for the gather path, edits that change geometry, and debug views).

@@ -114,11 +114,13 @@ TEST(DisplayMap, LeafRunsRenderAsTheGeneralPixels) {
     plain.rowRuns.clear();
     plain.runs.clear();
     plain.runWeight.clear();
-    // Most pixels of the room fall inside one leaf with all their samples.
+    // Many pixels of the room fall inside one display piece with all their samples: the
+    // pieces cover 1 to 4 pixels here (RelightOptions::displayPiecePixels), so a pixel's
+    // 4 samples all fall in one piece in about a quarter of the pixels or more.
     int64_t inRuns = 0;
     for (const auto& run : packed.runs)
         if (run.vertex[0] >= 0) inRuns += run.length;
-    EXPECT_GT(inRuns, int64_t{packed.width} * packed.height / 2);
+    EXPECT_GT(inRuns, int64_t{packed.width} * packed.height / 5);
     for (const char* edit : {"identity", "back_off", "colours"}) {
         const auto radiance = radianceOf(r, edit);
         const auto ratio = vertexRatio(r.prepared, vertexIrradiance(r.prepared, radiance));
