@@ -30,6 +30,10 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
                   "skip the texture-based refinement of shadow boundaries (§4.2)");
     app->add_flag("!--no-shadow-removal", p.shadowRemoval,
                   "skip real-shadow removal (§4.3-4.4): the 1997 method, D = B of the photo");
+    app->add_option("--display-pixels", p.displayPixels,
+                    "display pieces: leaves are split until a piece covers fewer photo pixels "
+                    "than this (0: leaf corners only)")
+        ->check(CLI::NonNegativeNumber);
 }
 
 }  // namespace

@@ -50,6 +50,7 @@ struct PrepareOptionArgs {
     int spp = 16;
     bool shadowRefinement = true;
     bool shadowRemoval = true;
+    double displayPixels = RelightOptions{}.displayPiecePixels;
 
     /// The pipeline's options, with progress lines on stderr.
     RelightOptions relightOptions() const;

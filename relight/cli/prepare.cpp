@@ -37,6 +37,7 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     o.spp = spp;
     o.shadowRefinement = shadowRefinement;
     o.shadowRemoval = shadowRemoval;
+    o.displayPiecePixels = displayPixels;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     return o;
 }

@@ -78,6 +78,19 @@ expect_not("${out}" "using cache" "--no-cache")
 report_cache("${WORK}/f.json" c)
 expect("${c}" "^disabled$" "report with --no-cache")
 
+# --display-pixels changes the display's vertices: 0 keeps the leaf corners only, the
+# default (4) adds the corners of the pieces of the leaves that cover 4 pixels or more.
+# The room's leaves cover about 20 pixels each, so there are more vertices than leaves.
+relight(out 0 prepare "${room}" ${cheap} --display-pixels 0 --force --cache "${WORK}/dp.bin")
+string(REGEX MATCH "leaves ([0-9]+), links [0-9]+, leaf vertices ([0-9]+)" m "${out}")
+set(corners ${CMAKE_MATCH_2})
+relight(out 0 prepare "${room}" ${cheap} --force --cache "${WORK}/dp.bin")
+string(REGEX MATCH "leaves ([0-9]+), links [0-9]+, leaf vertices ([0-9]+)" m "${out}")
+if(NOT CMAKE_MATCH_2 GREATER corners OR NOT CMAKE_MATCH_2 GREATER CMAKE_MATCH_1)
+  message(FATAL_ERROR "--display-pixels: ${CMAKE_MATCH_2} vertices by default, ${corners} "
+                      "with 0, for ${CMAKE_MATCH_1} leaves")
+endif()
+
 # A bad edit fails at once, before any preparation, naming the file.
 relight(out 2 render "${room}" --edit "${WORK}/missing-edit.json" -o "${WORK}/g.png")
 expect("${out}" "missing-edit\\.json" "bad edit")
