@@ -32,6 +32,8 @@ void finishGeometry(Node& e) {
     for (int i = 0; i < e.vertexCount; ++i) e.bounds.extend(e.v[i]);
     e.area = elementArea(e);
     const Vec3& n = e.normal;
+    e.coneAxis = n;
+    e.coneAngle = 0;
     e.vectorArea = e.area * n;
     e.normalMoment = {e.area * n.x * n.x, e.area * n.y * n.y, e.area * n.z * n.z,
                       e.area * n.x * n.y, e.area * n.x * n.z, e.area * n.y * n.z};
@@ -178,6 +180,19 @@ void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
         buildCluster(first + 1, mid, end, maxPerCluster, centroids);
     }
     aggregateChildren(nodes, node);
+    fitNormalCone(node);
+}
+
+void Hierarchy::fitNormalCone(int cluster) {
+    // About the mean normal, as wide as its farthest polygon normal (pi when the normals
+    // cancel out, as in a closed box's cluster).
+    Node& c = nodes[cluster];
+    const double va = glm::length(c.vectorArea);
+    c.coneAxis = va > 0 ? c.vectorArea / va : Vec3{0, 0, 1};
+    double minCos = va > 0 ? 1.0 : -1.0;
+    for (int i = c.polyBegin; i < c.polyEnd && minCos > -1; ++i)
+        minCos = std::min(minCos, glm::dot(c.coneAxis, polygons_[polygonOrder[i]].normal));
+    c.coneAngle = std::acos(std::clamp(minCos, -1.0, 1.0));
 }
 
 void Hierarchy::initElement(Node& e, const Polygon& p, int polygonIndex) {
@@ -296,6 +311,7 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
     root.polyBegin = 0;
     root.polyEnd = total;
     aggregateChildren(nodes, kRoot);
+    fitNormalCone(kRoot);
     root.level = 0;
     // The root's averages, from its two children only (the rest is unchanged).
     const double a0 = nodes[n0].area, a1 = nodes[n0 + 1].area;

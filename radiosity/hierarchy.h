@@ -48,6 +48,10 @@ struct Node {
     /// Cluster: its principal frame of orientation, the eigenvectors of normalMoment
     /// (rows: unit axes), in which its directional irradiance is binned.
     std::array<Vec3, 3> frame{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+    /// Normal cone: every surface's front normal in the node lies within coneAngle
+    /// (radians) of coneAxis (an element: its normal, angle 0; pi: no bound).
+    Vec3 coneAxis{0, 0, 1};
+    double coneAngle = 0;
 
     Rgb rho;  ///< reflectance (cluster: area-weighted mean)
     Rgb E;    ///< emittance, radiosity units (cluster: area-weighted mean)
@@ -136,6 +140,8 @@ class Hierarchy {
   private:
     void buildCluster(int node, int begin, int end, int maxPerCluster,
                       const std::vector<Vec3>& centroids);
+    /// A cluster's normal cone from its polygons' normals (Node::coneAxis, coneAngle).
+    void fitNormalCone(int cluster);
     void initElement(Node& e, const Polygon& p, int polygonIndex);
     int clusterCount_ = 0;
     std::vector<Polygon> polygons_;  // corners for point sampling in clusters

@@ -76,19 +76,32 @@ double TransferEvaluator::formFactor(int r, int s) const {
     // The receiver's cosine for an element; for a cluster the gather applies each of its
     // surfaces' own (vector irradiance).
     const double cosR = R.isCluster() ? 1.0 : glm::dot(R.normal, w);
-    return discFormFactor(cosR, 1.0, d2, As);
+    return std::min(discFormFactor(cosR, 1.0, d2, As), coneBound(r, s));
+}
+
+double TransferEvaluator::coneBound(int r, int s) const {
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    // The two cones about their bisector: every normal within half the angle between the
+    // axes plus the wider cone's angle.
+    const double between = std::acos(std::clamp(glm::dot(R.coneAxis, S.coneAxis), -1.0, 1.0));
+    const double alpha = 0.5 * between + std::max(R.coneAngle, S.coneAngle);
+    if (!(alpha < kPi / 2)) return 1.0;  // 8 delta^2 >= 1 long before: no bound
+    const double delta = 2 * std::sin(0.5 * alpha);
+    return std::min(1.0, 8 * delta * delta);
 }
 
 double TransferEvaluator::bound(int r, int s, double F) const {
     const Node& R = h_.nodes[r];
     const Node& S = h_.nodes[s];
     if (!R.isCluster() && !S.isCluster()) return F;
+    const double cone = coneBound(r, s);
     const Vec3 d = S.centre - R.centre;
     const double dist = glm::length(d);
     const double dMin = dist - R.radius - S.radius;
-    if (!(dMin > 0)) return 1.0;
+    if (!(dMin > 0)) return cone;
     const double As = projectedArea(S, -d / dist);
-    return std::min(1.0, As / (kPi * dMin * dMin));
+    return std::min({1.0, cone, As / (kPi * dMin * dMin)});
 }
 
 double TransferEvaluator::receiverArea(int r, int s) const {

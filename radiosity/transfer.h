@@ -27,6 +27,18 @@
 // area at the distance between the bounding spheres, A_s / (pi d_min^2), capped at 1 (a
 // form factor cannot exceed 1), and 1 when the spheres overlap.
 //
+// Both the estimate and the oracle's bound of a link with a cluster end are also capped by
+// the normal-cone bound (coneBound): when every surface of the two nodes faces within an
+// angle alpha of one direction n (the two normal cones about their bisector), light only
+// crosses between them along directions w that both ends face, n.w > -delta at the
+// receiver and n.w < delta at the source, delta = 2 sin(alpha / 2) = |n_x - n|: a band
+// of solid angle 4 pi delta about n's horizon, in which each receiving cosine n_x.w is
+// below 2 delta. So from any receiving point F <= (4 pi delta)(2 delta) / pi = 8 delta^2,
+// at any distance. Two neighbouring patches of one wall (a reconstruction's bumpy
+// triangles, within a few degrees of the wall's plane) exchange at most a few percent of
+// their light; with spheres that touch, the distance bound would say 1 and have them
+// refined down to the triangles, each pair with its own rays.
+//
 // Visibility (Loscos et al. 2000, §2.3): first a shaft between the two bounding boxes
 // (Haines & Wallace 1991) is tested against the cluster hierarchy; if it holds no other
 // polygon the link is VISIBLE without rays. Otherwise rays join stratified points of the
@@ -73,6 +85,8 @@ class TransferEvaluator {
     TransferEvaluator(const Hierarchy& h, const Visibility& vis, TransferOptions options)
         : h_(h), vis_(vis), options_(options) {}
 
+    /// The normal-cone bound on F between r and s (see above): 8 delta^2, at most 1.
+    double coneBound(int r, int s) const;
     /// False when no light can go from s to r: an element source entirely behind the
     /// receiver element's plane, or a receiver entirely behind the source element's plane
     /// (one-sided surfaces). Clusters are treated as facing every way.
@@ -80,8 +94,8 @@ class TransferEvaluator {
     /// Unoccluded transfer coefficient F of the link r <- s (see above).
     double formFactor(int r, int s) const;
     /// Conservative bound on F used by the refinement oracle: formFactor() for two
-    /// elements, min(1, A_s / (pi d_min^2)) (1 when the spheres overlap) when one end is a
-    /// cluster.
+    /// elements, min(1, A_s / (pi d_min^2), coneBound) (1 when the spheres overlap) when
+    /// one end is a cluster.
     double bound(int r, int s, double F) const;
     /// The area of receiver r that intercepts what it gathers from s (m^2), for the
     /// oracle's power estimate rho B F A: an element's area, or a cluster's area facing
