@@ -125,6 +125,7 @@ Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) : polygons_(
     areaPrefix.assign(n + 1, 0.0);
     for (int i = 0; i < n; ++i)
         areaPrefix[i + 1] = areaPrefix[i] + scene.polygons[polygonOrder[i]].area;
+    orderSampleCorners(0);
     for (int i = 0; i < n; ++i) {
         Node& e = nodes[polygonRoot[i]];
         e.E = scene.emittance(i);
@@ -298,6 +299,7 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
     areaPrefix.resize(total + 1);
     for (int i = begin; i < total; ++i)
         areaPrefix[i + 1] = areaPrefix[i] + polygons_[polygonOrder[i]].area;
+    orderSampleCorners(static_cast<size_t>(begin));
     for (size_t i = 0; i < polygons.size(); ++i) {
         Node& e = nodes[polygonRoot[firstPolygon + i]];
         e.E = emittance[i];
@@ -341,6 +343,15 @@ void Hierarchy::detachLastObject() {
     polygonOrder.resize(rec.polygons);
     polygonRoot.resize(rec.polygons);
     areaPrefix.resize(rec.polygons + 1);
+    ordered_.resize(rec.polygons);
+}
+
+void Hierarchy::orderSampleCorners(size_t from) {
+    ordered_.resize(from);
+    for (size_t i = from; i < polygonOrder.size(); ++i) {
+        const Polygon& p = polygons_[polygonOrder[i]];
+        ordered_.push_back({p.v, p.normal, p.vertexCount});
+    }
 }
 
 void Hierarchy::updateEmittance(const Scene& scene) {
@@ -382,9 +393,9 @@ Vec3 Hierarchy::samplePoint(int node, double u, double v, double w, Vec3* normal
                                areaPrefix.begin() + n.polyEnd + 1, target);
     int idx = static_cast<int>(it - areaPrefix.begin()) - 1;
     idx = std::clamp(idx, n.polyBegin, n.polyEnd - 1);
-    const Polygon& p = polygons_[polygonOrder[idx]];
+    const SampleCorners& p = ordered_[idx];
     if (normal) *normal = p.normal;
-    return pointOnPolygon(p, u, v);
+    return pointOnCorners(p.v, p.vertexCount, u, v);
 }
 
 bool elementContains(const Node& e, const Vec3& x, double tol) {

@@ -144,7 +144,17 @@ class Hierarchy {
     void fitNormalCone(int cluster);
     void initElement(Node& e, const Polygon& p, int polygonIndex);
     int clusterCount_ = 0;
-    std::vector<Polygon> polygons_;  // corners for point sampling in clusters
+    std::vector<Polygon> polygons_;  // the input polygons, by index
+    /// What samplePoint reads of a polygon, in polygonOrder's order: a cluster's polygons
+    /// lie together, and a sample reads one 128-byte record (not the polygon's index,
+    /// then its whole record elsewhere: two cache misses per point on a large mesh).
+    struct SampleCorners {
+        std::array<Vec3, 4> v;
+        Vec3 normal;
+        int vertexCount;
+    };
+    std::vector<SampleCorners> ordered_;
+    void orderSampleCorners(size_t from);  // ordered_[from, end) from polygonOrder
     struct Attached {
         Node root;  // the root before the attachment
         size_t nodes = 0, polygons = 0;
