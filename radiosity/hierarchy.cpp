@@ -220,24 +220,8 @@ bool Hierarchy::unsubdivide(int node) {
 bool Hierarchy::subdivide(int node) {
     if (nodes[node].isCluster() || !nodes[node].isLeaf()) return false;
     const Node parent = nodes[node];  // copy: push_back below may reallocate
-    std::array<std::array<Vec3, 4>, 4> corners;
-    int vc = parent.vertexCount;
-    const auto& v = parent.v;
-    if (vc == 4) {
-        const Vec3 m01 = 0.5 * (v[0] + v[1]), m12 = 0.5 * (v[1] + v[2]);
-        const Vec3 m23 = 0.5 * (v[2] + v[3]), m30 = 0.5 * (v[3] + v[0]);
-        const Vec3 c = 0.25 * (v[0] + v[1] + v[2] + v[3]);
-        corners = {
-            {{v[0], m01, c, m30}, {m01, v[1], m12, c}, {c, m12, v[2], m23}, {m30, c, m23, v[3]}}};
-    } else {
-        const Vec3 m01 = 0.5 * (v[0] + v[1]), m12 = 0.5 * (v[1] + v[2]);
-        const Vec3 m20 = 0.5 * (v[2] + v[0]);
-        // The middle triangle (m12, m20, m01) keeps the parent's orientation.
-        corners = {{{v[0], m01, m20, {}},
-                    {m01, v[1], m12, {}},
-                    {m20, m12, v[2], {}},
-                    {m12, m20, m01, {}}}};
-    }
+    const int vc = parent.vertexCount;
+    const auto corners = childCorners(parent.v, vc);
     const int first = static_cast<int>(nodes.size());
     for (int k = 0; k < 4; ++k) {
         Node child;
@@ -396,6 +380,19 @@ Vec3 Hierarchy::samplePoint(int node, double u, double v, double w, Vec3* normal
     const SampleCorners& p = ordered_[idx];
     if (normal) *normal = p.normal;
     return pointOnCorners(p.v, p.vertexCount, u, v);
+}
+
+std::array<std::array<Vec3, 4>, 4> childCorners(const std::array<Vec3, 4>& v, int count) {
+    const Vec3 m01 = 0.5 * (v[0] + v[1]), m12 = 0.5 * (v[1] + v[2]);
+    if (count == 4) {
+        const Vec3 m23 = 0.5 * (v[2] + v[3]), m30 = 0.5 * (v[3] + v[0]);
+        const Vec3 c = 0.25 * (v[0] + v[1] + v[2] + v[3]);
+        return {
+            {{v[0], m01, c, m30}, {m01, v[1], m12, c}, {c, m12, v[2], m23}, {m30, c, m23, v[3]}}};
+    }
+    const Vec3 m20 = 0.5 * (v[2] + v[0]);
+    return {
+        {{v[0], m01, m20, {}}, {m01, v[1], m12, {}}, {m20, m12, v[2], {}}, {m12, m20, m01, {}}}};
 }
 
 bool elementContains(const Node& e, const Vec3& x, double tol) {

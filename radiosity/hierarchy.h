@@ -193,6 +193,14 @@ bool elementContains(const Node& e, const Vec3& x, double tol);
 /// Point on element `e` for (u, v) in [0, 1]^2: bilinear on a quad; for a triangle the
 /// area-preserving square-to-triangle map (sqrt warp).
 Vec3 pointOnElement(const Node& e, double u, double v);
+
+/// The corners of the four children of an element with corners `v` (`count` 3 or 4), in
+/// Hierarchy::subdivide's child order: a quad's (v0, m01, c, m30), (m01, v1, m12, c),
+/// (c, m12, v2, m23), (m30, c, m23, v3); a triangle's (v0, m01, m20), (m01, v1, m12),
+/// (m20, m12, v2) and the middle (m12, m20, m01), which keeps the parent's orientation.
+/// Midpoints are 0.5 (a + b) and a quad's centre 0.25 (v0 + v1 + v2 + v3), so the
+/// midpoint of a shared edge is bit-identical from both sides.
+std::array<std::array<Vec3, 4>, 4> childCorners(const std::array<Vec3, 4>& v, int count);
 /// Same for an input polygon.
 Vec3 pointOnPolygon(const Polygon& p, double u, double v);
 

@@ -42,36 +42,27 @@ struct Piece {
     std::array<std::array<int, 2>, 4> at;
 };
 
-Vec3 mid(const Vec3& a, const Vec3& b) {
-    return 0.5 * (a + b);
-}  // Hierarchy::subdivide's
-std::array<int, 2> mid(const std::array<int, 2>& a, const std::array<int, 2>& b) {
-    return {(a[0] + b[0]) / 2, (a[1] + b[1]) / 2};
-}
-
-// The four pieces of `p`, cut as Hierarchy::subdivide cuts an element (the same expressions,
-// so that shared points are bit-identical); the triangle's middle piece is (m01, m12, m20).
+// The four pieces of `p`, cut as Hierarchy::subdivide cuts an element (childCorners: the
+// same points, bit for bit, and the same order), with their corners' grid coordinates.
 std::array<Piece, 4> quarters(const Piece& p, int k) {
-    const auto& v = p.v;
+    const auto v = childCorners(p.v, k);
     const auto& a = p.at;
+    auto mid = [](const std::array<int, 2>& x, const std::array<int, 2>& y) {
+        return std::array<int, 2>{(x[0] + y[0]) / 2, (x[1] + y[1]) / 2};
+    };
+    const auto a01 = mid(a[0], a[1]), a12 = mid(a[1], a[2]);
     if (k == 4) {
-        const Vec3 c = 0.25 * (v[0] + v[1] + v[2] + v[3]);
-        const std::array<int, 2> ac = mid(a[0], a[2]);
-        const Vec3 m01 = mid(v[0], v[1]), m12 = mid(v[1], v[2]), m23 = mid(v[2], v[3]),
-                   m30 = mid(v[3], v[0]);
-        const auto a01 = mid(a[0], a[1]), a12 = mid(a[1], a[2]), a23 = mid(a[2], a[3]),
-                   a30 = mid(a[3], a[0]);
-        return {{{{v[0], m01, c, m30}, {a[0], a01, ac, a30}},
-                 {{m01, v[1], m12, c}, {a01, a[1], a12, ac}},
-                 {{c, m12, v[2], m23}, {ac, a12, a[2], a23}},
-                 {{m30, c, m23, v[3]}, {a30, ac, a23, a[3]}}}};
+        const auto a23 = mid(a[2], a[3]), a30 = mid(a[3], a[0]), ac = mid(a[0], a[2]);
+        return {{{v[0], {a[0], a01, ac, a30}},
+                 {v[1], {a01, a[1], a12, ac}},
+                 {v[2], {ac, a12, a[2], a23}},
+                 {v[3], {a30, ac, a23, a[3]}}}};
     }
-    const Vec3 m01 = mid(v[0], v[1]), m12 = mid(v[1], v[2]), m20 = mid(v[2], v[0]);
-    const auto a01 = mid(a[0], a[1]), a12 = mid(a[1], a[2]), a20 = mid(a[2], a[0]);
-    return {{{{v[0], m01, m20, {}}, {a[0], a01, a20, {}}},
-             {{m01, v[1], m12, {}}, {a01, a[1], a12, {}}},
-             {{m20, m12, v[2], {}}, {a20, a12, a[2], {}}},
-             {{m01, m12, m20, {}}, {a01, a12, a20, {}}}}};
+    const auto a20 = mid(a[2], a[0]);
+    return {{{v[0], {a[0], a01, a20, {}}},
+             {v[1], {a01, a[1], a12, {}}},
+             {v[2], {a20, a12, a[2], {}}},
+             {v[3], {a12, a20, a01, {}}}}};
 }
 
 // The leaf itself as a piece, with its corners' grid coordinates for n = 2^splits.
@@ -180,7 +171,7 @@ LeafMesh::Stencil LeafMesh::stencil(int leaf, const Vec3& x) const {
             w = {2 * w[0], 2 * w[1], 2 * w[2] - 1, 0};  // piece (m20, m12, v2)
         } else {
             c = 3;
-            w = {1 - 2 * w[2], 1 - 2 * w[0], 1 - 2 * w[1], 0};  // piece (m01, m12, m20)
+            w = {1 - 2 * w[0], 1 - 2 * w[1], 1 - 2 * w[2], 0};  // piece (m12, m20, m01)
         }
         // Rounding: keep the weights a partition of unity.
         double sum = 0;
