@@ -11,7 +11,8 @@
 //      (relight/reflectance.h); texture-based refinement of shadow boundaries (§4.2,
 //      relight/shadow_refinement.h);
 //   4. per-light responses of the solution (radiosity/light_response.h) and the
-//      irradiance per light at every leaf vertex (relight/vertex_lighting.h);
+//      irradiance per light at every leaf vertex: the leaves' corners and those of their
+//      display pieces (radiosity/leaf_mesh.h, displayPiecePixels; relight/vertex_lighting.h);
 //   5. real-shadow removal (§4.3-4.4, relight/shadow_removal.h): the display correction
 //      factor D and the texture factor at the vertices, so that the unedited display is
 //      the photo;

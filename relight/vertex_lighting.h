@@ -1,5 +1,9 @@
 // VertexLighting: the irradiance at every leaf vertex, split by light.
 //
+// The vertices are radiosity::LeafMesh's: the corners of the leaf elements, and of the
+// display pieces of the leaves that cover several photo pixels (a finer display than the
+// solution: the light is measured at each of these points, not interpolated from the leaf).
+//
 // Loscos et al. 2000 display B and D at the vertices of the leaf elements (§4.4.1: "we
 // modulate the original texture by a correction factor computed at the vertices of the leaf
 // radiosity patches"; §5.3: glColor per vertex). Here each vertex holds, for every light l,
