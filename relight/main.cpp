@@ -3,10 +3,13 @@
 //   relight prepare <scene_dir> [preparation options] [--cache FILE] [--force]
 //   relight render  <scene_dir> [--edit edit.json] -o out.exr|png [--report r.json]
 //                   [preparation options] [--cache FILE | --no-cache] [--debug-views DIR]
-//   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal
+//   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
+//                        --max-links N, --max-memory MiB, --display-pixels P
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
 // Errors in the input print one clear line naming the file and line or key, exit code 2.
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdlib>
 
 #include <cstdio>
 
@@ -33,7 +36,17 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
     app->add_option("--display-pixels", p.displayPixels,
                     "display pieces: leaves are split until a piece covers fewer photo pixels "
                     "than this (0: leaf corners only)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                // Finite: NaN passes CLI11's range checks, and would silently mean no
+                // pieces.
+                char* end = nullptr;
+                const double v = std::strtod(text.c_str(), &end);
+                if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v < 0)
+                    return "must be a finite number >= 0, got " + text;
+                return {};
+            },
+            "FINITE >= 0"));
 }
 
 }  // namespace

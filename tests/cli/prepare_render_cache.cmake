@@ -91,6 +91,17 @@ if(NOT CMAKE_MATCH_2 GREATER corners OR NOT CMAKE_MATCH_2 GREATER CMAKE_MATCH_1)
                       "with 0, for ${CMAKE_MATCH_1} leaves")
 endif()
 
+# A display size that is not a finite number >= 0 is refused, naming the option (NaN
+# passes plain range checks and would silently mean "no pieces").
+foreach(bad nan inf -1)
+  execute_process(COMMAND "${RELIGHT}" prepare "${room}" --display-pixels ${bad}
+                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "--display-pixels ${bad}: accepted")
+  endif()
+  expect("${o}${e}" "--display-pixels: must be a finite number >= 0" "--display-pixels ${bad}")
+endforeach()
+
 # A bad edit fails at once, before any preparation, naming the file.
 relight(out 2 render "${room}" --edit "${WORK}/missing-edit.json" -o "${WORK}/g.png")
 expect("${out}" "missing-edit\\.json" "bad edit")
