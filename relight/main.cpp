@@ -20,14 +20,34 @@ using namespace relight;
 
 namespace {
 
+/// A finite number, and at least 0 (kNonNegative) or above 0 (kPositive). CLI11's
+/// PositiveNumber and Range let NaN through (every comparison with NaN is false):
+/// --epsilon nan refined nothing, silently.
+enum class Sign { kAny, kNonNegative, kPositive };
+CLI::Validator finiteNumber(Sign sign) {
+    const char* what = sign == Sign::kPositive      ? "a finite number > 0"
+                       : sign == Sign::kNonNegative ? "a finite number >= 0"
+                                                    : "a finite number";
+    return CLI::Validator(
+        [sign, what](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            const bool ok = end != text.c_str() && *end == '\0' && std::isfinite(v) &&
+                            (sign == Sign::kAny || (sign == Sign::kPositive ? v > 0 : v >= 0));
+            return ok ? std::string() : std::string("must be ") + what + ", got " + text;
+        },
+        "FINITE");
+}
+
 /// The options of the preparation, the same for `prepare` and `render`.
 void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
-    app->add_option("--epsilon", p.epsilon, "BF refinement threshold")->check(CLI::PositiveNumber);
+    app->add_option("--epsilon", p.epsilon, "BF refinement threshold")
+        ->check(finiteNumber(Sign::kPositive));
     app->add_option("--max-links", p.maxLinks,
                     "refinement budget in links (default: what fits in --max-memory)");
     app->add_option("--max-memory", p.maxMemoryMB,
                     "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finiteNumber(Sign::kNonNegative));
     app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     app->add_flag("!--no-refinement", p.shadowRefinement,
                   "skip the texture-based refinement of shadow boundaries (§4.2)");
@@ -36,17 +56,7 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
     app->add_option("--display-pixels", p.displayPixels,
                     "display pieces: leaves are split until a piece covers fewer photo pixels "
                     "than this (0: leaf corners only)")
-        ->check(CLI::Validator(
-            [](std::string& text) -> std::string {
-                // Finite: NaN passes CLI11's range checks, and would silently mean no
-                // pieces.
-                char* end = nullptr;
-                const double v = std::strtod(text.c_str(), &end);
-                if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v < 0)
-                    return "must be a finite number >= 0, got " + text;
-                return {};
-            },
-            "FINITE >= 0"));
+        ->check(finiteNumber(Sign::kNonNegative));
 }
 
 }  // namespace
@@ -60,17 +70,17 @@ int main(int argc, char** argv) {
         app.add_subcommand("solve", "clustered hierarchical radiosity solution of a scene");
     solve->add_option("scene_dir", sa.scene, "scene folder holding scene.json")->required();
     solve->add_option("--epsilon", sa.epsilon, "BF refinement threshold, fraction of emitted power")
-        ->check(CLI::PositiveNumber);
+        ->check(finiteNumber(Sign::kPositive));
     solve
         ->add_option("--min-area", sa.minArea,
                      "smallest element area in m^2 (0: 2e-5 of the scene's area)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finiteNumber(Sign::kNonNegative));
     solve->add_option("--max-links", sa.maxLinks,
                       "refinement budget in links (default: what fits in --max-memory)");
     solve
         ->add_option("--max-memory", sa.maxMemoryMB,
                      "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finiteNumber(Sign::kNonNegative));
     solve->add_option("--min-rays", sa.minRays, "visibility rays per link, first round")
         ->check(CLI::Range(1, 256));
     solve->add_option("--max-rays", sa.maxRays, "visibility rays per link in penumbra")
@@ -86,7 +96,8 @@ int main(int argc, char** argv) {
     solve->add_option("--report", sa.report, "write counts, times and energy balance as JSON");
     solve->add_option("-o,--output", sa.output,
                       "write the radiosity seen from the camera (radiance B/pi)");
-    solve->add_option("--exposure", sa.exposure, "exposure in stops for 8-bit output");
+    solve->add_option("--exposure", sa.exposure, "exposure in stops for 8-bit output")
+        ->check(finiteNumber(Sign::kAny));
 
     std::string evScene, evEdit, evImage;
     auto* eval =
@@ -105,7 +116,8 @@ int main(int argc, char** argv) {
     render->add_option("-o,--output", ra.output, "relit photo: .exr linear, .png sRGB")->required();
     render->add_option("--report", ra.report, "write counts and times as JSON");
     addPrepareOptions(render, ra.prep);
-    render->add_option("--exposure", ra.exposure, "exposure in stops for 8-bit output");
+    render->add_option("--exposure", ra.exposure, "exposure in stops for 8-bit output")
+        ->check(finiteNumber(Sign::kAny));
     auto* renderCache =
         render->add_option("--cache", ra.cache.file,
                            "prepared-state cache (default <scene_dir>/.relight/prepared.bin)");

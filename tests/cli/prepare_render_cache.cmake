@@ -91,16 +91,24 @@ if(NOT CMAKE_MATCH_2 GREATER corners OR NOT CMAKE_MATCH_2 GREATER CMAKE_MATCH_1)
                       "with 0, for ${CMAKE_MATCH_1} leaves")
 endif()
 
-# A display size that is not a finite number >= 0 is refused, naming the option (NaN
-# passes plain range checks and would silently mean "no pieces").
-foreach(bad nan inf -1)
-  execute_process(COMMAND "${RELIGHT}" prepare "${room}" --display-pixels ${bad}
+# Numeric options that are not finite (or out of range) are refused, naming the option:
+# NaN passes plain range checks, and --epsilon nan used to refine nothing, silently.
+foreach(bad "--display-pixels;nan" "--display-pixels;inf" "--display-pixels;-1"
+        "--epsilon;nan" "--epsilon;0" "--max-memory;inf")
+  list(GET bad 0 option)
+  execute_process(COMMAND "${RELIGHT}" prepare "${room}" ${bad}
                   OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
   if(rc EQUAL 0)
-    message(FATAL_ERROR "--display-pixels ${bad}: accepted")
+    message(FATAL_ERROR "${bad}: accepted")
   endif()
-  expect("${o}${e}" "--display-pixels: must be a finite number >= 0" "--display-pixels ${bad}")
+  expect("${o}${e}" "${option}: must be a finite number" "${bad}")
 endforeach()
+execute_process(COMMAND "${RELIGHT}" render "${room}" --exposure nan -o "${WORK}/nan.png"
+                OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
+expect("${o}${e}" "--exposure: must be a finite number" "--exposure nan")
+if(rc EQUAL 0 OR EXISTS "${WORK}/nan.png")
+  message(FATAL_ERROR "--exposure nan: accepted (exit ${rc})")
+endif()
 
 # A bad edit fails at once, before any preparation, naming the file.
 relight(out 2 render "${room}" --edit "${WORK}/missing-edit.json" -o "${WORK}/g.png")
