@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
     std::vector<double> eps;
     for (int i = 1; i < argc; ++i) eps.push_back(std::atof(argv[i]));
     if (eps.empty()) eps = {1e-3, 1e-4};
-    std::printf("%8s %4s %5s %10s %9s %15s\n", "epsilon", "cut", "rho", "absorbed", "links",
-                "gather scale");
+    std::printf("%8s %4s %5s %10s %9s %15s %15s\n", "epsilon", "cut", "rho", "absorbed", "links",
+                "gather scale", "send scale");
     for (double e : eps)
         for (double rho : {0.7, 0.95})
             for (int cut : {1, 2, 4, 8}) {
@@ -35,14 +35,17 @@ int main(int argc, char** argv) {
                 HierarchicalSolver solver(test::cutRoom(cut, rho, /*box=*/false), o);
                 solver.solve();
                 const SolverStats st = solver.stats();
-                double lo = 1e300, hi = 0;
+                double lo = 1e300, hi = 0, slo = 1e300, shi = 0;
                 for (const Node& n : solver.hierarchy().nodes) {
                     if (n.isCluster() || !n.isLeaf()) continue;
                     lo = std::min(lo, n.gatherScale);
                     hi = std::max(hi, n.gatherScale);
+                    slo = std::min(slo, n.sendScale);
+                    shi = std::max(shi, n.sendScale);
                 }
-                std::printf("%8.0e %4d %5.2f %9.2f%% %9d %7.3f..%5.3f\n", e, cut, rho,
-                            100 * st.absorbedPower.r / st.emittedPower.r, st.links, lo, hi);
+                std::printf("%8.0e %4d %5.2f %9.2f%% %9d %7.3f..%5.3f %7.3f..%5.3f\n", e, cut, rho,
+                            100 * st.absorbedPower.r / st.emittedPower.r, st.links, lo, hi, slo,
+                            shi);
                 std::fflush(stdout);
             }
     return 0;

@@ -179,10 +179,14 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     rec.objects = scene_.objects.size();
     rec.lights = scene_.lights.size();
     rec.B.reserve(h_.nodes.size());
+    rec.Bsent.reserve(h_.nodes.size());
+    rec.scales.reserve(h_.nodes.size());
     rec.H.reserve(h_.nodes.size());
     rec.Hv.reserve(h_.nodes.size());
     for (const Node& n : h_.nodes) {
         rec.B.push_back(n.B);
+        rec.Bsent.push_back(n.Bsent);
+        rec.scales.push_back({n.gatherScale, n.sendScale});
         rec.H.push_back(n.H);
         rec.Hv.push_back(n.Hv);
         rec.Hd.push_back(n.Hd);
@@ -243,7 +247,12 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     // A virtual light delivers its power as a lamp of the scene does (normaliseLamps);
     // its links are new, so removal takes the scaling away with them.
     if (light >= 0) normaliseLamps(first);
-    boundGather(firstNode);  // the object's own leaves; the scene's keep their bound
+    // The object's own leaves are bounded and balanced (their sends and gathers), and so
+    // are the scene's leaves whose view the object may change: what they see is measured
+    // again (a floor under a box sees the box's underside where it saw open space). The
+    // rest keep their scales.
+    const std::vector<int> reseen = remeasureSeenNear(cluster, firstNode);
+    boundGather(firstNode, /*balance=*/true, &reseen);
     inserted_.back().shadowLeaves = report.shadowLeaves;
 
     const auto t0 = Clock::now();
@@ -251,6 +260,31 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     report.timeGather += secondsSince(t0);
     if (reportOut) *reportOut = std::move(report);
     return object;
+}
+
+std::vector<int> HierarchicalSolver::remeasureSeenNear(int cluster, size_t firstNode) {
+    // The object's bounding sphere (centre c, radius r) covers at most r^2 / (r^2 + g^2) of
+    // a leaf's cosine-weighted hemisphere, g the gap between the sphere and the leaf's own
+    // bounding sphere (a disc facing the leaf squarely bounds the sphere's silhouette).
+    // Leaves where that can exceed kSeenChange, with the sphere not wholly behind them,
+    // are measured again. A leaf that saw a surface in every direction (seen 1, closed
+    // rooms) keeps its measure: a closed object only hides fronts behind its own fronts.
+    const Node& obj = h_.nodes[cluster];
+    const Vec3 c = obj.centre;
+    const double r = obj.radius;
+    std::vector<int> leaves;
+    for (size_t n = 0; n < firstNode; ++n) {
+        const Node& e = h_.nodes[n];
+        if (e.isCluster() || !e.isLeaf() || !(e.seen >= 0) || e.seen >= 1) continue;
+        const Vec3 d = c - e.centre;
+        if (glm::dot(e.normal, d) < -r) continue;  // behind the leaf's plane
+        const double gap = std::max(0.0, glm::length(d) - r - e.radius);
+        if (r * r > kSeenChange * (r * r + gap * gap)) leaves.push_back(static_cast<int>(n));
+    }
+    for (int leaf : leaves)
+        inserted_.back().reseen.push_back({leaf, h_.nodes[leaf].seen, h_.nodes[leaf].seenError});
+    measureSeen(leaves);
+    return leaves;
 }
 
 void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
@@ -272,9 +306,16 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
     scene_.lights.resize(rec.lights);
     for (size_t n = 0; n < rec.B.size(); ++n) {
         h_.nodes[n].B = rec.B[n];
+        h_.nodes[n].Bsent = rec.Bsent[n];
+        h_.nodes[n].gatherScale = rec.scales[n][0];
+        h_.nodes[n].sendScale = rec.scales[n][1];
         h_.nodes[n].H = rec.H[n];
         h_.nodes[n].Hv = rec.Hv[n];
         h_.nodes[n].Hd = rec.Hd[n];
+    }
+    for (const auto& [leaf, seen, seenError] : rec.reseen) {
+        h_.nodes[leaf].seen = seen;
+        h_.nodes[leaf].seenError = seenError;
     }
     frozenNodes_ = rec.frozenNodes;
     buildReceiverIndex(links_.size());

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -43,15 +44,12 @@ void HierarchicalSolver::normaliseLamps(int firstPolygon) {
     }
 }
 
-void HierarchicalSolver::boundGather(size_t firstNode) {
-    // G: what each leaf gathers when every source that reflects has radiosity 1. Light
-    // that comes straight from an emitting face (which reflects nothing) is left out: it
-    // feeds nothing back, and the real-shadow correction may scale it above V = 1 on
-    // purpose (scaleLightLinks).
+void HierarchicalSolver::boundGather(size_t firstNode, bool balance, const std::vector<int>* also) {
     const auto& nodes = h_.nodes;
-    const std::vector<Rgb> G =
-        gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 1.0 : 0.0); }, false);
-    // Gd: the same from the sources that do not reflect (the lamps): exact form factors.
+    // Gd: what each leaf gathers from the sources that do not reflect (the lamps), whose
+    // links carry exact form factors; light straight from an emitting face feeds nothing
+    // back, and the real-shadow correction may scale it above V = 1 on purpose
+    // (scaleLightLinks).
     const std::vector<Rgb> Gd =
         gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 0.0 : 1.0); }, false);
     std::vector<int> unmeasured;
@@ -59,6 +57,29 @@ void HierarchicalSolver::boundGather(size_t firstNode) {
         if (!nodes[n].isCluster() && nodes[n].isLeaf() && nodes[n].seen < 0)
             unmeasured.push_back(static_cast<int>(n));
     measureSeen(unmeasured);
+    boundRows(firstNode, Gd, also);
+    if (balance && options_.balanceSends) balanceSends(Gd, firstNode, also);
+}
+
+double HierarchicalSolver::rowScale(double seen, double seenError, double g, double gd) {
+    // G is moved into the interval the rays allow, seen - Gd +- 2 standard errors (and
+    // never above 1 - Gd): a G that the measurement cannot tell from the truth is kept,
+    // one it says is wrong is corrected. At most kMaxRenormalisation: where the links miss
+    // much of what the leaf sees they are not scaled up without end. What reflecting
+    // sources fill: what the leaf sees, less the lamps it sees.
+    const double target = seen - gd;
+    const double lo = std::max(0.0, target - 2 * seenError);
+    const double hi = std::max(lo, std::min(1.0 - gd, target + 2 * seenError));
+    return g > 0 ? std::min(std::clamp(g, lo, hi) / g, kMaxRenormalisation) : 1.0;
+}
+
+void HierarchicalSolver::boundRows(size_t firstNode, const std::vector<Rgb>& Gd,
+                                   const std::vector<int>* also) {
+    // G: what each leaf gathers when every source that reflects sends its send scale.
+    const auto& nodes = h_.nodes;
+    const std::vector<double> send = meanOverLeaves([&](const Node& e) { return e.sendScale; });
+    const std::vector<Rgb> G =
+        gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? send[s] : 0.0); }, false);
     boundedLeaves_ = 0;
     maxGather_ = 1;
     for (size_t n = 0; n < nodes.size(); ++n) {
@@ -66,19 +87,41 @@ void HierarchicalSolver::boundGather(size_t firstNode) {
         if (e.isCluster() || !e.isLeaf()) continue;
         const double g = G[n].maxComponent();
         maxGather_ = std::max(maxGather_, g);
-        if (n >= firstNode) {
-            // G is moved into the interval the rays allow, seen - Gd +- 2 standard errors
-            // (and never above 1 - Gd): a G that the measurement cannot tell from the truth
-            // is kept, one it says is wrong is corrected. At most kMaxRenormalisation: where the
-            // links miss much of what the leaf sees they are not scaled up without end.
-            // What reflecting sources fill: what the leaf sees, less the lamps it sees.
-            const double gd = Gd[n].maxComponent(), target = e.seen - gd;
-            const double lo = std::max(0.0, target - 2 * e.seenError);
-            const double hi = std::max(lo, std::min(1.0 - gd, target + 2 * e.seenError));
-            e.gatherScale = g > 0 ? std::min(std::clamp(g, lo, hi) / g, kMaxRenormalisation) : 1.0;
-        }
+        if (n >= firstNode ||
+            (also && std::binary_search(also->begin(), also->end(), static_cast<int>(n))))
+            e.gatherScale = rowScale(e.seen, e.seenError, g, Gd[n].maxComponent());
         if (std::abs(e.gatherScale - 1) > 0.05) ++boundedLeaves_;
     }
+}
+
+std::vector<double> HierarchicalSolver::meanOverLeaves(
+    const std::function<double(const Node&)>& value) const {
+    // Area-weighted means, children before parents (parents do not always precede their
+    // children in the node array: an attached object's cluster).
+    const auto& nodes = h_.nodes;
+    std::vector<double> out(nodes.size(), 0.0);
+    std::vector<int> order{Hierarchy::kRoot}, stack{Hierarchy::kRoot};
+    order.clear();
+    while (!stack.empty()) {
+        const int n = stack.back();
+        stack.pop_back();
+        order.push_back(n);
+        for (int k = 0; k < nodes[n].childCount; ++k) stack.push_back(nodes[n].firstChild + k);
+    }
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+        const Node& n = nodes[*it];
+        if (n.isLeaf()) {
+            out[*it] = n.isCluster() ? 0.0 : value(n);
+            continue;
+        }
+        double sum = 0, area = 0;
+        for (int k = 0; k < n.childCount; ++k) {
+            sum += out[n.firstChild + k] * nodes[n.firstChild + k].area;
+            area += nodes[n.firstChild + k].area;
+        }
+        out[*it] = area > 0 ? sum / area : 0.0;  // guard: no area below
+    }
+    return out;
 }
 
 void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {

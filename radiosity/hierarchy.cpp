@@ -237,6 +237,8 @@ bool Hierarchy::subdivide(int node) {
         child.B = parent.B;
         child.emitting = parent.emitting;
         child.gatherScale = parent.gatherScale;
+        child.sendScale = parent.sendScale;
+        child.Bsent = parent.Bsent;
         finishGeometry(child);
         nodes.push_back(child);
     }
@@ -305,6 +307,7 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
     const Node& c0 = nodes[n0];
     const Node& c1 = nodes[n0 + 1];
     root.B = (c0.B * a0 + c1.B * a1) * inv;
+    root.Bsent = (c0.Bsent * a0 + c1.Bsent * a1) * inv;
     root.rho = (c0.rho * a0 + c1.rho * a1) * inv;
     root.E = (c0.E * a0 + c1.E * a1) * inv;
     root.emitting = c0.emitting || c1.emitting;
@@ -454,7 +457,7 @@ int Hierarchy::locateLeaf(int polygon, const Vec3& x) const {
 void Hierarchy::pullAverages(int node) {
     Node& n = nodes[node];
     if (n.isLeaf()) return;
-    Rgb B, rho, E;
+    Rgb B, Bsent, rho, E;
     double area = 0;
     bool emitting = false;
     for (int k = 0; k < n.childCount; ++k) {
@@ -462,6 +465,7 @@ void Hierarchy::pullAverages(int node) {
         pullAverages(c);
         const Node& ch = nodes[c];
         B += ch.B * ch.area;
+        Bsent += ch.Bsent * ch.area;
         rho += ch.rho * ch.area;
         E += ch.E * ch.area;
         area += ch.area;
@@ -470,6 +474,7 @@ void Hierarchy::pullAverages(int node) {
     Node& m = nodes[node];  // re-fetch: recursion does not reallocate, but be explicit
     const double inv = area > 0 ? 1.0 / area : 0.0;  // guard: a cluster of no area
     m.B = B * inv;
+    m.Bsent = Bsent * inv;
     if (m.isCluster()) {
         m.rho = rho * inv;
         m.E = E * inv;

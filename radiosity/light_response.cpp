@@ -84,9 +84,22 @@ class ResponseSweeps {
           K_(K),
           E_(E),
           B_(B),
+          S_(h.nodes.size(), K),
           H_(h.nodes.size(), K),
           Hd_(h.nodes.size(), K),
           Hv_(static_cast<size_t>(layout_.slots) * K) {}
+
+    /// What each node sends from B (leaves: B sendScale; the rest: area means). Called
+    /// once B is set, before the first sweep.
+    void setSent() {
+        const auto& nodes = h_.nodes;
+        for (size_t n = 0; n < nodes.size(); ++n) {
+            const Node& e = nodes[n];
+            if (e.isCluster() || !e.isLeaf()) continue;
+            for (int l = 0; l < K_; ++l) S_[n][l] = B_[n][l] * e.sendScale;
+        }
+        pullAll(S_);
+    }
 
     /// One gather over all links, then push-pull. Fills `power` with each light's total
     /// reflected-plus-emitted power (max channel times area at the root).
@@ -136,7 +149,7 @@ class ResponseSweeps {
             const Link& link = links_[k];
             const Node& S = nodes[link.source];
             const double FV = link.F * static_cast<double>(link.V);
-            const Rgb* Bs = B_[link.source];
+            const Rgb* Bs = S_[link.source];  // what the source sends
             if (slot >= 0) {
                 const Vec3 w = toFrame(R, linkDirection(R, S));
                 DirectionalIrradiance* Hv = Hv_.data() + static_cast<size_t>(slot) * K_;
@@ -173,9 +186,12 @@ class ResponseSweeps {
         const Rgb *H = H_[node], *Hd = Hd_[node];
         if (n.isLeaf()) {
             Rgb* B = B_[node];
+            Rgb* S = S_[node];
             const Rgb* E = E_[node];
-            for (int l = 0; l < K_; ++l)
+            for (int l = 0; l < K_; ++l) {
                 B[l] = E[l] + n.rho * (HdDown[l] + Hd[l] + (Hdown[l] + H[l]) * n.gatherScale);
+                S[l] = B[l] * n.sendScale;
+            }
             return;
         }
         std::vector<Rgb> down(2 * static_cast<size_t>(K_));
@@ -186,6 +202,7 @@ class ResponseSweeps {
         for (int k = 0; k < n.childCount; ++k)
             pushElement(n.firstChild + k, down.data(), down.data() + K_);
         pullMean(node, B_);
+        pullMean(node, S_);
     }
 
     void pullElements(int node, PerLight& x) const {
@@ -195,7 +212,10 @@ class ResponseSweeps {
         pullMean(node, x);
     }
 
-    void pullClusters() { pullClusters(B_); }
+    void pullClusters() {
+        pullClusters(B_);
+        pullClusters(S_);
+    }
 
     /// x(node) = area-weighted mean of its children's (guarded: no area below gives 0).
     void pullMean(int node, PerLight& x) const {
@@ -220,6 +240,7 @@ class ResponseSweeps {
     int K_;
     PerLight& E_;
     PerLight& B_;
+    PerLight S_;  ///< what each node sends through its links (HierarchicalSolver::Node::Bsent)
     PerLight H_, Hd_;
     std::vector<DirectionalIrradiance> Hv_;
 };
@@ -256,6 +277,7 @@ LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses*
     B.values() = E.values();
     if (warm && warm->lights_ == lights_ && warm->R_.size() == B.values().size())
         for (size_t i = 0; i < B.values().size(); ++i) B.values()[i] += warm->R_[i];
+    sweeps.setSent();
 
     // Converged as HierarchicalSolver::gatherPushPull: for each light, the last change of
     // its total power and the geometric estimate of what is left both below the tolerance.

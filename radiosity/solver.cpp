@@ -380,20 +380,24 @@ void HierarchicalSolver::pushPull(int node, const Rgb& Hdown, const Rgb& HdDown)
         Hd = HdDown + n.Hd;
         if (n.isLeaf()) {
             n.B = n.E + n.rho * (Hd + H * n.gatherScale);
+            n.Bsent = n.B * n.sendScale;
             return;
         }
     }
     // Push down, pull B up as the area-weighted mean.
-    Rgb B;
+    Rgb B, Bsent;
     double area = 0;
     const int first = n.firstChild, count = n.childCount;
     for (int k = 0; k < count; ++k) {
         pushPull(first + k, H, Hd);
         const Node& c = h_.nodes[first + k];
         B += c.B * c.area;
+        Bsent += c.Bsent * c.area;
         area += c.area;
     }
-    h_.nodes[node].B = area > 0 ? B * (1.0 / area) : Rgb{};  // guard: no area below
+    Node& m = h_.nodes[node];
+    m.B = area > 0 ? B * (1.0 / area) : Rgb{};  // guard: no area below
+    m.Bsent = area > 0 ? Bsent * (1.0 / area) : Rgb{};
 }
 
 void HierarchicalSolver::pushPullAll() {
@@ -410,21 +414,23 @@ void HierarchicalSolver::pushPullAll() {
                       });
     for (auto it = clusters.rbegin(); it != clusters.rend(); ++it) {
         Node& n = h_.nodes[*it];
-        Rgb B;
+        Rgb B, Bsent;
         double area = 0;
         for (int k = 0; k < n.childCount; ++k) {
             const Node& c = h_.nodes[n.firstChild + k];
             B += c.B * c.area;
+            Bsent += c.Bsent * c.area;
             area += c.area;
         }
         n.B = area > 0 ? B * (1.0 / area) : Rgb{};  // guard: no area below
+        n.Bsent = area > 0 ? Bsent * (1.0 / area) : Rgb{};
     }
 }
 
 void HierarchicalSolver::gatherInto(const Link& l) {
     Node& R = h_.nodes[l.receiver];
     const Node& S = h_.nodes[l.source];
-    const Rgb H = S.B * (l.F * static_cast<double>(l.V));
+    const Rgb H = S.Bsent * (l.F * static_cast<double>(l.V));
     if (R.isCluster())
         R.Hv.add(H, toFrame(R, linkDirection(R, S)));
     else if (reflects(S))
@@ -599,12 +605,11 @@ void HierarchicalSolver::solve() {
         const bool changed = changedInRefine_;
         const bool settled = !changed || static_cast<double>(refined) <=
                                              kSettled * static_cast<double>(links_.size());
-        if (round + 1 == options_.maxRefineRounds || settled) {
-            if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
-        }
+        const bool last = round + 1 == options_.maxRefineRounds || settled;
+        if (last && options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
         buildReceiverIndex();
         normaliseLamps();
-        boundGather();
+        boundGather(0, /*balance=*/last);  // the sends once the links are final
         timing_.timeRefine += secondsSince(t0);
         ++timing_.refineRounds;
         const int sweeps = gatherPushPull();
@@ -661,7 +666,7 @@ bool HierarchicalSolver::addMissingLightLinks() {
         if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
         buildReceiverIndex();
         normaliseLamps();
-        boundGather();
+        boundGather(0, /*balance=*/true);
     }
     return added;
 }

@@ -43,6 +43,25 @@
 // that still fails to converge (maxSweeps) stops with SolverError naming the element that did not
 // settle.
 //
+// Balance of what leaves send. Scaling the rows (what each leaf gathers) leaves the
+// columns (what each leaf sends) as the links made them: the links are not reciprocal, a
+// bright source whose coarse links under-deliver loses light, and a closed room absorbed
+// only 97.6-99.3 % of what its lamps emit. So, once the links are final (the last round,
+// and after new light links), each reflecting leaf m also has a send scale s_m: it sends
+// B_m s_m through its links and those of its ancestors (Node::Bsent, the area mean of
+// that below a node). What m then hands out, per unit of its power B_m A_m, is
+//     C_m = s_m sum_{links r <- s, s above m} F V W_r / A_s,
+// W_r the area of the receiver's leaves weighted by their gather scales (for a cluster
+// receiver, by how much of the link's directional irradiance each surface takes). By
+// reciprocity it must be what m sees. Rows and columns alternate, kBalanceIterations
+// times (iterative proportional fitting: Sinkhorn 1967; interval targets, seen +- 2
+// standard errors, on both), the sends held at a geometric mean of 1 (rows and columns
+// fix only the products of the two scales), and the rows come last, so the contraction
+// bound above holds whatever the columns reached. A closed room then absorbs 99.99 % of
+// what its lamp emits (bench/closed_room). The final gather (final_gather.h) keeps the
+// true radiosities: its per-point form factors do not have the links' errors that the
+// send scales correct.
+//
 // Budget (Stamminger, Schirmacher, Slusallek & Seidel 1999): refinement stops splitting
 // when the links (active, passive and queued) reach maxLinks or the nodes and links reach
 // maxMemory bytes; what is left is accepted as it is, and stats().budgetReached says so.
@@ -63,12 +82,14 @@
 //            fits in it.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <limits>
 #include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "radiosity/hierarchy.h"
@@ -98,6 +119,8 @@ struct SolverOptions {
     int maxRefineRounds = 8;  ///< refine/solve rounds
     int maxPolygonsPerCluster = 4;
     bool forceLightLinksToLeaves = true;
+    /// Balance what each leaf sends as well as what it gathers (energy bound).
+    bool balanceSends = true;
     TransferOptions transfer;
     /// Called with a one-line message at each phase of long work (may be empty).
     std::function<void(const std::string&)> progress;
@@ -273,6 +296,13 @@ class HierarchicalSolver {
     static constexpr double kNearFieldPower = 0.1;
     /// Largest factor by which the energy bound scales a leaf's gather up.
     static constexpr double kMaxRenormalisation = 2.0;
+    /// The energy bound's balance: at most this many column/row alternations...
+    static constexpr int kBalanceIterations = 8;
+    /// ...stopping once the send scales change by less than this fraction (mean by area).
+    static constexpr double kBalanceTolerance = 1e-3;
+    /// An inserted object that may cover more than this fraction of a leaf's view has the
+    /// leaf's `seen` measured again (remeasureSeenNear).
+    static constexpr double kSeenChange = 0.01;
     /// A refinement round that refines at most this fraction of the links ends the rounds.
     static constexpr double kSettled = 1e-3;
     Verdict oracle(const Link& link) const;
@@ -290,7 +320,26 @@ class HierarchicalSolver {
     void gatherInto(const Link& l);
     /// Energy bound: sets gatherScale of the leaf elements with id >= firstNode from the
     /// sum G of their links' form factors (see the header).
-    void boundGather(size_t firstNode = 0);
+    /// Also the leaves in `also` (scene leaves an inserted object may change the view of).
+    void boundGather(size_t firstNode = 0, bool balance = false,
+                     const std::vector<int>* also = nullptr);
+    /// Measures `seen` again for the scene's leaves (ids < firstNode) whose view the
+    /// object `cluster` may change by more than kSeenChange; returns them (the insertion
+    /// record keeps their old measures).
+    std::vector<int> remeasureSeenNear(int cluster, size_t firstNode);
+    /// The row half of the energy bound: gatherScale of the leaves with id >= firstNode
+    /// and those in `also`.
+    void boundRows(size_t firstNode, const std::vector<Rgb>& Gd, const std::vector<int>* also);
+    /// The balance (send_balance.cpp): up to kBalanceIterations of sendScale of every
+    /// reflecting leaf (columns), then gatherScale of every leaf (rows); only of the
+    /// leaves with id >= firstNode (an inserted object's), the rest held as they are.
+    void balanceSends(const std::vector<Rgb>& Gd, size_t firstNode = 0,
+                      const std::vector<int>* also = nullptr);
+    /// gatherScale of a leaf that sees `seen` (+- seenError) and whose links' form factors
+    /// from reflecting sources (weighted by what they send) sum to g, and to the lamps gd.
+    static double rowScale(double seen, double seenError, double g, double gd);
+    /// Area-weighted mean of value(leaf element) at every node.
+    std::vector<double> meanOverLeaves(const std::function<double(const Node&)>& value) const;
     /// Scales the links from each emitting face so that they deliver its area times the
     /// fraction of its hemisphere that sees a surface (solve() and new light links only:
     /// after real-shadow removal has scaled light links on purpose it must not run). Only
@@ -348,7 +397,10 @@ class HierarchicalSolver {
     struct Insertion {
         std::vector<Link> links;  ///< links_ before (sorted by receiver)
         size_t passive = 0, polygons = 0, objects = 0, lights = 0;
-        std::vector<Rgb> B, H;  ///< per node before
+        std::vector<Rgb> B, Bsent, H;               ///< per node before
+        std::vector<std::array<double, 2>> scales;  ///< per node before: gather, send
+        /// Leaves whose `seen` the insertion measured again: (leaf, seen, seenError) before.
+        std::vector<std::tuple<int, double, double>> reseen;
         std::vector<DirectionalIrradiance> Hv;
         std::vector<Rgb> Hd;
         std::vector<int> retired;       ///< passive links retired by this insertion

@@ -116,6 +116,12 @@ TEST(DynamicObjects, InsertThenRemoveRestoresTheSolutionBitForBit) {
         const Node &a = solver.hierarchy().nodes[n], &b = nodes[n];
         ASSERT_TRUE(sameBits(a.B, b.B)) << n;
         ASSERT_TRUE(sameBits(a.H, b.H)) << n;
+        ASSERT_TRUE(sameBits(a.Bsent, b.Bsent)) << n;
+        // The energy bound's scales and measures (an insertion balances the object's
+        // leaves and those whose view it may change, and measures what they see again).
+        ASSERT_EQ(std::memcmp(&a.gatherScale, &b.gatherScale, sizeof a.gatherScale), 0) << n;
+        ASSERT_EQ(std::memcmp(&a.sendScale, &b.sendScale, sizeof a.sendScale), 0) << n;
+        ASSERT_EQ(std::memcmp(&a.seen, &b.seen, sizeof a.seen), 0) << n;
         ASSERT_EQ(a.parent, b.parent) << n;
         ASSERT_EQ(a.firstChild, b.firstChild) << n;
         ASSERT_EQ(a.level, b.level) << n;

@@ -17,6 +17,23 @@ using radiosity::test::boxFacesInward;
 using radiosity::test::cutRoom;
 using radiosity::test::lRoom;
 
+namespace {
+
+/// The area-weighted mean of the leaves' send scales below every node (what a source node
+/// sends per unit of its radiosity), computed here by plain recursion.
+double meanSend(const Hierarchy& h, int node, std::vector<double>& out) {
+    const Node& n = h.nodes[node];
+    if (n.isLeaf()) return out[node] = n.isCluster() ? 0.0 : n.sendScale;
+    double sum = 0, area = 0;
+    for (int k = 0; k < n.childCount; ++k) {
+        sum += meanSend(h, n.firstChild + k, out) * h.nodes[n.firstChild + k].area;
+        area += h.nodes[n.firstChild + k].area;
+    }
+    return out[node] = area > 0 ? sum / area : 0.0;
+}
+
+}  // namespace
+
 TEST(ProjectedArea, ExactForElementsAndFaceClusters) {
     Scene s;
     s.objects = {"wall"};
@@ -87,9 +104,13 @@ TEST(EnergyBound, CutRoomConvergesAndLinksAreBounded) {
         // the covered part sends is lost under the box (87-94 % absorbed at rho 0.95,
         // bench/RESULTS.md); see ClosedRoomAbsorbsWhatItsLampEmits for the room alone.
         EXPECT_LE(st.absorbedPower.r, 1.005 * st.emittedPower.r) << cut;
-        // The bound: on every leaf the form factors, after scaling, sum to at most 1.
+        // The bound: on every leaf the form factors, weighted by what the sources send and
+        // scaled by the leaf's gather scale, sum to at most 1 (what makes a sweep contract).
         const auto& nodes = solver.hierarchy().nodes;
-        const auto G = solver.gatherDown([&](int) { return Rgb::gray(1.0); }, true);
+        std::vector<double> send(nodes.size());
+        meanSend(solver.hierarchy(), Hierarchy::kRoot, send);
+        const auto G = solver.gatherDown(
+            [&](int s) { return Rgb::gray(reflects(nodes[s]) ? send[s] : 1.0); }, true);
         for (size_t n = 0; n < G.size(); ++n) {
             const Node& e = nodes[n];
             if (e.isCluster() || !e.isLeaf()) continue;
@@ -101,17 +122,53 @@ TEST(EnergyBound, CutRoomConvergesAndLinksAreBounded) {
 TEST(EnergyBound, ClosedRoomAbsorbsWhatItsLampEmits) {
     // The room alone, cut into triangles. Light bounces about 3 times (rho 0.7) or 14 times
     // (rho 0.95) before it is absorbed, so a form-factor sum 1 % short per bounce loses 3 %
-    // or 13 %. With every leaf's sum moved to what it sees, the room absorbs 97.6-99.2 % of
-    // what the lamp emits (bench/RESULTS.md; the issue asks 99 %, not yet met at every cut):
-    // asserted within 3 %. Without the bound, a cluster linked to its touching neighbour
-    // gained energy without end.
+    // or 13 %. Every leaf gathers what it sees and sends what it sees (the balance of rows
+    // and columns, solver.h), so the room absorbs what the lamp emits: 99.99 % at every cut
+    // and reflectance (bench/closed_room). Asserted: at least 99 % (the issue's figure) and
+    // no gain above 0.5 % (the lamp's links' sampled visibility). Before the columns were
+    // balanced it absorbed 97.6-99.3 %; without any bound, a cluster linked to its touching
+    // neighbour gained energy without end.
     for (double rho : {0.7, 0.95})
-        for (int cut : {1, 8}) {
+        for (int cut : {1, 2, 8}) {
             HierarchicalSolver solver(cutRoom(cut, rho, /*box=*/false), {});
             solver.solve();
             const SolverStats st = solver.stats();
-            EXPECT_NEAR(st.absorbedPower.r / st.emittedPower.r, 1.0, 0.03) << cut << " " << rho;
+            EXPECT_GE(st.absorbedPower.r / st.emittedPower.r, 0.99) << cut << " " << rho;
+            EXPECT_LE(st.absorbedPower.r / st.emittedPower.r, 1.005) << cut << " " << rho;
         }
+}
+
+TEST(EnergyBound, EveryLeafSendsWhatItSees) {
+    // The column half of the balance, checked through the solver's own gather rather than
+    // the balance's arithmetic: let one leaf m alone send radiosity 1 (each source node
+    // above it sends m's share, A_m sendScale_m / A_s), gather it into every leaf, and sum
+    // the power received, A_l G_l. By reciprocity it is A_m times the fraction of m's
+    // hemisphere that sees a surface (1 here: the room is closed). The balance alternates
+    // rows and columns and ends on the rows, so the columns are met to within what the
+    // last row pass moves: 2 % asserted (the same leaves were 0.6-1.3 before the balance).
+    HierarchicalSolver solver(cutRoom(2, 0.7, /*box=*/false), {});
+    solver.solve();
+    const auto& nodes = solver.hierarchy().nodes;
+    int checked = 0;
+    for (size_t m = 0; m < nodes.size() && checked < 40; m += 7) {
+        const Node& e = nodes[m];
+        if (e.isCluster() || !e.isLeaf() || !reflects(e)) continue;
+        std::vector<char> above(nodes.size(), 0);
+        for (int a = static_cast<int>(m); a >= 0; a = nodes[a].parent) above[a] = 1;
+        const auto G = solver.gatherDown(
+            [&](int s) {
+                return Rgb::gray(
+                    above[s] && nodes[s].area > 0 ? e.area * e.sendScale / nodes[s].area : 0.0);
+            },
+            true);
+        double received = 0;
+        for (size_t l = 0; l < nodes.size(); ++l)
+            if (!nodes[l].isCluster() && nodes[l].isLeaf()) received += G[l].r * nodes[l].area;
+        ASSERT_GE(e.seen, 0.0);
+        EXPECT_NEAR(received / e.area, e.seen, 0.02) << m;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 40);
 }
 
 TEST(EnergyBound, InsertedLightDeliversItsPower) {
