@@ -1,15 +1,23 @@
 // Light round a corner: an L-shaped enclosure lit in one arm only, the hierarchical
 // solution against the full-matrix reference (radiosity/reference_solver.h), per epsilon.
 //
-//   ./build/bench/leak_l_room [epsilons...]      (default 1e-3 1e-4 1e-5)
+//   ./build/bench/leak_l_room [--cut N] [--arm A|B] [--no-balance] [epsilons...]
+//                                                       (default 1e-3 1e-4 1e-5)
+//
+// --cut N cuts the faces into N x N quads (all of them, or only those of arm A or B with
+// --arm): the same room as many small polygons, which the solver clusters, rather than
+// 10 large ones, which it subdivides. --no-balance leaves out the balance of what leaves
+// send (radiosity/solver.h).
 //
 // The enclosure is 1 m high: arm A along x ([0,4] x [0,1]), arm B along y ([0,1] x [1,4]);
 // rho 0.6, one 0.4 m lamp under the ceiling at the far end of arm A. Arm B is lit only by
 // light that turned the corner. Printed: the ratio of the mean radiosity over arm B's far
 // half (y > 2.5) to the reference's, the same for arm A's far half (x > 2), links,
 // leaves and the share of the lamp's power absorbed (the enclosure is closed).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "radiosity/reference_solver.h"
@@ -19,14 +27,60 @@
 using namespace radiosity;
 using radiosity::test::lRoom;
 
+namespace {
+
+/// The room with its faces (of arm A or B only, or all with arm 0) cut into n x n quads;
+/// the lamp as it is.
+Scene cutFaces(const Scene& room, int n, char arm) {
+    if (n <= 1) return room;
+    Scene s = room;
+    s.polygons.clear();
+    for (Light& l : s.lights) l.polygons.clear();
+    for (const Polygon& p : room.polygons) {
+        const bool inB = p.centroid().y > 1.0;  // the x = 0 wall (y 0..4) counts as arm B
+        if (p.light >= 0 || (arm == 'A' && inB) || (arm == 'B' && !inB)) {
+            if (p.light >= 0) s.lights[p.light].polygons.push_back(int(s.polygons.size()));
+            s.polygons.push_back(p);
+            continue;
+        }
+        auto at = [&](double u, double v) {
+            return (1 - u) * (1 - v) * p.v[0] + u * (1 - v) * p.v[1] + u * v * p.v[2] +
+                   (1 - u) * v * p.v[3];
+        };
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                const double u0 = double(i) / n, u1 = double(i + 1) / n;
+                const double v0 = double(j) / n, v1 = double(j + 1) / n;
+                s.polygons.push_back(
+                    makePolygon({at(u0, v0), at(u1, v0), at(u1, v1), at(u0, v1)}, p.object, p.rho));
+            }
+    }
+    return s;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     std::printf("command:");
     for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
     std::printf("\n");
     std::vector<double> eps;
-    for (int i = 1; i < argc; ++i) eps.push_back(std::atof(argv[i]));
+    int cut = 1;
+    char arm = 0;
+    bool balance = true;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--cut" && i + 1 < argc)
+            cut = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--arm" && i + 1 < argc)
+            arm = argv[++i][0];
+        else if (a == "--no-balance")
+            balance = false;
+        else
+            eps.push_back(std::atof(argv[i]));
+    }
     if (eps.empty()) eps = {1e-3, 1e-4, 1e-5};
-    const Scene s = lRoom();
+    const Scene s = cutFaces(lRoom(), cut, arm);
     ReferenceOptions ro;
     ro.maxArea = 0.04;
     ReferenceSolver ref(s, ro);
@@ -37,6 +91,7 @@ int main(int argc, char** argv) {
     for (double e : eps) {
         SolverOptions o;
         o.epsilon = e;
+        o.balanceSends = balance;
         HierarchicalSolver solver(s, o);
         solver.solve();
         double hrB = 0, refB = 0, hrA = 0, refA = 0;

@@ -56,9 +56,6 @@ struct Node {
     Rgb rho;  ///< reflectance (cluster: area-weighted mean)
     Rgb E;    ///< emittance, radiosity units (cluster: area-weighted mean)
     Rgb B;    ///< radiosity, radiosity units (cluster: area-weighted mean of its contents)
-    /// What the node sends through its links: a leaf B sendScale, a cluster or inner
-    /// element the area-weighted mean of its children's (HierarchicalSolver, "energy bound").
-    Rgb Bsent;
     /// Element: irradiance gathered through its own links in the last gather from sources
     /// that reflect (Hd: from those that do not, the lamps' emitting faces).
     Rgb H, Hd;
@@ -66,14 +63,19 @@ struct Node {
     /// Leaf element: factor on what it gathers from sources that reflect, seen / G
     /// (HierarchicalSolver, "energy bound"); 1 until measured.
     double gatherScale = 1;
-    /// Leaf element: factor on what it sends through its links (the column balance of the
-    /// energy bound); 1 until balanced, and for a face that does not reflect.
-    double sendScale = 1;
     /// Leaf element: the fraction of its cosine-weighted hemisphere in which it sees the
     /// front of a surface, measured by ray casting (-1 until measured), and the
     /// standard error of that measurement (0 when every ray or none saw one).
     double seen = -1, seenError = 0;
     bool emitting = false;  ///< an emitter with E > 0 lies in this node
+    // The balance of sends, last: the fields above keep their offsets, which the solver's
+    // hot loops were laid out against.
+    /// What the node sends through its links: a leaf B sendScale, a cluster or inner
+    /// element the area-weighted mean of its children's (HierarchicalSolver, "energy bound").
+    Rgb Bsent;
+    /// Leaf element: factor on what it sends through its links (the column balance of the
+    /// energy bound); 1 until balanced, and for a face that does not reflect.
+    double sendScale = 1;
 
     bool isCluster() const { return kind == NodeKind::cluster; }
     bool isLeaf() const { return childCount == 0; }

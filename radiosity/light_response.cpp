@@ -27,6 +27,10 @@ struct SweepLayout {
     std::vector<int> ancestorStart;    ///< per root: [start[i], start[i + 1]) in the two below
     std::vector<int> ancestorSlot;
     std::vector<Vec3> ancestorNormal;  ///< the root's normal in that ancestor's frame
+    /// Per run of a cluster receiver: its links' source directions in its frame,
+    /// dir[dirStart[run] + k] for its k-th link (-1 for an element receiver).
+    std::vector<int> dirStart;
+    std::vector<Vec3> dir;
 
     SweepLayout(const Hierarchy& h, const std::vector<Link>& links) {
         const auto& nodes = h.nodes;
@@ -43,6 +47,14 @@ struct SweepLayout {
             if (nodes[r].isCluster() && clusterSlot[r] < 0) clusterSlot[r] = slots++;
         }
         runStart.push_back(static_cast<int>(links.size()));
+        dirStart.assign(runStart.size() - 1, -1);
+        for (size_t run = 0; run + 1 < runStart.size(); ++run) {
+            const Node& R = nodes[links[runStart[run]].receiver];
+            if (!R.isCluster()) continue;
+            dirStart[run] = static_cast<int>(dir.size());
+            for (int k = runStart[run]; k < runStart[run + 1]; ++k)
+                dir.push_back(toFrame(R, linkDirection(R, nodes[links[k].source])));
+        }
         h.clustersAndRoots(clustersTopDown, roots);
         ancestorStart.reserve(roots.size() + 1);
         for (int root : roots) {
@@ -143,19 +155,17 @@ class ResponseSweeps {
     void gatherRun(const std::vector<Node>& nodes, size_t run) {
         const int first = layout_.runStart[run], last = layout_.runStart[run + 1];
         const int r = links_[first].receiver;
-        const Node& R = nodes[r];
         const int slot = layout_.clusterSlot[r];
         for (int k = first; k < last; ++k) {
             const Link& link = links_[k];
-            const Node& S = nodes[link.source];
             const double FV = link.F * static_cast<double>(link.V);
             const Rgb* Bs = S_[link.source];  // what the source sends
             if (slot >= 0) {
-                const Vec3 w = toFrame(R, linkDirection(R, S));
+                const Vec3& w = layout_.dir[layout_.dirStart[run] + (k - first)];
                 DirectionalIrradiance* Hv = Hv_.data() + static_cast<size_t>(slot) * K_;
                 for (int l = 0; l < K_; ++l) Hv[l].add(Bs[l] * FV, w);
             } else {
-                Rgb* H = reflects(S) ? H_[r] : Hd_[r];
+                Rgb* H = reflects(nodes[link.source]) ? H_[r] : Hd_[r];
                 for (int l = 0; l < K_; ++l) H[l] += Bs[l] * FV;
             }
         }

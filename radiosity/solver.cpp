@@ -354,6 +354,8 @@ void HierarchicalSolver::buildReceiverIndex(size_t sortedPrefix) {
     receiverSlot_.assign(h_.nodes.size(), -1);
     for (size_t i = 0; i < receivers_.size(); ++i)
         receiverSlot_[receivers_[i]] = static_cast<int>(i);
+    layout_.valid = false;
+    clearAll_ = true;
 }
 
 std::span<const Link> HierarchicalSolver::linksOf(int node) const {
@@ -363,108 +365,6 @@ std::span<const Link> HierarchicalSolver::linksOf(int node) const {
     const int i = receiverSlot_[node];
     return {links_.data() + receiverStart_[i],
             static_cast<size_t>(receiverStart_[i + 1] - receiverStart_[i])};
-}
-
-void HierarchicalSolver::pushPull(int node, const Rgb& Hdown, const Rgb& HdDown) {
-    Node& n = h_.nodes[node];
-    Rgb H, Hd;
-    if (!n.isCluster()) {
-        // An element: what its ancestor elements gathered and its own links; a polygon's
-        // root element also what the clusters above it gathered, by its orientation.
-        const bool root = n.parent < 0 || h_.nodes[n.parent].isCluster();
-        H = Hdown + n.H +
-            (root ? fromClusters(
-                        h_, node,
-                        [&](int a) -> const DirectionalIrradiance& { return h_.nodes[a].Hv; })
-                  : Rgb{});
-        Hd = HdDown + n.Hd;
-        if (n.isLeaf()) {
-            n.B = n.E + n.rho * (Hd + H * n.gatherScale);
-            n.Bsent = n.B * n.sendScale;
-            return;
-        }
-    }
-    // Push down, pull B up as the area-weighted mean.
-    Rgb B, Bsent;
-    double area = 0;
-    const int first = n.firstChild, count = n.childCount;
-    for (int k = 0; k < count; ++k) {
-        pushPull(first + k, H, Hd);
-        const Node& c = h_.nodes[first + k];
-        B += c.B * c.area;
-        Bsent += c.Bsent * c.area;
-        area += c.area;
-    }
-    Node& m = h_.nodes[node];
-    m.B = area > 0 ? B * (1.0 / area) : Rgb{};  // guard: no area below
-    m.Bsent = area > 0 ? Bsent * (1.0 / area) : Rgb{};
-}
-
-void HierarchicalSolver::pushPullAll() {
-    // The polygons' element trees are independent once their cluster ancestors have
-    // gathered: each is pushed down and pulled up on its own, in parallel; then the
-    // clusters take their means bottom-up. The sums are those of pushPull(root) in the
-    // same order, so the result does not depend on the thread count.
-    std::vector<int> clusters, roots;
-    h_.clustersAndRoots(clusters, roots);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, roots.size(), 256),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              pushPull(roots[i], Rgb{}, Rgb{});
-                      });
-    for (auto it = clusters.rbegin(); it != clusters.rend(); ++it) {
-        Node& n = h_.nodes[*it];
-        Rgb B, Bsent;
-        double area = 0;
-        for (int k = 0; k < n.childCount; ++k) {
-            const Node& c = h_.nodes[n.firstChild + k];
-            B += c.B * c.area;
-            Bsent += c.Bsent * c.area;
-            area += c.area;
-        }
-        n.B = area > 0 ? B * (1.0 / area) : Rgb{};  // guard: no area below
-        n.Bsent = area > 0 ? Bsent * (1.0 / area) : Rgb{};
-    }
-}
-
-void HierarchicalSolver::gatherInto(const Link& l) {
-    Node& R = h_.nodes[l.receiver];
-    const Node& S = h_.nodes[l.source];
-    const Rgb H = S.Bsent * (l.F * static_cast<double>(l.V));
-    if (R.isCluster())
-        R.Hv.add(H, toFrame(R, linkDirection(R, S)));
-    else if (reflects(S))
-        R.H += H;
-    else
-        R.Hd += H;
-}
-
-double HierarchicalSolver::sweep() {
-    if (indexDirty_) finishSplits();
-    auto t0 = Clock::now();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, h_.nodes.size(), 4096),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i) {
-                              Node& n = h_.nodes[i];
-                              n.H = n.Hd = Rgb{};
-                              n.Hv = DirectionalIrradiance{};
-                          }
-                      });
-    // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
-    // result does not depend on the thread count.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k)
-                                  gatherInto(links_[k]);
-                      });
-    timing_.timeGather += secondsSince(t0);
-    t0 = Clock::now();
-    pushPullAll();
-    timing_.timePushPull += secondsSince(t0);
-    ++timing_.sweeps;
-    const Node& root = h_.nodes[Hierarchy::kRoot];
-    return root.B.maxComponent() * root.area;
 }
 
 std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& value,

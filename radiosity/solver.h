@@ -318,6 +318,8 @@ class HierarchicalSolver {
     bool withinBudget(size_t queued) const;
     /// Adds what link l brings to its receiver's H (element) or Hv (cluster).
     void gatherInto(const Link& l);
+    /// The same for all the links of receivers_[i] (the layout's directions: valid layout).
+    void gatherRun(size_t i);
     /// Energy bound: sets gatherScale of the leaf elements with id >= firstNode from the
     /// sum G of their links' form factors (see the header).
     /// Also the leaves in `also` (scene leaves an inserted object may change the view of).
@@ -363,6 +365,10 @@ class HierarchicalSolver {
     /// already be sorted (the rest is sorted and merged in, linear time).
     void buildReceiverIndex(size_t sortedPrefix = 0);
     void pushPull(int node, const Rgb& Hdown, const Rgb& HdDown);
+    /// What the cluster ancestors of a polygon's root element gathered, by its normal.
+    Rgb fromClusterAncestors(int element) const;
+    /// The compact layout the gather and push-pull read (gather_push_pull.cpp).
+    void buildPushPullLayout();
     /// pushPull from the root: the polygons' element trees in parallel, then the clusters.
     void pushPullAll();
     bool canSplit(int node) const;
@@ -387,6 +393,23 @@ class HierarchicalSolver {
     bool started_ = false;
     bool changedInRefine_ = false;
     bool indexDirty_ = false;  ///< links_ changed since buildReceiverIndex
+    /// What the push-pull reads: per node its parent and (receiving clusters) a slot, per
+    /// slot the cluster's frame; the clusters and the polygons' root elements. Rebuilt
+    /// after buildReceiverIndex and when the node count changes.
+    struct PushPullLayout {
+        bool valid = false;
+        size_t nodes = 0;
+        std::vector<int> parent, slot, clusters, roots;
+        std::vector<std::array<Vec3, 3>> frame;
+        /// Per receiver run i of a cluster: its links' source directions in its frame,
+        /// dir[dirStart[i] + k] for its k-th link (-1 for an element receiver).
+        std::vector<int> dirStart;
+        std::vector<Vec3> dir;
+    };
+    PushPullLayout layout_;
+    /// The next sweep clears every node's irradiance, not only the receivers' (the links
+    /// changed: a node that stopped receiving still holds its last sum).
+    bool clearAll_ = true;
     struct SplitRecord {
         int leaf = -1;
         std::vector<Link> removed;  ///< the leaf's light links, moved to passive_
