@@ -11,6 +11,7 @@
 
 #include "radiosity/rng.h"
 #include "radiosity/solver.h"
+#include "radiosity/tree_walks.h"
 
 namespace radiosity {
 
@@ -96,32 +97,19 @@ void HierarchicalSolver::boundRows(size_t firstNode, const std::vector<Rgb>& Gd,
 
 std::vector<double> HierarchicalSolver::meanOverLeaves(
     const std::function<double(const Node&)>& value) const {
-    // Area-weighted means, children before parents (parents do not always precede their
-    // children in the node array: an attached object's cluster).
     const auto& nodes = h_.nodes;
-    std::vector<double> out(nodes.size(), 0.0);
-    std::vector<int> order{Hierarchy::kRoot}, stack{Hierarchy::kRoot};
-    order.clear();
-    while (!stack.empty()) {
-        const int n = stack.back();
-        stack.pop_back();
-        order.push_back(n);
-        for (int k = 0; k < nodes[n].childCount; ++k) stack.push_back(nodes[n].firstChild + k);
+    const std::vector<int> pre = preOrder(h_);
+    std::vector<int> parent(nodes.size(), -1);
+    std::vector<double> x(nodes.size(), 0.0), xa(nodes.size(), 0.0);
+    for (int n : pre) {
+        const Node& e = nodes[n];
+        parent[n] = e.parent;
+        if (e.isCluster() || !e.isLeaf()) continue;
+        x[n] = value(e) * e.area;
+        xa[n] = e.area;
     }
-    for (auto it = order.rbegin(); it != order.rend(); ++it) {
-        const Node& n = nodes[*it];
-        if (n.isLeaf()) {
-            out[*it] = n.isCluster() ? 0.0 : value(n);
-            continue;
-        }
-        double sum = 0, area = 0;
-        for (int k = 0; k < n.childCount; ++k) {
-            sum += out[n.firstChild + k] * nodes[n.firstChild + k].area;
-            area += nodes[n.firstChild + k].area;
-        }
-        out[*it] = area > 0 ? sum / area : 0.0;  // guard: no area below
-    }
-    return out;
+    pullUp(pre, parent, x, xa, /*mean=*/true);
+    return x;
 }
 
 void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {

@@ -13,6 +13,7 @@
 
 #include "radiosity/solver.h"
 #include "radiosity/stopwatch.h"
+#include "radiosity/tree_walks.h"
 
 namespace radiosity {
 
@@ -93,11 +94,9 @@ Rgb HierarchicalSolver::fromClusterAncestors(int element) const {
         }
         return H;
     }
-    for (int a = e.parent; a >= 0; a = h_.nodes[a].parent) {  // no layout: the nodes
-        const DirectionalIrradiance& d = h_.nodes[a].Hv;
-        if (!d.isZero()) H += d.onto(toFrame(h_.nodes[a], e.normal));
-    }
-    return H;
+    // No layout (an object being linked): the walk over the nodes.
+    return fromClusters(h_, element,
+                        [&](int a) -> const DirectionalIrradiance& { return h_.nodes[a].Hv; });
 }
 
 double HierarchicalSolver::sweep() {

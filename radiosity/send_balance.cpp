@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "radiosity/solver.h"
+#include "radiosity/tree_walks.h"
 
 namespace radiosity {
 
@@ -47,22 +48,18 @@ void HierarchicalSolver::balanceSends(const std::vector<Rgb>& Gd, size_t firstNo
 
     // Topology: every node after its parent (pre-order), parents, areas; the clusters and
     // the polygons' root elements.
-    std::vector<int> pre, parent(N, -1);
+    const std::vector<int> pre = preOrder(h_);
+    std::vector<int> parent(N, -1);
     std::vector<double> area(N);
     std::vector<char> cluster(N), reflecting(N);
     std::vector<Vec3> centre(N);
-    pre.reserve(N);
-    for (std::vector<int> stack{Hierarchy::kRoot}; !stack.empty();) {
-        const int n = stack.back();
-        stack.pop_back();
-        pre.push_back(n);
+    for (int n : pre) {
         const Node& node = nodes[n];
         parent[n] = node.parent;
         area[n] = node.area;
         cluster[n] = node.isCluster();
         reflecting[n] = reflects(node);
         centre[n] = node.centre;
-        for (int k = 0; k < node.childCount; ++k) stack.push_back(node.firstChild + k);
     }
     // The clusters that receive light from a reflecting source (their slots), and the
     // polygons' root elements.
@@ -153,7 +150,7 @@ void HierarchicalSolver::balanceSends(const std::vector<Rgb>& Gd, size_t firstNo
 
     std::vector<double> x(N), xa(N), P(N), C(N);
     std::vector<Bins> bins(clusters.size());
-    // Sums (weight 1) or area means of per-leaf values over every node, children first.
+    // Sums (weight 1) or area means of per-leaf values over every node (tree_walks.h).
     auto pull = [&](const std::vector<double>& leafValue, bool mean) {
         std::fill(x.begin(), x.end(), 0.0);
         std::fill(xa.begin(), xa.end(), 0.0);
@@ -161,13 +158,7 @@ void HierarchicalSolver::balanceSends(const std::vector<Rgb>& Gd, size_t firstNo
             x[leaves[i]] = mean ? leafValue[i] * area[leaves[i]] : leafValue[i];
             xa[leaves[i]] = area[leaves[i]];
         }
-        for (auto it = pre.rbegin(); it != pre.rend(); ++it)
-            if (parent[*it] >= 0) {
-                x[parent[*it]] += x[*it];
-                xa[parent[*it]] += xa[*it];
-            }
-        if (mean)
-            for (size_t n = 0; n < N; ++n) x[n] = xa[n] > 0 ? x[n] / xa[n] : 0.0;  // guard
+        pullUp(pre, parent, x, xa, mean);
     };
 
     bool settled = false;

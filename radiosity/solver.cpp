@@ -1,6 +1,7 @@
 #include "radiosity/solver.h"
 #include "radiosity/rng.h"
 #include "radiosity/stopwatch.h"
+#include "radiosity/tree_walks.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -18,19 +19,6 @@
 namespace radiosity {
 
 namespace {
-
-/// What the cluster ancestors of a polygon's root element hand it: each one's directional
-/// irradiance taken by the element's normal in that cluster's frame.
-template <class OwnHv>
-Rgb fromClusters(const Hierarchy& h, int element, const OwnHv& ownHv) {
-    const Node& e = h.nodes[element];
-    Rgb H;
-    for (int a = e.parent; a >= 0; a = h.nodes[a].parent) {
-        const DirectionalIrradiance& d = ownHv(a);
-        if (!d.isZero()) H += d.onto(toFrame(h.nodes[a], e.normal));
-    }
-    return H;
-}
 
 /// The irradiance at every element node from what each node gathered itself (ownH for an
 /// element, ownHv for a cluster), handed down as pushPull() hands it: element children
