@@ -3,6 +3,11 @@
 //
 //   ./build/bench/leak_l_room [--cut N] [--arm A|B] [--no-balance] [epsilons...]
 //                                                       (default 1e-3 1e-4 1e-5)
+//   ./build/bench/leak_l_room --reference-areas 0.02 0.01
+//
+// --reference-areas checks the yardstick instead: the reference solved again with
+// elements of at most each given area (m^2), its arm B far half against the 0.04 m^2
+// one's (1: the reference is converged, so the ratios above measure the solver).
 //
 // --cut N cuts the faces into N x N quads (all of them, or only those of arm A or B with
 // --arm): the same room as many small polygons, which the solver clusters, rather than
@@ -67,10 +72,12 @@ int main(int argc, char** argv) {
     std::vector<double> eps;
     int cut = 1;
     char arm = 0;
-    bool balance = true;
+    bool balance = true, referenceAreas = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--cut" && i + 1 < argc)
+        if (a == "--reference-areas")
+            referenceAreas = true;
+        else if (a == "--cut" && i + 1 < argc)
             cut = std::max(1, std::atoi(argv[++i]));
         else if (a == "--arm" && i + 1 < argc)
             arm = argv[++i][0];
@@ -79,13 +86,35 @@ int main(int argc, char** argv) {
         else
             eps.push_back(std::atof(argv[i]));
     }
-    if (eps.empty()) eps = {1e-3, 1e-4, 1e-5};
+    if (eps.empty())
+        eps = referenceAreas ? std::vector<double>{0.02, 0.01}
+                             : std::vector<double>{1e-3, 1e-4, 1e-5};
     const Scene s = cutFaces(lRoom(), cut, arm);
     ReferenceOptions ro;
     ro.maxArea = 0.04;
     ReferenceSolver ref(s, ro);
     ref.solve();
     std::printf("reference: %zu elements of at most 0.04 m^2\n", ref.leaves().size());
+    if (referenceAreas) {
+        // Each finer reference read at the 0.04 m^2 reference's element centres, weighted
+        // by their areas: the same mean as below.
+        for (double area : eps) {
+            ReferenceOptions fine;
+            fine.maxArea = area;
+            ReferenceSolver other(s, fine);
+            other.solve();
+            double a = 0, b = 0;
+            for (int leaf : ref.leaves()) {
+                const Node& n = ref.hierarchy().nodes[leaf];
+                if (n.emitting || n.centre.y < 2.5) continue;
+                a += other.radiosityAt(n.polygon, n.centre).r * n.area;
+                b += n.B.r * n.area;
+            }
+            std::printf("reference at %g m^2 (%zu elements): arm B far %.4fx the 0.04 m^2 one\n",
+                        area, other.leaves().size(), a / b);
+        }
+        return 0;
+    }
     std::printf("%8s %14s %14s %9s %8s %9s\n", "epsilon", "arm B far", "arm A far", "links",
                 "leaves", "absorbed");
     for (double e : eps) {
