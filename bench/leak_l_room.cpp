@@ -63,6 +63,27 @@ Scene cutFaces(const Scene& room, int n, char arm) {
     return s;
 }
 
+/// The ratio of solution B's area-weighted mean over the reference's elements in a
+/// region (inside(centre)) to the reference's own: B is read at each element's centre.
+template <class Solution, class Inside>
+double regionRatio(const ReferenceSolver& ref, const Solution& B, const Inside& inside) {
+    double num = 0, den = 0;
+    for (int leaf : ref.leaves()) {
+        const Node& n = ref.hierarchy().nodes[leaf];
+        if (n.emitting || !inside(n.centre)) continue;
+        num += B(n.polygon, n.centre) * n.area;
+        den += n.B.r * n.area;
+    }
+    return den > 0 ? num / den : 0.0;  // guard: an empty region
+}
+
+bool armBFar(const Vec3& c) {
+    return c.y >= 2.5;
+}
+bool armAFar(const Vec3& c) {
+    return c.x >= 2.0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -99,19 +120,19 @@ int main(int argc, char** argv) {
         // Each finer reference read at the 0.04 m^2 reference's element centres, weighted
         // by their areas: the same mean as below.
         for (double area : eps) {
+            if (!(area > 0)) {
+                std::fprintf(stderr, "leak_l_room: --reference-areas needs areas > 0 m^2, got %g\n",
+                             area);
+                return 2;
+            }
             ReferenceOptions fine;
             fine.maxArea = area;
             ReferenceSolver other(s, fine);
             other.solve();
-            double a = 0, b = 0;
-            for (int leaf : ref.leaves()) {
-                const Node& n = ref.hierarchy().nodes[leaf];
-                if (n.emitting || n.centre.y < 2.5) continue;
-                a += other.radiosityAt(n.polygon, n.centre).r * n.area;
-                b += n.B.r * n.area;
-            }
+            const double ratio = regionRatio(
+                ref, [&](int p, const Vec3& x) { return other.radiosityAt(p, x).r; }, armBFar);
             std::printf("reference at %g m^2 (%zu elements): arm B far %.4fx the 0.04 m^2 one\n",
-                        area, other.leaves().size(), a / b);
+                        area, other.leaves().size(), ratio);
         }
         return 0;
     }
@@ -123,23 +144,10 @@ int main(int argc, char** argv) {
         o.balanceSends = balance;
         HierarchicalSolver solver(s, o);
         solver.solve();
-        double hrB = 0, refB = 0, hrA = 0, refA = 0;
-        const Hierarchy& h = ref.hierarchy();
-        for (int leaf : ref.leaves()) {
-            const Node& n = h.nodes[leaf];
-            if (n.emitting) continue;
-            const double b = solver.radiosityAt(n.polygon, n.centre).r;
-            if (n.centre.y >= 2.5) {
-                hrB += b * n.area;
-                refB += n.B.r * n.area;
-            }
-            if (n.centre.x >= 2.0) {
-                hrA += b * n.area;
-                refA += n.B.r * n.area;
-            }
-        }
+        const auto hr = [&](int p, const Vec3& x) { return solver.radiosityAt(p, x).r; };
+        const double ratioB = regionRatio(ref, hr, armBFar), ratioA = regionRatio(ref, hr, armAFar);
         const SolverStats st = solver.stats();
-        std::printf("%8.0e %13.3fx %13.3fx %9d %8d %8.1f%%\n", e, hrB / refB, hrA / refA, st.links,
+        std::printf("%8.0e %13.3fx %13.3fx %9d %8d %8.1f%%\n", e, ratioB, ratioA, st.links,
                     st.leaves, 100 * st.absorbedPower.r / st.emittedPower.r);
     }
     return 0;
