@@ -1,8 +1,8 @@
 // Light round a corner: an L-shaped enclosure lit in one arm only, the hierarchical
 // solution against the full-matrix reference (radiosity/reference_solver.h), per epsilon.
 //
-//   ./build/bench/leak_l_room [--cut N] [--arm A|B] [--no-balance] [epsilons...]
-//                                                       (default 1e-3 1e-4 1e-5)
+//   ./build/bench/leak_l_room [--cut N] [--arm A|B] [--no-balance] [--rays MIN MAX]
+//                             [epsilons...]             (default 1e-3 1e-4 1e-5)
 //   ./build/bench/leak_l_room --reference-areas 0.02 0.01
 //
 // --reference-areas checks the yardstick instead: the reference solved again with
@@ -12,7 +12,8 @@
 // --cut N cuts the faces into N x N quads (all of them, or only those of arm A or B with
 // --arm): the same room as many small polygons, which the solver clusters, rather than
 // 10 large ones, which it subdivides. --no-balance leaves out the balance of what leaves
-// send (radiosity/solver.h).
+// send (radiosity/solver.h). --rays sets the links' visibility rays: MIN first, MAX in all
+// in penumbra (TransferOptions).
 //
 // The enclosure is 1 m high: arm A along x ([0,4] x [0,1]), arm B along y ([0,1] x [1,4]);
 // rho 0.6, one 0.4 m lamp under the ceiling at the far end of arm A. Arm B is lit only by
@@ -94,6 +95,7 @@ int main(int argc, char** argv) {
     int cut = 1;
     char arm = 0;
     bool balance = true, referenceAreas = false;
+    int minRays = TransferOptions{}.minRays, maxRays = TransferOptions{}.maxRays;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--reference-areas")
@@ -104,7 +106,10 @@ int main(int argc, char** argv) {
             arm = argv[++i][0];
         else if (a == "--no-balance")
             balance = false;
-        else
+        else if (a == "--rays" && i + 2 < argc) {
+            minRays = std::atoi(argv[++i]);
+            maxRays = std::atoi(argv[++i]);
+        } else
             eps.push_back(std::atof(argv[i]));
     }
     if (eps.empty())
@@ -142,6 +147,8 @@ int main(int argc, char** argv) {
         SolverOptions o;
         o.epsilon = e;
         o.balanceSends = balance;
+        o.transfer.minRays = minRays;
+        o.transfer.maxRays = maxRays;
         HierarchicalSolver solver(s, o);
         solver.solve();
         const auto hr = [&](int p, const Vec3& x) { return solver.radiosityAt(p, x).r; };

@@ -248,20 +248,15 @@ TEST(Budget, MemoryBudgetIsRespected) {
     EXPECT_LE(st.memoryBytes, o.maxMemory + st.leaves * (2 * sizeof(Link) + sizeof(Node)));
 }
 
-// Not yet met, so not run: the hierarchical solution lights arm B 2.3 times as brightly as
-// the reference (0.0046 against 0.0020; bench/RESULTS.md). The target of the next step.
-TEST(Leaks, DISABLED_LShapedRoomLitInOneArmMatchesTheReference) {
-    // Arm B is lit only by light that turned the corner. A cluster link that handed its
-    // irradiance to surfaces facing away, or carried no visibility, lit it 2-4 times too
-    // brightly. Mean radiosity of arm B's far half (y > 2.5: floor, ceiling and walls)
-    // against the full-matrix reference: within 10 %.
-    const Scene s = lRoom();
-    HierarchicalSolver solver(s, {});
+namespace {
+
+/// Mean radiosity of the L-shaped room's arm B far half (y > 2.5: floor, ceiling and
+/// walls) in the hierarchical solution at `epsilon`, over the full-matrix reference's.
+double lRoomArmBRatio(const ReferenceSolver& ref, double epsilon) {
+    SolverOptions o;
+    o.epsilon = epsilon;
+    HierarchicalSolver solver(lRoom(), o);
     solver.solve();
-    ReferenceOptions ro;
-    ro.maxArea = 0.04;
-    ReferenceSolver ref(s, ro);
-    ref.solve();
     double hr = 0, truth = 0, area = 0;
     const Hierarchy& h = ref.hierarchy();
     for (int leaf : ref.leaves()) {
@@ -271,7 +266,43 @@ TEST(Leaks, DISABLED_LShapedRoomLitInOneArmMatchesTheReference) {
         truth += e.B.r * e.area;
         area += e.area;
     }
-    ASSERT_GT(area, 4.0);
-    ASSERT_GT(truth, 0.0);
-    EXPECT_NEAR(hr / truth, 1.0, 0.10) << "HR " << hr / area << " reference " << truth / area;
+    EXPECT_GT(area, 4.0);  // floor, ceiling, two side walls and the end of the far half
+    return truth > 0 ? hr / truth : 0.0;
+}
+
+/// The reference's elements: at most 0.04 m^2, converged (0.9998 x at 0.02 m^2,
+/// bench/leak_l_room --reference-areas).
+ReferenceOptions lRoomReference() {
+    ReferenceOptions ro;
+    ro.maxArea = 0.04;
+    return ro;
+}
+
+}  // namespace
+
+// Light does not pass through the wall: as epsilon falls, arm B (lit only by light that
+// turned the corner) converges to the reference. A link that carried no visibility, or a
+// cluster that handed its irradiance to surfaces facing away, would leave a bias that no
+// refinement removes. Measured (bench/RESULTS.md, 2026-11-24): 6.24, 2.14, 1.39 x at
+// 1e-3, 1e-4, 1e-5 (1.12 x at 1e-6). Asserted: each decade at least halves the excess
+// (measured: 4.8 and 2.9 times smaller), and at 1e-5 arm B is within 1.6 x.
+TEST(Leaks, LShapedRoomConvergesToTheReferenceAsEpsilonFalls) {
+    ReferenceSolver ref(lRoom(), lRoomReference());
+    ref.solve();
+    const double r3 = lRoomArmBRatio(ref, 1e-3), r4 = lRoomArmBRatio(ref, 1e-4),
+                 r5 = lRoomArmBRatio(ref, 1e-5);
+    EXPECT_LT(std::abs(r4 - 1), 0.5 * std::abs(r3 - 1)) << r3 << " " << r4;
+    EXPECT_LT(std::abs(r5 - 1), 0.5 * std::abs(r4 - 1)) << r4 << " " << r5;
+    EXPECT_NEAR(r5, 1.0, 0.6);
+}
+
+// Not yet met, so not run: at the default epsilon (1e-3) the hierarchical solution lights
+// arm B 6.2 times as brightly as the reference. Arm B holds 0.3 % of the light, and the BF
+// criterion weighs each link against the lamps' whole power, so arm B is resolved by a few
+// coarse links (bench/RESULTS.md, "light round a corner"). The bound: within 10 %.
+TEST(Leaks, DISABLED_LShapedRoomLitInOneArmMatchesTheReference) {
+    ReferenceSolver ref(lRoom(), lRoomReference());
+    ref.solve();
+    const double r = lRoomArmBRatio(ref, SolverOptions{}.epsilon);
+    EXPECT_NEAR(r, 1.0, 0.10);
 }
