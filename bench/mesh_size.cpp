@@ -33,9 +33,9 @@
 
 #include "bench/bench_util.h"
 #include "bench/plot.h"
-#include "radiosity/rng.h"
-#include "relight/edit_file.h"
-#include "relight/metric.h"
+#include "radiosity/detail/rng.h"
+#include "relight/display/metric.h"
+#include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 
 using namespace relight;

@@ -24,10 +24,10 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "relight/dynamic_relighting.h"
-#include "relight/edit_file.h"
-#include "relight/image.h"
-#include "relight/metric.h"
+#include "relight/display/metric.h"
+#include "relight/dynamic/dynamic_relighting.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/image.h"
 #include "relight/relighting.h"
 
 using namespace relight;

@@ -37,7 +37,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_util.h"
-#include "relight/edit_file.h"
+#include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 
 using namespace relight;

@@ -29,12 +29,12 @@
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/solver.h"
-#include "relight/image.h"
-#include "relight/item_buffer.h"
-#include "relight/lighting_buffer.h"
-#include "relight/metric.h"
-#include "relight/reflectance.h"
-#include "relight/scene_file.h"
+#include "relight/display/metric.h"
+#include "relight/io/image.h"
+#include "relight/io/scene_file.h"
+#include "relight/pipeline/item_buffer.h"
+#include "relight/pipeline/lighting_buffer.h"
+#include "relight/pipeline/reflectance.h"
 
 using namespace radiosity;
 using bench::Clock;

@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "relight/edit_file.h"
-#include "relight/image.h"
-#include "relight/metric.h"
+#include "relight/display/metric.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/image.h"
 #include "relight/relighting.h"
 
 using namespace relight;

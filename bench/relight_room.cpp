@@ -25,11 +25,11 @@
 
 #include "bench/bench_util.h"
 #include "radiosity/final_gather.h"
-#include "relight/edit_file.h"
-#include "relight/image.h"
-#include "relight/metric.h"
+#include "relight/display/metric.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/image.h"
+#include "relight/pipeline/vertex_lighting.h"
 #include "relight/relighting.h"
-#include "relight/vertex_lighting.h"
 
 using namespace relight;
 using bench::Clock;

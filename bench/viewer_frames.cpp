@@ -43,11 +43,11 @@
 #include <unistd.h>
 
 #include "bench/bench_util.h"
-#include "relight/camera.h"
-#include "relight/edit_file.h"
-#include "relight/image.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/image.h"
+#include "relight/io/scene_file.h"
+#include "relight/pipeline/camera.h"
 #include "relight/relighting.h"
-#include "relight/scene_file.h"
 #include "viewer/frame.h"
 #include "viewer/gl_window.h"
 #include "viewer/gpu_display.h"

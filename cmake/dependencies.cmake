@@ -13,7 +13,7 @@ find_package(glm REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 2 REQUIRED)
 find_package(TBB REQUIRED)
-# PLY and glTF geometry (relight/mesh_reader.h). Debian's config also needs draco's, which
+# PLY and glTF geometry (relight/io/mesh_reader.h). Debian's config also needs draco's, which
 # libassimp-dev pulls in.
 find_package(assimp 5 CONFIG QUIET)
 if(NOT assimp_FOUND)

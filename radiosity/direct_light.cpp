@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "radiosity/form_factor.h"
-#include "radiosity/rng.h"
+#include "radiosity/detail/form_factor.h"
+#include "radiosity/detail/rng.h"
 
 namespace radiosity {
 

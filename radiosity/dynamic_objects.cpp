@@ -19,7 +19,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "radiosity/shaft.h"
+#include "radiosity/detail/shaft.h"
 #include "radiosity/solver.h"
 #include "radiosity/stopwatch.h"
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "radiosity/rng.h"
+#include "radiosity/detail/rng.h"
 #include "radiosity/solver.h"
 #include "radiosity/tree_walks.h"
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include "radiosity/form_factor.h"
-#include "radiosity/rng.h"
-#include "radiosity/transfer.h"
+#include "radiosity/detail/form_factor.h"
+#include "radiosity/detail/rng.h"
+#include "radiosity/detail/transfer.h"
 
 namespace radiosity {
 

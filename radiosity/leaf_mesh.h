@@ -18,7 +18,7 @@
 // A leaf may also be displayed finer than it is solved: split s times, it is cut as
 // Hierarchy::subdivide would cut it, into 4^s pieces, and the pieces' corners are vertices
 // too. A leaf's value is one constant, but the light at its vertices (direct light with its
-// shadow rays, and the final gather; relight/vertex_lighting.h) is measured at each point,
+// shadow rays, and the final gather; relight/pipeline/vertex_lighting.h) is measured at each point,
 // so more vertices draw shadows and gradients that the leaf's single value cannot. A
 // triangle has half as many corners per element as a quad (a mesh of n triangles has about
 // n/2 vertices), so a reconstruction's triangles are drawn as coarsely as quads of twice

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "radiosity/detail/transfer.h"
 #include "radiosity/directional_irradiance.h"
-#include "radiosity/transfer.h"
 
 namespace radiosity {
 

@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "radiosity/detail/transfer.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/scene.h"
-#include "radiosity/transfer.h"
 #include "radiosity/visibility.h"
 
 namespace radiosity {

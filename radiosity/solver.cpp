@@ -1,5 +1,5 @@
 #include "radiosity/solver.h"
-#include "radiosity/rng.h"
+#include "radiosity/detail/rng.h"
 #include "radiosity/stopwatch.h"
 #include "radiosity/tree_walks.h"
 

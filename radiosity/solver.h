@@ -92,10 +92,10 @@
 #include <tuple>
 #include <vector>
 
+#include "radiosity/detail/transfer.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/link.h"
 #include "radiosity/scene.h"
-#include "radiosity/transfer.h"
 #include "radiosity/visibility.h"
 
 namespace radiosity {

@@ -14,7 +14,7 @@
 #include <cstdio>
 
 #include "relight/cli/commands.h"
-#include "relight/scene_file.h"
+#include "relight/errors.h"
 
 using namespace relight;
 

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "radiosity/rgb.h"
-#include "relight/image.h"
-#include "relight/ratio_display.h"
-#include "relight/vertex_lighting.h"
+#include "relight/display/ratio_display.h"
+#include "relight/io/image.h"
+#include "relight/pipeline/vertex_lighting.h"
 
 namespace relight {
 

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "relight/lighting_buffer.h"
-#include "relight/reflectance.h"
+#include "relight/pipeline/lighting_buffer.h"
+#include "relight/pipeline/reflectance.h"
 
 namespace relight {
 

@@ -3,20 +3,21 @@
 // prepareRelighting() runs the pipeline once (Loscos et al. 2000, Fig. 5):
 //   1. photo and camera: the first photo (sRGB decoded when the scene says so), checked
 //      against the camera; the item buffer (polygon and point per sample, Embree);
-//   2. the emittance of the lights whose radiance is "estimate" (relight/emittance.h:
+//   2. the emittance of the lights whose radiance is "estimate" (relight/pipeline/emittance.h:
 //      from the photo's pixels on the light's emitting face, else the power balance of
 //      Eq. (1)-(2)); from then on the estimate stands for the light's scene.json radiance:
 //      in the solution, in photoRadiance, and as the nominal radiance of edits;
 //   3. the radiosity solution of the photo's lights, and reflectance from the photo
-//      (relight/reflectance.h); texture-based refinement of shadow boundaries (§4.2,
-//      relight/shadow_refinement.h);
+//      (relight/pipeline/reflectance.h); texture-based refinement of shadow boundaries (§4.2,
+//      relight/pipeline/shadow_refinement.h);
 //   4. per-light responses of the solution (radiosity/light_response.h) and the
 //      irradiance per light at every leaf vertex: the leaves' corners and those of their
-//      display pieces (radiosity/leaf_mesh.h, displayPiecePixels; relight/vertex_lighting.h);
-//   5. real-shadow removal (§4.3-4.4, relight/shadow_removal.h): the display correction
+//      display pieces (radiosity/leaf_mesh.h, displayPiecePixels;
+//      relight/pipeline/vertex_lighting.h);
+//   5. real-shadow removal (§4.3-4.4, relight/pipeline/shadow_removal.h): the display correction
 //      factor D and the texture factor at the vertices, so that the unedited display is
 //      the photo;
-//   6. the display map (relight/ratio_display.h).
+//   6. the display map (relight/display/ratio_display.h).
 // renderEdit() then renders any setting of the real lights' radiances by superposition:
 //   B(v) = rho sum_l L_l h_l(v),  pixel = T * B/D  (Eq. (3)),
 // a weighted sum per vertex and one multiply-add per (pixel, vertex) pair.
@@ -35,16 +36,16 @@
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/light_response.h"
 #include "radiosity/solver.h"
-#include "relight/edit_file.h"
-#include "relight/emittance.h"
-#include "relight/image.h"
-#include "relight/item_buffer.h"
+#include "relight/display/ratio_display.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/image.h"
+#include "relight/io/scene_file.h"
+#include "relight/pipeline/emittance.h"
+#include "relight/pipeline/item_buffer.h"
+#include "relight/pipeline/shadow_refinement.h"
+#include "relight/pipeline/shadow_removal.h"
+#include "relight/pipeline/vertex_lighting.h"
 #include "relight/prepared.h"
-#include "relight/ratio_display.h"
-#include "relight/scene_file.h"
-#include "relight/shadow_refinement.h"
-#include "relight/shadow_removal.h"
-#include "relight/vertex_lighting.h"
 
 namespace relight {
 
@@ -54,18 +55,21 @@ struct RelightOptions {
     size_t maxLinks = 0, maxMemory = 0;
     int spp = 16;  ///< item-buffer samples per pixel, at most (sampleBudget)
     /// Samples over the whole image: fewer samples per pixel, and the estimates from the
-    /// photo on a sub-grid of pixels, on large photos (SamplingPlan, relight/item_buffer.h).
-    /// 0: spp samples in every pixel, every pixel in the estimates.
+    /// photo on a sub-grid of pixels, on large photos (SamplingPlan,
+    /// relight/pipeline/item_buffer.h). 0: spp samples in every pixel, every pixel in the
+    /// estimates.
     int64_t sampleBudget = kDefaultSampleBudget;
     int minRays = 4, maxRays = 16;
     int reflectanceRounds = 12;
-    /// Reflectance per leaf element from its texture after refinement (relight/reflectance.h),
-    /// for leaves with at least leafReflectanceSamples photo samples; off: per polygon.
+    /// Reflectance per leaf element from its texture after refinement
+    /// (relight/pipeline/reflectance.h), for leaves with at least leafReflectanceSamples photo
+    /// samples; off: per polygon.
     bool leafReflectance = true;
     int leafReflectanceSamples = 32;
-    bool shadowRefinement = true;  ///< texture-based refinement (relight/shadow_refinement.h)
+    bool shadowRefinement =
+        true;  ///< texture-based refinement (relight/pipeline/shadow_refinement.h)
     ShadowRefinementOptions refinement;
-    bool shadowRemoval = true;  ///< real-shadow removal (relight/shadow_removal.h)
+    bool shadowRemoval = true;  ///< real-shadow removal (relight/pipeline/shadow_removal.h)
     ShadowRemovalOptions removal;
     /// The display's resolution: a leaf is split (radiosity::LeafMesh) until each piece
     /// covers fewer than this many photo pixels (at most LeafMesh::kMaxSplits times), and
@@ -108,7 +112,7 @@ Image loadFirstPhoto(const SceneFile& scene);
 /// Runs the pipeline above on a loaded scene (loadScene). Throws InputError for bad
 /// input (photo missing, unreadable, of the wrong size, with NaN/Inf pixels; no photo at
 /// all; a light whose radiance is "estimate" but that is off in the photo, or that cannot
-/// be estimated: relight/emittance.h). Estimates and warnings are reported through
+/// be estimated: relight/pipeline/emittance.h). Estimates and warnings are reported through
 /// options.progress.
 std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& options);
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "relight/debug_views.h"
+#include "relight/display/debug_views.h"
 #include "viewer/gpu_display.h"
 #include "viewer/session.h"
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "relight/multipass.h"
+#include "relight/display/multipass.h"
 
 namespace relight::viewer {
 
@@ -21,8 +21,8 @@ void main() {
 }
 )";
 
-// The per-pixel work of renderRatio() (relight/ratio_display.cpp) and applyOverlay()
-// (relight/dynamic_relighting.h); see gpu_display.h. Image row y is fragment row
+// The per-pixel work of renderRatio() (relight/display/ratio_display.cpp) and applyOverlay()
+// (relight/dynamic/dynamic_relighting.h); see gpu_display.h. Image row y is fragment row
 // height - 1 - y, so that the target shows the photo upright.
 const char* kDisplayShader = R"(#version 330 core
 uniform isamplerBuffer pixelStart;    // per pixel + 1: (entry start, emitter start)
@@ -97,7 +97,7 @@ void main() {
 )";
 
 // Linear values to the window: clipped to [0, 1], sRGB transfer function (IEC 61966-2-1),
-// as relight/image.cpp writes a PNG.
+// as relight/io/image.cpp writes a PNG.
 const char* kPresentShader = R"(#version 330 core
 uniform sampler2D result;
 in vec2 uv;

@@ -2,13 +2,14 @@
 //
 // Each pixel of the photo texture T is modulated by the display ratio B/D of the leaf
 // vertices that shade it. Which vertices, and with what interpolation weights, is the
-// display map of the preparation (relight/ratio_display.h): the item buffer's samples per
+// display map of the preparation (relight/display/ratio_display.h): the item buffer's samples per
 // pixel, each interpolated between the corners of its leaf element. The map is uploaded
 // once into texture buffers; a frame uploads only the per-vertex ratios (one RGBA float per
 // vertex), the lights' radiances and the virtual parts' overlay box, and a fragment shader
 // does per pixel what renderRatio() does on the CPU:
 //   out = max(0, E_now + A * (U + sum_v w_v r_v)),  A = T_rest / (1 - f_emitters)
-//   out = realShare * out + added                     (virtual parts, relight/dynamic_relighting.h)
+//   out = realShare * out + added                     (virtual parts,
+//   relight/dynamic/dynamic_relighting.h)
 // so the viewer's image is `relight render`'s up to float rounding.
 //
 // Two framebuffers, as the issue and the paper ask:
@@ -17,7 +18,7 @@
 //    target holds [0, 1], so pass k = 0 .. n-1, n = ceil(max ratio), draws the texture
 //    modulated by the per-vertex colour clamp(r_v - k, 0, 1) (the paper's glColor, clamped
 //    per vertex and then interpolated) with additive blending; the passes sum to T r up to
-//    8-bit rounding (relight/multipass.h). One pass when no ratio exceeds 1. The target and
+//    8-bit rounding (relight/display/multipass.h). One pass when no ratio exceeds 1. The target and
 //    the 8-bit photo texture are sRGB-encoded (GL_SRGB8_ALPHA8): blending happens on linear
 //    values and the 8 bits are spent as in the PNG the screenshot writes, so the quantization
 //    is the PNG's and not a linear 8-bit posterization of the shadows.
@@ -33,8 +34,8 @@
 #include <vector>
 
 #include "radiosity/rgb.h"
-#include "relight/dynamic_relighting.h"
-#include "relight/image.h"
+#include "relight/dynamic/dynamic_relighting.h"
+#include "relight/io/image.h"
 #include "relight/prepared.h"
 
 namespace relight::viewer {
@@ -65,7 +66,7 @@ class GpuRatioDisplay {
     void setVertexValues(std::span<const Rgb> values);
     /// The real lights' radiances now (their emitting faces show them).
     void setRadiance(std::span<const Rgb> radianceNow);
-    /// The virtual parts' box (relight/dynamic_relighting.h); the previous box is cleared.
+    /// The virtual parts' box (relight/dynamic/dynamic_relighting.h); the previous box is cleared.
     void setOverlay(const VirtualOverlay& overlay);
     /// The per-pixel factor of View::B (DebugViews::bFactor).
     void setBFactor(const Image& factor);

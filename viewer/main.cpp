@@ -19,9 +19,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "relight/edit_file.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/scene_file.h"
 #include "relight/relighting.h"
-#include "relight/scene_file.h"
 #include "viewer/app.h"
 #include "viewer/frame.h"
 #include "viewer/gl_window.h"

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "radiosity/stopwatch.h"
-#include "relight/edit_writer.h"
-#include "relight/mesh_reader.h"
+#include "relight/io/edit_writer.h"
+#include "relight/io/mesh_reader.h"
 
 namespace relight::viewer {
 

@@ -3,7 +3,7 @@
 // The session owns the prepared relighting (relight/relighting.h) and the lights' and
 // virtual parts' controls. Without virtual parts a light change is the superposition path
 // (relight/prepared.h: B(v) = sum_l L_l h_l(v), a weighted sum per vertex). With virtual
-// parts the solver holds them (relight/dynamic_relighting.h): the part added last is
+// parts the solver holds them (relight/dynamic/dynamic_relighting.h): the part added last is
 // moved or removed incrementally (a drag is moveLastObject); any other change (a radiance,
 // a part that is not the last) inserts the parts again from the prepared solver, in the
 // order `relight render` inserts an edit's parts (virtual lights, then objects, each in
@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "relight/dynamic_relighting.h"
-#include "relight/edit_file.h"
-#include "relight/obj_reader.h"
+#include "relight/dynamic/dynamic_relighting.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/obj_reader.h"
 #include "relight/relighting.h"
 
 namespace relight::viewer {

@@ -6,9 +6,9 @@
 #include <memory>
 #include <string>
 
+#include "relight/io/scene_file.h"
 #include "relight/prepared.h"
 #include "relight/relighting.h"
-#include "relight/scene_file.h"
 
 namespace relight::cli {
 

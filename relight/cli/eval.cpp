@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "relight/image.h"
-#include "relight/metric.h"
-#include "relight/scene_file.h"
+#include "relight/display/metric.h"
+#include "relight/io/image.h"
+#include "relight/io/scene_file.h"
 
 namespace relight::cli {
 

@@ -7,7 +7,7 @@
 
 #include "relight/cli/commands.h"
 #include "relight/cli/util.h"
-#include "relight/prepared_cache.h"
+#include "relight/io/prepared_cache.h"
 #include "relight/relighting.h"
 
 namespace relight::cli {

@@ -3,9 +3,9 @@
 //                options of prepare)
 // With --debug-views the scene is prepared in memory (the views need the solver state,
 // which the cache does not hold; the cache is still written) and the pipeline's
-// intermediate images go to DIR (relight/debug_views.h). The relit image is the same as
+// intermediate images go to DIR (relight/display/debug_views.h). The relit image is the same as
 // without it. An edit with virtual lights or objects is also prepared in memory (their
-// insertion needs the solver: relight/dynamic_relighting.h); the views then show the
+// insertion needs the solver: relight/dynamic/dynamic_relighting.h); the views then show the
 // real lights' part of the edit.
 #include <cstdio>
 #include <filesystem>
@@ -13,10 +13,10 @@
 
 #include "relight/cli/commands.h"
 #include "relight/cli/util.h"
-#include "relight/debug_views.h"
-#include "relight/dynamic_relighting.h"
-#include "relight/edit_file.h"
-#include "relight/image.h"
+#include "relight/display/debug_views.h"
+#include "relight/dynamic/dynamic_relighting.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/image.h"
 #include "relight/relighting.h"
 
 namespace relight::cli {

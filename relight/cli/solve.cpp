@@ -10,13 +10,13 @@
 
 #include "radiosity/solver.h"
 #include "relight/cli/util.h"
-#include "relight/emittance.h"
-#include "relight/image.h"
-#include "relight/item_buffer.h"
-#include "relight/lighting_buffer.h"
-#include "relight/reflectance.h"
+#include "relight/io/image.h"
+#include "relight/io/scene_file.h"
+#include "relight/pipeline/emittance.h"
+#include "relight/pipeline/item_buffer.h"
+#include "relight/pipeline/lighting_buffer.h"
+#include "relight/pipeline/reflectance.h"
 #include "relight/relighting.h"
-#include "relight/scene_file.h"
 
 namespace relight::cli {
 
@@ -43,7 +43,7 @@ int runSolve(const SolveArgs& a) {
         haveItems = true;
     };
     // Lights whose radiance is "estimate": estimated from the first photo before anything is
-    // solved, as the preparation does (relight/emittance.h).
+    // solved, as the preparation does (relight/pipeline/emittance.h).
     if (std::find(sf.estimateRadiance.begin(), sf.estimateRadiance.end(), true) !=
         sf.estimateRadiance.end()) {
         checkEstimableLights(sf);

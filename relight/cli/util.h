@@ -6,7 +6,7 @@
 #include <string>
 
 #include "radiosity/rgb.h"
-#include "relight/json_file.h"
+#include "relight/io/json_file.h"
 
 namespace relight::cli {
 
@@ -19,6 +19,6 @@ inline nlohmann::json rgbJson(const radiosity::Rgb& c) {
     return {c.r, c.g, c.b};
 }
 
-using relight::writeJsonAtomic;  // relight/json_file.h
+using relight::writeJsonAtomic;  // relight/io/json_file.h
 
 }  // namespace relight::cli

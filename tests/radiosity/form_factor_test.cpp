@@ -1,7 +1,7 @@
 // Tests of the form-factor module against Howell's catalogue of configuration factors
 // (J. R. Howell, "A Catalog of Radiation Heat Transfer Configuration Factors"), closed-form
 // solutions, closed enclosures (rows sum to 1) and reciprocity.
-#include "radiosity/form_factor.h"
+#include "radiosity/detail/form_factor.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // LeafMesh: shared leaf corners and interpolation from them.
 #include <gtest/gtest.h>
 
+#include "radiosity/detail/rng.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/leaf_mesh.h"
-#include "radiosity/rng.h"
 
 using namespace radiosity;
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "radiosity/form_factor.h"
+#include "radiosity/detail/form_factor.h"
+#include "radiosity/detail/rng.h"
+#include "radiosity/detail/transfer.h"
 #include "radiosity/hierarchy.h"
-#include "radiosity/rng.h"
-#include "radiosity/transfer.h"
 #include "radiosity/visibility.h"
 
 using namespace radiosity;

@@ -5,9 +5,9 @@
 #include <numbers>
 
 #include "furnace.h"
+#include "radiosity/detail/form_factor.h"
 #include "radiosity/direct_light.h"
 #include "radiosity/final_gather.h"
-#include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
 
 using namespace radiosity;

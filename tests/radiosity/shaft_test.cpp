@@ -1,7 +1,7 @@
 // Shaft (Haines & Wallace 1991): conservativeness against sampled convex hulls, culling in
 // the cases where the answer is known, and the degenerate boxes radiosity produces (flat
 // bounds of axis-aligned polygons, identical and overlapping boxes).
-#include "radiosity/shaft.h"
+#include "radiosity/detail/shaft.h"
 
 #include <gtest/gtest.h>
 

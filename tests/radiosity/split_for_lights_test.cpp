@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "radiosity/form_factor.h"
+#include "radiosity/detail/form_factor.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/solver.h"
 

@@ -3,7 +3,7 @@
 
 #include "radiosity/reference_solver.h"
 #include "radiosity/solver.h"
-#include "relight/scene_file.h"
+#include "relight/io/scene_file.h"
 
 using namespace radiosity;
 

@@ -1,5 +1,5 @@
-// The debug views of the relighting pipeline (relight/debug_views.h) on the room.
-#include "relight/debug_views.h"
+// The debug views of the relighting pipeline (relight/display/debug_views.h) on the room.
+#include "relight/display/debug_views.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "relight/edit_file.h"
-#include "relight/ratio_display.h"
+#include "relight/display/ratio_display.h"
+#include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 #include "room_fixture.h"
 #include "temp_dir.h"

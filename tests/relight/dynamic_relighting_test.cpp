@@ -1,14 +1,14 @@
-// Virtual lights and objects in the relit photo (relight/dynamic_relighting.h): a session
+// Virtual lights and objects in the relit photo (relight/dynamic/dynamic_relighting.h): a session
 // without virtual parts is the light edit, removal restores the image exactly, a move
 // equals a fresh insertion at the new place, and the room's virtual edits match the
 // path-traced truth.
-#include "relight/dynamic_relighting.h"
+#include "relight/dynamic/dynamic_relighting.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "relight/metric.h"
+#include "relight/display/metric.h"
 #include "room_fixture.h"
 
 using namespace relight;

@@ -1,8 +1,8 @@
-// Tests of edit loading (relight/edit_file.h): every bundled edit of data/room, the
+// Tests of edit loading (relight/io/edit_file.h): every bundled edit of data/room, the
 // radiance an edit gives each real light (exact equalities: an edit only copies or scales
 // numbers), and one bad input per error class, each of which must raise an InputError
 // naming the edit file and the key path.
-#include "relight/edit_file.h"
+#include "relight/io/edit_file.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>

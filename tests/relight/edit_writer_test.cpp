@@ -1,9 +1,9 @@
-// Tests of edit saving (relight/edit_writer.h): every bundled edit of data/room saved into
+// Tests of edit saving (relight/io/edit_writer.h): every bundled edit of data/room saved into
 // another folder loads back as the same edit (exact equalities: saving only copies numbers,
 // and the object files must be found again from the new folder), awkward doubles, object
 // paths relative to the edit's folder (through a symbolic link too), the unit box against
 // the room's 0.3 m box, and failed writes that leave nothing behind and nothing corrupted.
-#include "relight/edit_writer.h"
+#include "relight/io/edit_writer.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Emittance estimation of "estimate" lights (relight/emittance.h) and its use in the
+// Emittance estimation of "estimate" lights (relight/pipeline/emittance.h) and its use in the
 // preparation and the edits (relight/relighting.h).
 #include <gtest/gtest.h>
 
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "radiosity/visibility.h"
-#include "relight/emittance.h"
-#include "relight/metric.h"
-#include "relight/prepared_cache.h"
+#include "relight/display/metric.h"
+#include "relight/io/prepared_cache.h"
+#include "relight/pipeline/emittance.h"
 #include "relight/relighting.h"
 #include "room_fixture.h"
 #include "temp_dir.h"

@@ -1,10 +1,10 @@
-// Tests of geometry files other than OBJ (relight/mesh_reader.h): PLY (ASCII, binary
+// Tests of geometry files other than OBJ (relight/io/mesh_reader.h): PLY (ASCII, binary
 // little and big endian) and glTF (.gltf with an embedded or an external buffer, .glb),
 // written here as text or bytes. They check positions, winding (the front side), object
 // names, glTF node transforms (a mirrored node included), that the bundled room converted
 // to PLY and to glTF loads as exactly the same polygons as from OBJ, that the edit loader
 // takes them, and that each bad input is an InputError naming the file.
-#include "relight/mesh_reader.h"
+#include "relight/io/mesh_reader.h"
 
 #include <gtest/gtest.h>
 
@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "relight/edit_file.h"
-#include "relight/face_repair.h"
-#include "relight/obj_reader.h"
-#include "relight/scene_file.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/face_repair.h"
+#include "relight/io/obj_reader.h"
+#include "relight/io/scene_file.h"
 #include "temp_dir.h"
 
 namespace {

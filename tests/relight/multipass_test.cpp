@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "relight/multipass.h"
+#include "relight/display/multipass.h"
 
 using namespace relight;
 

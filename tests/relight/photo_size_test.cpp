@@ -9,9 +9,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "relight/lighting_buffer.h"
-#include "relight/metric.h"
-#include "relight/ratio_display.h"
+#include "relight/display/metric.h"
+#include "relight/display/ratio_display.h"
+#include "relight/pipeline/lighting_buffer.h"
 #include "room_fixture.h"
 
 using namespace relight;

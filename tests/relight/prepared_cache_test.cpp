@@ -1,4 +1,4 @@
-// The prepared-state cache (relight/prepared_cache.h): round trip, stale and corrupt files,
+// The prepared-state cache (relight/io/prepared_cache.h): round trip, stale and corrupt files,
 // the preparation key, failed writes.
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "relight/edit_file.h"
-#include "relight/prepared_cache.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/prepared_cache.h"
 #include "relight/relighting.h"
 #include "room_fixture.h"
 #include "temp_dir.h"
@@ -410,7 +410,7 @@ TEST(PreparedCache, FailedWriteIsAClearErrorAndLeavesNoTemporaryFile) {
 
 TEST(PreparedCache, LayoutGuard) {
     // A field added to one of these structs must be written to the cache (a serialize() in
-    // relight/prepared_cache.cpp, and kPreparedFormatVersion bumped) or, for an option that
+    // relight/io/prepared_cache.cpp, and kPreparedFormatVersion bumped) or, for an option that
     // changes the result, hashed into the preparation key (hashOptions() there); then
     // update the size here. (Sizes for libstdc++ on 64-bit targets.)
 #if defined(__GLIBCXX__) && defined(__LP64__)

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "relight/item_buffer.h"
-#include "relight/lighting_buffer.h"
-#include "relight/reflectance.h"
+#include "relight/io/scene_file.h"
+#include "relight/pipeline/item_buffer.h"
+#include "relight/pipeline/lighting_buffer.h"
+#include "relight/pipeline/reflectance.h"
 #include "relight/relighting.h"
-#include "relight/scene_file.h"
 #include "room_fixture.h"
 #include "temp_dir.h"
 

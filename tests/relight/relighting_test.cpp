@@ -1,4 +1,4 @@
-// The ratio display (relight/ratio_display.h) and the prepared relighting of the room
+// The ratio display (relight/display/ratio_display.h) and the prepared relighting of the room
 // (relight/relighting.h).
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "relight/edit_file.h"
-#include "relight/ratio_display.h"
+#include "relight/display/ratio_display.h"
+#include "relight/io/edit_file.h"
+#include "relight/pipeline/shadow_removal.h"
 #include "relight/relighting.h"
-#include "relight/shadow_removal.h"
 #include "room_fixture.h"
 #include "temp_dir.h"
 

@@ -1,7 +1,7 @@
-// Tests of scene loading (relight/scene_file.h, relight/obj_reader.h): the bundled scenes,
+// Tests of scene loading (relight/io/scene_file.h, relight/io/obj_reader.h): the bundled scenes,
 // the OBJ reader's forms, the documented repairs, and one bad input per error class, each
 // of which must raise an InputError naming the file and the line or key path.
-#include "relight/scene_file.h"
+#include "relight/io/scene_file.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "relight/obj_reader.h"
+#include "relight/io/obj_reader.h"
 #include "temp_dir.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// The effect of real-shadow removal's link correction (relight/shadow_removal.h, Loscos
+// The effect of real-shadow removal's link correction (relight/pipeline/shadow_removal.h, Loscos
 // et al. 2000, Eq. (12)-(15)): what the photo shows in a shadow drives C_link.
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "relight/pipeline/shadow_removal.h"
 #include "relight/relighting.h"
-#include "relight/shadow_removal.h"
 #include "room_fixture.h"
 
 using namespace relight;

@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "relight/scene_file.h"
+#include "relight/io/scene_file.h"
 #include "temp_dir.h"
 #include "tests/support/stress_room.h"
 

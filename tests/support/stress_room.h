@@ -161,7 +161,7 @@ struct StressRoom {
 /// std::logic_error when a polygon it made fails radiosity::checkPolygon (a bug here).
 StressRoom makeStressRoom(const StressRoomOptions& options);
 
-/// Writes a scene package (relight-scene/1, /work/shared/spec/scene-format.md) to `dir`
+/// Writes a scene package (relight-scene/1, docs/scene-format.md) to `dir`
 /// (created; files of the same names replaced): scene.json with each object's
 /// reflectance, the lamps as quad lights (all on; no photo: the format does not require
 /// one, and `relight solve` works without), and a camera inside the room above the

@@ -2,7 +2,7 @@
 // Mesa's llvmpipe (tests/CMakeLists.txt runs this program through xvfb-run).
 //
 // Images are compared as the PNG files both write them: 8-bit sRGB of the linear value
-// clipped to [0, 1] (relight/image.h). Tolerances, in 8-bit steps:
+// clipped to [0, 1] (relight/io/image.h). Tolerances, in 8-bit steps:
 //  - GPU float vs CPU: 1 step. Both compute the same sums (display map weights times the
 //    vertex ratios); the GPU in float, the CPU in double, so values differ by about 1e-6
 //    relative, which changes the 8-bit code only where a value lies that close to a rounding
@@ -12,7 +12,7 @@
 //    step is scaled by the ratio, at most n (n half steps more), and the float image rounds
 //    once when written (half a step): n + 1/2 in all, so at most n whole steps between the
 //    codes. Pixels that see a lamp's face are excluded: there the display keeps a signed
-//    T_rest that an 8-bit texture cannot hold (relight/ratio_display.h).
+//    T_rest that an 8-bit texture cannot hold (relight/display/ratio_display.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,9 +20,9 @@
 #include <memory>
 #include <string>
 
-#include "relight/debug_views.h"
-#include "relight/edit_file.h"
-#include "relight/multipass.h"
+#include "relight/display/debug_views.h"
+#include "relight/display/multipass.h"
+#include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 #include "viewer/frame.h"
 #include "viewer/gl_window.h"
@@ -63,7 +63,7 @@ int maxStepDifference(const Image& a, const Image& b, Keep keep, int* differing 
 const auto kAllPixels = [](int) { return true; };
 
 /// What `relight render` shows for the session: the CPU ratio display of its vertex ratios
-/// with the virtual parts' overlay (relight/dynamic_relighting.h, render()).
+/// with the virtual parts' overlay (relight/dynamic/dynamic_relighting.h, render()).
 Image cpuDisplay(Session& session) {
     const PreparedImage& P = session.prepared();
     Image img = renderRatio(P.display, P.photo, session.vertexRatios(), session.realRadiance(),
@@ -120,7 +120,7 @@ TEST_F(ViewerGpu, MultipassMatchesFloatAndSkipsPassesBelowOne) {
     const PreparedImage& P = relighting_->prepared;
     const DisplayMap& m = P.display;
     // The 8-bit texture holds [0, 1]: photo pixels brighter than that (a lamp the item
-    // buffer does not put there, relight/ratio_display.h trustPhotoAtEmitters) are clipped
+    // buffer does not put there, relight/display/ratio_display.h trustPhotoAtEmitters) are clipped
     // in it, as the paper's texture is; they are excluded with the lamp faces, and counted.
     const auto inRange = [&](int px) {
         const float* t = &P.photo.rgb[static_cast<size_t>(px) * 3];

@@ -1,0 +1,229 @@
+#include "radiosity/detail/transfer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "radiosity/detail/form_factor.h"
+#include "radiosity/detail/rng.h"
+#include "radiosity/detail/shaft.h"
+
+namespace radiosity {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// Signed distance of the farthest point of a node in front of a plane (n, p0): > 0 when
+/// some part of the node lies strictly in front.
+double maxInFront(const Node& node, const Vec3& n, const Vec3& p0) {
+    if (!node.isCluster()) {
+        double m = -1e300;
+        for (int i = 0; i < node.vertexCount; ++i) m = std::max(m, glm::dot(node.v[i] - p0, n));
+        return m;
+    }
+    // Box corner farthest along n.
+    const Vec3 far{n.x >= 0 ? node.bounds.hi.x : node.bounds.lo.x,
+                   n.y >= 0 ? node.bounds.hi.y : node.bounds.lo.y,
+                   n.z >= 0 ? node.bounds.hi.z : node.bounds.lo.z};
+    return glm::dot(far - p0, n);
+}
+
+}  // namespace
+
+Vec3 linkDirection(const Node& R, const Node& S) {
+    const Vec3 d = S.centre - R.centre;
+    const double len = glm::length(d);
+    return len > 0 ? d / len : Vec3{0, 0, 0};
+}
+
+double pointToNode(const Vec3& x, const Vec3& n, const Node& S) {
+    const Vec3 d = S.centre - x;
+    const double d2 = glm::dot(d, d);
+    if (!(d2 > 0)) return 0.0;  // x at the source's centre: no direction
+    const Vec3 w = d / std::sqrt(d2);
+    return discFormFactor(glm::dot(n, w), 1.0, d2, projectedArea(S, -w));
+}
+
+bool TransferEvaluator::facing(int r, int s) const {
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    // Tolerance: 1e-9 of the larger node radius, so that coplanar elements (same plane,
+    // numerically) count as not facing.
+    const double tol = 1e-9 * std::max(R.radius, S.radius) + 1e-12;
+    if (!R.isCluster() && !(maxInFront(S, R.normal, R.v[0]) > tol)) return false;
+    if (!S.isCluster() && !(maxInFront(R, S.normal, S.v[0]) > tol)) return false;
+    return true;
+}
+
+double TransferEvaluator::formFactor(int r, int s) const {
+    counters.formFactors.fetch_add(1, std::memory_order_relaxed);
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    if (!R.isCluster() && !S.isCluster()) {
+        return polygonToPolygon(R.v.data(), R.vertexCount, R.normal, S.v.data(), S.vertexCount,
+                                S.normal, options_.quadratureOrder);
+    }
+    const Vec3 d = S.centre - R.centre;
+    const double d2 = glm::dot(d, d);
+    // Coincident centres (two clusters about one point): no direction to weigh a
+    // receiver's cosine by; such a link is always refined (bound() is 1), and meanwhile
+    // carries nothing.
+    if (!(d2 > 0)) return 0.0;
+    const Vec3 w = d / std::sqrt(d2);
+    const double As = projectedArea(S, -w);
+    // The receiver's cosine for an element; for a cluster the gather applies each of its
+    // surfaces' own (vector irradiance).
+    const double cosR = R.isCluster() ? 1.0 : glm::dot(R.normal, w);
+    return std::min(discFormFactor(cosR, 1.0, d2, As), coneBound(r, s));
+}
+
+double TransferEvaluator::coneBound(int r, int s) const {
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    // The two cones about their bisector: every normal within half the angle between the
+    // axes plus the wider cone's angle.
+    const double between = std::acos(std::clamp(glm::dot(R.coneAxis, S.coneAxis), -1.0, 1.0));
+    const double alpha = 0.5 * between + std::max(R.coneAngle, S.coneAngle);
+    if (!(alpha < kPi / 2)) return 1.0;  // 8 delta^2 >= 1 long before: no bound
+    const double delta = 2 * std::sin(0.5 * alpha);
+    return std::min(1.0, 8 * delta * delta);
+}
+
+double TransferEvaluator::bound(int r, int s, double F) const {
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    if (!R.isCluster() && !S.isCluster()) return F;
+    const double cone = coneBound(r, s);
+    const Vec3 d = S.centre - R.centre;
+    const double dist = glm::length(d);
+    const double dMin = dist - R.radius - S.radius;
+    if (!(dMin > 0)) return cone;
+    const double As = projectedArea(S, -d / dist);
+    return std::min({1.0, cone, As / (kPi * dMin * dMin)});
+}
+
+double TransferEvaluator::receiverArea(int r, int s) const {
+    const Node& R = h_.nodes[r];
+    if (!R.isCluster()) return R.area;
+    const Vec3 d = h_.nodes[s].centre - R.centre;
+    const double dist = glm::length(d);
+    // Coincident centres: no direction; the whole area is the safe (larger) estimate.
+    if (!(dist > 0)) return R.area;
+    return projectedArea(R, d / dist);
+}
+
+bool TransferEvaluator::shaftQuery(const Shaft& shaft, int node, int skipA, int skipB,
+                                   const Bounds3& box) const {
+    const Node& n = h_.nodes[node];
+    // A box that only touches the shaft's outer box (a wall in the plane of a face of the
+    // union box) cannot block an open segment inside it: treat touching as outside.
+    const double tol = 1e-9 * (1.0 + glm::length(box.diagonal()));
+    for (int a = 0; a < 3; ++a) {
+        if (n.bounds.hi[a] <= box.lo[a] + tol || n.bounds.lo[a] >= box.hi[a] - tol) return false;
+    }
+    if (!shaft.mayIntersect(n.bounds)) return false;
+    if (!n.isCluster()) return n.polygon != skipA && n.polygon != skipB;
+    for (int k = 0; k < n.childCount; ++k) {
+        if (shaftQuery(shaft, n.firstChild + k, skipA, skipB, box)) return true;
+    }
+    return false;
+}
+
+bool TransferEvaluator::shaftIsEmpty(int r, int s) const {
+    counters.shaftTests.fetch_add(1, std::memory_order_relaxed);
+    const Node& R = h_.nodes[r];
+    const Node& S = h_.nodes[s];
+    const Shaft shaft(R.bounds, S.bounds);
+    // The polygons a link's ends lie on cannot block it (planar, one-sided); polygons
+    // inside an end cluster can, so only element ends are skipped.
+    const int skipA = R.isCluster() ? -1 : R.polygon;
+    const int skipB = S.isCluster() ? -1 : S.polygon;
+    return !shaftQuery(shaft, Hierarchy::kRoot, skipA, skipB, shaft.bounds());
+}
+
+void TransferEvaluator::visibility(Link& link, bool thorough) const {
+    const int r = link.receiver, s = link.source;
+    if (options_.useShafts && shaftIsEmpty(r, s)) {
+        counters.shaftEmpty.fetch_add(1, std::memory_order_relaxed);
+        link.V = 1;
+        link.type = VisibilityType::visible;
+        link.rays = 0;
+        link.shaftEmpty = true;
+        return;
+    }
+    link.shaftEmpty = false;
+    const int minRays = std::clamp(options_.minRays, 1, 256);
+    const int maxRays = std::clamp(options_.maxRays, minRays, 256);
+    Rng rng(0x5EEDull ^ (static_cast<uint64_t>(r) << 32) ^ static_cast<uint64_t>(s) * 0x9E37ull);
+    Vec3 from[256], to[256];
+    // One stratified set of maxRays pairs: a jittered k x k grid on each end (k^2 >= n),
+    // strata visited in independent random orders on the two ends, so any prefix of the
+    // set is a uniform sample of both ends: the first minRays rays decide, and in
+    // penumbra the rest of the set follows.
+    const int k = strataSide(maxRays);
+    int permR[256], permS[256];
+    shuffledStrata(rng, k, permR);
+    shuffledStrata(rng, k, permS);
+    // Mutually facing pairs, compacted to the front in draw order. They are drawn only as
+    // far as needed: the first minRays of them decide, and the rest of the set is drawn
+    // only for a link in penumbra (or `thorough`). Rays use no random numbers, so the
+    // pairs are those of drawing the whole set first. (Drawing all maxRays pairs for every
+    // link, when most need minRays, was a fifth of a 200 k-triangle room's preparation:
+    // each draw in a large cluster reads a random polygon.)
+    int m = 0, next = 0;
+    const auto draw = [&](int want) {
+        for (; next < maxRays && m < want; ++next) {
+            const int a = permR[next], b = permS[next];
+            // Only mutually facing point pairs carry light between one-sided surfaces; a
+            // ray from the back of a block's face would run through the block and count as
+            // blocked, biasing V low. Redraw within the strata up to 8 times to find one;
+            // a pair never found is left out of the estimate rather than counted blocked.
+            for (int attempt = 0; attempt < 8; ++attempt) {
+                const double u0 = ((a % k) + rng.uniform()) / k, v0 = ((a / k) + rng.uniform()) / k;
+                const double u1 = ((b % k) + rng.uniform()) / k, v1 = ((b / k) + rng.uniform()) / k;
+                Vec3 n0, n1;
+                from[m] = h_.samplePoint(r, u0, v0, rng.uniform(), &n0);
+                to[m] = h_.samplePoint(s, u1, v1, rng.uniform(), &n1);
+                const Vec3 d = to[m] - from[m];
+                if (glm::dot(n0, d) > 0 && glm::dot(n1, d) < 0) {
+                    ++m;
+                    break;
+                }
+            }
+        }
+    };
+    draw(thorough ? maxRays : minRays);  // m < minRays only when every stratum was tried
+    if (m == 0) {
+        // No part of the two faces the other: nothing passes, and no more rays would say
+        // otherwise.
+        link.rays = static_cast<uint8_t>(maxRays);
+        link.V = 0;
+        link.type = VisibilityType::invisible;
+        return;
+    }
+    // Rays between two elements ignore hits on the elements' own polygons (grazing
+    // rays near a shared edge would otherwise count as blocked).
+    const int polyR = h_.nodes[r].isCluster() ? -1 : h_.nodes[r].polygon;
+    const int polyS = h_.nodes[s].isCluster() ? -1 : h_.nodes[s].polygon;
+    const int first = m;
+    int visible = vis_.visibleBatch(from, to, first, nullptr, polyR, polyS);
+    int cast = first;
+    if (visible != 0 && visible != first) {  // penumbra: the rest of the set
+        draw(maxRays);
+        if (m > first) {
+            visible +=
+                vis_.visibleBatch(from + first, to + first, m - first, nullptr, polyR, polyS);
+            cast = m;
+        }
+    }
+    counters.rays.fetch_add(static_cast<uint64_t>(cast), std::memory_order_relaxed);
+    link.rays = static_cast<uint8_t>(std::min(cast, 255));
+    link.V = static_cast<float>(visible) / static_cast<float>(cast);
+    link.type = visible == 0      ? VisibilityType::invisible
+                : visible == cast ? VisibilityType::visible
+                                  : VisibilityType::partial;
+}
+
+}  // namespace radiosity

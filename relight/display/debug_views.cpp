@@ -1,0 +1,282 @@
+#include "relight/display/debug_views.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "relight/display/ratio_display.h"
+#include "relight/io/json_file.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A display-map weight sum below this is a pixel without reflecting surface (the weights
+/// are floats: a real share of a surface is at least 1/spp of the pixel).
+constexpr double kMinSurface = 1e-6;
+/// The photo under the overlays (mesh, frontier), dimmed so that the marks stand out.
+constexpr double kDim = 0.4;
+
+double luminance(const Rgb& c) {
+    return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;  // Rec. 709
+}
+
+Rgb pixel(const Image& img, int px) {
+    const float* p = &img.rgb[static_cast<size_t>(px) * 3];
+    return {p[0], p[1], p[2]};
+}
+
+void setPixel(Image& img, int px, const Rgb& c) {
+    float* p = &img.rgb[static_cast<size_t>(px) * 3];
+    for (int k = 0; k < 3; ++k) p[k] = static_cast<float>(c[k]);
+}
+
+/// What a pixel's item-buffer samples fall in (per-leaf quantities).
+struct PixelLeaves {
+    Rgb rho;             ///< sum of the leaf reflectances of its surface samples
+    int surface = 0;     ///< samples on a leaf
+    int occluded = 0;    ///< samples on an occluded leaf (shadow removal's class)
+    int frontier = 0;    ///< samples on a frontier leaf
+    int first = -1;      ///< id of sample 0 (the top-left one): see sampleId
+    bool mixed = false;  ///< its samples have different ids: a leaf edge crosses the pixel
+};
+
+/// Leaf, or -1 for nothing, or -2 - light for a light's emitting face: an edge is where
+/// this changes (the elements' edges and the polygons' outlines).
+int sampleId(const SampleHit& hit) {
+    return hit.surface() ? hit.leaf : (hit.light >= 0 ? -2 - hit.light : -1);
+}
+
+PixelLeaves scanPixel(const Relighting& r, int x, int y) {
+    const ItemBuffer& items = r.items;
+    const auto& h = r.solver->hierarchy();
+    PixelLeaves p;
+    for (int s = 0; s < items.spp; ++s) {
+        const SampleHit hit = locateSample(items, h, r.solver->scene(), items.sampleIndex(x, y, s));
+        const int id = sampleId(hit);
+        if (s == 0) p.first = id;
+        if (id != p.first) p.mixed = true;
+        if (!hit.surface()) continue;
+        ++p.surface;
+        p.rho += h.nodes[hit.leaf].rho;
+        if (r.removal.leafClass.empty()) continue;  // shadow removal was off
+        const LeafShadowClass c = r.removal.leafClass[hit.leaf];
+        if (c == LeafShadowClass::occluded) ++p.occluded;
+        if (c == LeafShadowClass::frontier) ++p.frontier;
+    }
+    return p;
+}
+
+std::vector<PixelLeaves> scanLeaves(const Relighting& r) {
+    const int w = r.items.width;
+    std::vector<PixelLeaves> out(static_cast<size_t>(w) * r.items.height);
+    tbb::parallel_for(tbb::blocked_range<int>(0, r.items.height),
+                      [&](const tbb::blocked_range<int>& rows) {
+                          for (int y = rows.begin(); y != rows.end(); ++y)
+                              for (int x = 0; x < w; ++x)
+                                  out[static_cast<size_t>(y) * w + x] = scanPixel(r, x, y);
+                      });
+    return out;
+}
+
+/// sum_k w_k values[v_k] over the pixel's display-map entries (Gouraud, the weights the
+/// relit image uses); `weight` gets sum_k w_k, the pixel's share of reflecting surface.
+Rgb interpolate(const DisplayMap& m, int px, std::span<const Rgb> values, double& weight) {
+    Rgb sum;
+    weight = 0;
+    for (int k = m.start[px]; k < m.start[px + 1]; ++k) {
+        sum += values[m.vertex[k]] * static_cast<double>(m.weight[k]);
+        weight += static_cast<double>(m.weight[k]);
+    }
+    return sum;
+}
+
+/// The photo times the texture factor k interpolated over the surface, 1 elsewhere.
+Image texture(const PreparedImage& P, std::span<const Rgb> k) {
+    Image out(P.photo.width, P.photo.height);
+    const int pixels = P.photo.width * P.photo.height;
+    for (int px = 0; px < pixels; ++px) {
+        double w = 0;
+        const Rgb sum = interpolate(P.display, px, k, w);
+        const Rgb factor = sum + Rgb::gray(std::max(0.0, 1.0 - w));
+        setPixel(out, px, pixel(P.photo, px) * factor);
+    }
+    return out;
+}
+
+/// 1 / the 99th percentile of the luminance of `img` over `pixels`; 1 when that is not
+/// positive (an all-black view needs no scale).
+double robustScale(const Image& img, const std::vector<int>& pixels) {
+    std::vector<double> lum;
+    lum.reserve(pixels.size());
+    for (int px : pixels) lum.push_back(luminance(pixel(img, px)));
+    if (lum.empty()) return 1;
+    const auto nth = lum.begin() + static_cast<std::ptrdiff_t>(0.99 * (lum.size() - 1));
+    std::nth_element(lum.begin(), nth, lum.end());
+    return *nth > 0 && std::isfinite(*nth) ? 1.0 / *nth : 1.0;
+}
+
+}  // namespace
+
+DebugViews computeDebugViews(const Relighting& r, std::span<const Rgb> radianceNow) {
+    const PreparedImage& P = r.prepared;
+    if (radianceNow.size() != P.photoRadiance.size())
+        throw std::invalid_argument("computeDebugViews: " + std::to_string(radianceNow.size()) +
+                                    " radiances for " + std::to_string(P.photoRadiance.size()) +
+                                    " lights");
+    const DisplayMap& m = P.display;
+    const int w = P.photo.width, hgt = P.photo.height, pixels = w * hgt;
+    const std::vector<PixelLeaves> leaves = scanLeaves(r);
+    const std::vector<Rgb> H = vertexIrradiance(P, radianceNow);
+
+    DebugViews v;
+    v.B = Image(w, hgt);
+    v.D = Image(w, hgt);
+    v.reflectance = Image(w, hgt);
+    v.bFactor = Image(w, hgt);
+    std::vector<int> surfacePixels;
+    for (int px = 0; px < pixels; ++px) {
+        const PixelLeaves& p = leaves[px];
+        double weight = 0;
+        const Rgb Hsum = interpolate(m, px, H, weight);
+        const Rgb Dsum = interpolate(m, px, P.D, weight);
+        if (p.surface == 0 || weight < kMinSurface) continue;  // black: no solution here
+        const Rgb rho = p.rho * (1.0 / p.surface);
+        // B / pi = rho H / pi: radiance in the photo's units (relight/pipeline/reflectance.h).
+        const Rgb toRadiance = rho * (1.0 / (std::numbers::pi * weight));
+        setPixel(v.B, px, Hsum * toRadiance);
+        setPixel(v.bFactor, px, toRadiance);
+        setPixel(v.D, px, Dsum * toRadiance);
+        setPixel(v.reflectance, px, rho);
+        surfacePixels.push_back(px);
+    }
+    v.bdScale = robustScale(v.D, surfacePixels);
+
+    v.Torig = P.photo;
+    const bool removal = !r.removal.kInter.empty();
+    if (removal) {
+        v.Tinter = texture(P, r.removal.kInter);
+        v.Tfinal = texture(P, r.removal.kFinal);
+    }
+
+    // Loscos et al. 2000, Fig. 10, 11: the leaf elements' edges over the photo.
+    const Rgb edge{1.0, 0.85, 0.0};
+    v.mesh = Image(w, hgt);
+    for (int y = 0; y < hgt; ++y)
+        for (int x = 0; x < w; ++x) {
+            const int px = y * w + x;
+            const PixelLeaves& p = leaves[px];
+            // Within the pixel, or between its first sample and its right and lower
+            // neighbours' (an edge on the pixel border falls between samples).
+            const bool onEdge = p.mixed || (x + 1 < w && leaves[px + 1].first != p.first) ||
+                                (y + 1 < hgt && leaves[px + w].first != p.first);
+            setPixel(v.mesh, px, onEdge ? edge : pixel(P.photo, px) * kDim);
+        }
+
+    // Loscos et al. 2000, Fig. 14(a): the shadow regions and their frontier. The tint is
+    // the share of the pixel's samples on such leaves.
+    if (removal) {
+        const Rgb occludedTint{0.05, 0.15, 1.0}, frontierTint{0.1, 1.0, 0.1};
+        const double perSample = 1.0 / r.items.spp;
+        v.frontier = Image(w, hgt);
+        for (int px = 0; px < pixels; ++px) {
+            const PixelLeaves& p = leaves[px];
+            const double fo = p.occluded * perSample, ff = p.frontier * perSample;
+            setPixel(v.frontier, px,
+                     pixel(P.photo, px) * (kDim * (1 - fo - ff)) + occludedTint * fo +
+                         frontierTint * ff);
+        }
+    }
+    return v;
+}
+
+void createDebugViewsFolder(const fs::path& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw InputError(dir.string() + ": cannot create the debug-views folder" +
+                         (ec ? ": " + ec.message() : ": a file of that name is in the way"));
+}
+
+std::vector<std::string> writeDebugViews(const Relighting& r, std::span<const Rgb> radianceNow,
+                                         const fs::path& dir) {
+    createDebugViewsFolder(dir);
+    const DebugViews v = computeDebugViews(r, radianceNow);
+
+    std::vector<std::string> files;
+    nlohmann::json views = nlohmann::json::array(), skipped = nlohmann::json::array();
+    // `scale`: the linear factor applied before writing (PNG: then the sRGB transfer,
+    // clipped to [0, 1]); EXR files hold the values as computed.
+    auto put = [&](const std::string& name, const Image& img, double scale,
+                   const std::string& shows) {
+        writeImage(dir / name, img, std::log2(scale));
+        files.push_back(name);
+        views.push_back({{"file", name}, {"shows", shows}, {"scale", scale}});
+    };
+    const std::string bShows =
+        "radiosity of the edit's lighting as the camera sees it, B / pi = rho H / pi (the "
+        "photo's radiance units; Loscos et al. 2000, Fig. 18(b)); black without reflecting "
+        "surface";
+    const std::string dShows =
+        "display correction factor in the same units, rho D / pi (Fig. 17(a), 18(a)); black "
+        "without reflecting surface";
+    put("B.exr", v.B, 1, bShows);
+    put("B.png", v.B, v.bdScale, bShows + "; scale: 99th percentile of D's luminance -> 1");
+    put("D.exr", v.D, 1, dShows);
+    put("D.png", v.D, v.bdScale, dShows + "; scale: 99th percentile of D's luminance -> 1");
+    put("T_orig.png", v.Torig, 1, "the photo T_orig (Fig. 18(c))");
+    const std::string why = "shadow removal was off: no T_inter, T_final or shadow classes";
+    const std::string overDimmedPhoto =
+        " over the photo at " + std::to_string(std::lround(100 * kDim)) + " %";
+    if (v.Tinter.width > 0) {
+        put("T_inter.png", v.Tinter, 1,
+            "T_orig k_inter: shadows lifted with the reference reflectance (Eq. (13)); the "
+            "photo where there is no reflecting surface");
+        put("T_final.png", v.Tfinal, 1,
+            "T_orig k_final: the final texture after the umbra correction (Eq. (16), "
+            "Fig. 18(e)); the photo where there is no reflecting surface");
+    } else {
+        skipped.push_back({{"file", "T_inter.png"}, {"why", why}});
+        skipped.push_back({{"file", "T_final.png"}, {"why", why}});
+    }
+    put("reflectance.png", v.reflectance, 1,
+        "leaf reflectance rho, after shadow removal when it ran (linear; black without "
+        "reflecting surface)");
+    put("mesh.png", v.mesh, 1,
+        "leaf element edges (yellow)" + overDimmedPhoto +
+            " (Fig. 10, 11): pixels whose samples, or whose first sample and its right or "
+            "lower neighbour's, lie in different leaves");
+    if (v.frontier.width > 0)
+        put("frontier.png", v.frontier, 1,
+            "occluded leaves (blue) and frontier leaves (green)" + overDimmedPhoto +
+                " (Fig. 14(a)), tinted by the share of each pixel's samples on them");
+    else
+        skipped.push_back({{"file", "frontier.png"}, {"why", why}});
+
+    nlohmann::json lights = nlohmann::json::object();
+    const auto& ls = r.scene.scene.lights;
+    for (size_t l = 0; l < ls.size() && l < radianceNow.size(); ++l)
+        lights[ls[l].name] = {radianceNow[l].r, radianceNow[l].g, radianceNow[l].b};
+    const nlohmann::json index = {{"format", "relight-debug-views/1"},
+                                  {"width", r.prepared.photo.width},
+                                  {"height", r.prepared.photo.height},
+                                  {"shadow_removal", !r.removal.kInter.empty()},
+                                  {"lights", lights},
+                                  {"views", views},
+                                  {"skipped", skipped}};
+    writeJsonAtomic(dir / "index.json", index);
+    files.push_back("index.json");
+    return files;
+}
+
+}  // namespace relight

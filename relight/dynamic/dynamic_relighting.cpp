@@ -1,0 +1,347 @@
+#include "relight/dynamic/dynamic_relighting.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "radiosity/direct_light.h"
+#include "radiosity/final_gather.h"
+#include "radiosity/stopwatch.h"
+
+namespace relight {
+
+using radiosity::Node;
+using radiosity::Vec3;
+
+using radiosity::Clock;
+using radiosity::secondsSince;
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+// Seeds of the shadow rays of the virtual objects' vertices, apart from the scene's.
+constexpr uint64_t kObjectSeed = 0x0b1ec7ull << 24;
+}  // namespace
+
+DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radiance)
+    : r_(r), solver_(*r.solver) {
+    if (!r.solver || !r.mesh)
+        throw std::invalid_argument("DynamicRelighting: the relighting is not prepared");
+    if (solver_.insertedObjects() > 0)
+        throw std::logic_error("DynamicRelighting: the solver already holds virtual parts");
+    realLights_ = static_cast<int>(solver_.scene().lights.size());
+    if (static_cast<int>(radiance.size()) != realLights_)
+        throw std::invalid_argument("DynamicRelighting: one radiance per real light expected");
+    radiance_.assign(radiance.begin(), radiance.end());
+    for (const auto& l : solver_.scene().lights) photoRadiance_.push_back(l.radiance);
+    realPolygons_ = solver_.scene().polygons.size();
+    realNodes_ = solver_.hierarchy().nodes.size();
+    // The solution at the edit's radiances: the "before" of every indirect change.
+    solver_.setLightRadiances(radiance_);
+    const size_t nv = r_.mesh->vertices().size();
+    base_.resize(nv);
+    for (size_t v = 0; v < nv; ++v)
+        base_[v] = r_.prepared.lighting.irradiance(static_cast<int>(v), radiance_);
+    realDirect_.assign(nv, Rgb{});
+    virtualDirect_.assign(nv, Rgb{});
+    indirect_.assign(nv, Rgb{});
+    indirect0_ = indirectPerNode();
+}
+
+DynamicRelighting::~DynamicRelighting() {
+    // The relighting's solver goes back to the scene as prepared (bit for bit: removal
+    // restores each insertion's snapshot), with the photo's radiances.
+    try {
+        while (solver_.insertedObjects() > 0) solver_.removeLastObject();
+        solver_.setLightRadiances(photoRadiance_);
+    } catch (...) {
+        // A destructor must not throw; the solver is left as the failed step left it.
+    }
+}
+
+std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
+    // H_ind(node): what the node and its ancestors gather through links whose source is not
+    // an emitting element (light links are the direct light, evaluated per vertex).
+    const auto& nodes = solver_.hierarchy().nodes;
+    return solver_.gatherDown(
+        [&](int s) {
+            const Node& S = nodes[s];
+            return !S.isCluster() && S.emitting ? Rgb{} : S.B;
+        },
+        /*bounded=*/true);
+}
+
+int DynamicRelighting::addLight(const VirtualLight& light) {
+    if (gatherBefore_.empty()) gatherBefore_ = gatherAtVertices();  // no virtual part yet
+    std::vector<Vec3> corners(light.corners.begin(), light.corners.end());
+    radiosity::Polygon p = radiosity::makePolygon(corners, -1, Rgb{});
+    radiosity::DynamicUpdate u;
+    solver_.insertObject(light.name, {p}, &light.radiance, &u);
+    radiance_.push_back(light.radiance);
+    afterUpdate(u, /*allVertices=*/true);
+    return static_cast<int>(radiance_.size()) - 1;
+}
+
+void DynamicRelighting::addObject(const VirtualObject& object) {
+    radiosity::DynamicUpdate u;
+    solver_.insertObject(object.name, object.polygons, nullptr, &u);
+    afterUpdate(u, false);
+}
+
+void DynamicRelighting::moveLastObject(std::vector<radiosity::Polygon> polygons) {
+    radiosity::DynamicUpdate u;
+    solver_.moveLastObject(std::move(polygons), &u);
+    afterUpdate(u, false);
+}
+
+void DynamicRelighting::removeLast() {
+    const bool light = static_cast<int>(solver_.scene().lights.size()) > realLights_ &&
+                       solver_.scene().polygons.back().light >= 0;
+    radiosity::DynamicUpdate u;
+    solver_.removeLastObject(&u);
+    if (light) radiance_.pop_back();
+    afterUpdate(u, light);
+}
+
+void DynamicRelighting::afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices) {
+    last_ = u;
+    times_ = FrameTimes{};
+    times_.shafts = u.timeShafts;
+    times_.visibility = u.timeVisibility;
+    times_.links = u.timeLinks;
+    times_.radiosity = u.timeGather;
+    const auto t0 = Clock::now();
+    std::vector<int> vertices;
+    const auto& mesh = *r_.mesh;
+    if (allVertices) {
+        vertices.resize(mesh.vertices().size());
+        for (size_t v = 0; v < vertices.size(); ++v) vertices[v] = static_cast<int>(v);
+    } else {
+        std::vector<char> seen(mesh.vertices().size(), 0);
+        for (int leaf : u.shadowLeaves) {
+            if (static_cast<size_t>(leaf) >= realNodes_) continue;
+            for (int v : mesh.vertexIds(leaf))
+                if (!seen[v]) {
+                    seen[v] = 1;
+                    vertices.push_back(v);
+                }
+        }
+    }
+    refreshDirect(vertices, /*virtualOnly=*/allVertices);
+    refreshIndirect(allVertices);
+    times_.vertices = secondsSince(t0);
+}
+
+void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool virtualOnly) {
+    const auto& mesh = *r_.mesh;
+    const radiosity::DirectLight direct(solver_);
+    const auto& scene = solver_.scene();
+    const int lights = static_cast<int>(scene.lights.size());
+    const VertexDirect& before = r_.direct;
+    const auto& correction = r_.removal.linkCorrection;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices.size(), 16),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          std::vector<double> G(static_cast<size_t>(lights));
+                          for (size_t i = range.begin(); i != range.end(); ++i) {
+                              const int v = vertices[i];
+                              const int p = mesh.vertices()[v].polygon;
+                              if (scene.polygons[p].light >= 0) continue;  // shown, not lit
+                              // A virtual light added or removed changes the virtual lights' direct
+                              // light only; a moved object may change every light's.
+                              direct.geometry(p, mesh.insidePoint(v), static_cast<uint64_t>(v),
+                                              G.data(), nullptr, virtualOnly ? realLights_ : 0);
+                              if (!virtualOnly) {
+                                  const Rgb c = correction.empty() ? Rgb::gray(1.0) : correction[v];
+                                  Rgb d;
+                                  for (int l = 0; l < realLights_; ++l) {
+                                      const double was =
+                                          before.visible[static_cast<size_t>(v) * realLights_ + l];
+                                      d += radiance_[l] * c * (kPi * G[l] - was);
+                                  }
+                                  realDirect_[v] = d;
+                              }
+                              Rgb d;
+                              for (int l = realLights_; l < lights; ++l)
+                                  d += radiance_[l] * (kPi * G[l]);
+                              virtualDirect_[v] = d;
+                          }
+                      });
+}
+
+std::vector<Rgb> DynamicRelighting::gatherAtVertices() const {
+    const auto& mesh = *r_.mesh;
+    const auto& scene = solver_.scene();
+    std::vector<Rgb> out(mesh.vertices().size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 16),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t v = range.begin(); v != range.end(); ++v) {
+                              const int p = mesh.vertices()[v].polygon;
+                              if (scene.polygons[p].light >= 0) continue;
+                              out[v] = radiosity::finalGatherIndirect(
+                                  solver_, p, mesh.insidePoint(static_cast<int>(v)), 4, v);
+                          }
+                      });
+    return out;
+}
+
+void DynamicRelighting::refreshIndirect(bool full) {
+    const std::vector<Rgb> now = indirectPerNode();
+    const std::vector<Rgb> leaf =
+        r_.mesh->averageOfLeaves([&](int n) { return now[n] - indirect0_[n]; });
+    if (full) {
+        // A light changes the indirect light everywhere: gather it per vertex, as the
+        // prepared lighting does for the scene's lights.
+        const std::vector<Rgb> gathered = gatherAtVertices();
+        gatherDelta_.resize(gathered.size());
+        for (size_t v = 0; v < gathered.size(); ++v)
+            gatherDelta_[v] = gathered[v] - gatherBefore_[v];
+        leafAtFull_ = leaf;
+    }
+    for (size_t v = 0; v < indirect_.size(); ++v)
+        indirect_[v] = gatherDelta_.empty() ? leaf[v] : gatherDelta_[v] + leaf[v] - leafAtFull_[v];
+    if (static_cast<size_t>(solver_.hierarchy().nodes.size()) <= realNodes_) {
+        objectMesh_.reset();
+        objectRadiance_.clear();
+        return;
+    }
+    // The virtual objects' surfaces: rho H / pi at their leaf corners, H from the direct
+    // light per vertex and the leaves' indirect light.
+    const auto& h = solver_.hierarchy();
+    objectMesh_ = std::make_unique<radiosity::LeafMesh>(h, static_cast<int>(realNodes_));
+    const auto indirectAtCorners = objectMesh_->averageOfLeaves([&](int n) { return now[n]; });
+    const auto& scene = solver_.scene();
+    const int lights = static_cast<int>(scene.lights.size());
+    const radiosity::DirectLight direct(solver_);
+    const size_t nv = objectMesh_->vertices().size();
+    objectRadiance_.assign(nv, Rgb{});
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 8),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          std::vector<double> G(static_cast<size_t>(lights));
+                          for (size_t v = range.begin(); v != range.end(); ++v) {
+                              const int p = objectMesh_->vertices()[v].polygon;
+                              if (scene.polygons[p].light >= 0) continue;
+                              direct.geometry(p, objectMesh_->insidePoint(static_cast<int>(v)),
+                                              kObjectSeed + v, G.data());
+                              Rgb H = indirectAtCorners[v];
+                              for (int l = 0; l < lights; ++l) H += radiance_[l] * (kPi * G[l]);
+                              objectRadiance_[v] = scene.polygons[p].rho * H * (1.0 / kPi);
+                          }
+                      });
+}
+
+std::vector<Rgb> DynamicRelighting::vertexIrradiance() const {
+    const size_t nv = base_.size();
+    std::vector<Rgb> H(nv);
+    for (size_t v = 0; v < nv; ++v)
+        H[v] = base_[v] + realDirect_[v] + virtualDirect_[v] + indirect_[v];
+    return H;
+}
+
+std::vector<Rgb> DynamicRelighting::vertexRatios() const {
+    return vertexRatio(r_.prepared, vertexIrradiance());
+}
+
+Image DynamicRelighting::render() {
+    const auto t0 = Clock::now();
+    const PreparedImage& P = r_.prepared;
+    const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
+    Image img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
+    const double tRatio = secondsSince(t0);
+    applyOverlay(img, overlay());
+    times_.display += tRatio;
+    return img;
+}
+
+void applyOverlay(Image& img, const VirtualOverlay& o) {
+    for (int y = 0; y < o.height; ++y)
+        for (int x = 0; x < o.width; ++x) {
+            const float* a = &o.rgba[(static_cast<size_t>(y) * o.width + x) * 4];
+            float* px = img.at(o.x0 + x, o.y0 + y);
+            for (int c = 0; c < 3; ++c) px[c] = a[3] * px[c] + a[c];
+        }
+}
+
+VirtualOverlay DynamicRelighting::overlay() {
+    const auto t0 = Clock::now();
+    // The item buffer again, in the projected box of the virtual parts only (the pixels of
+    // an old position outside it are the ratio display's).
+    const Camera& camera = r_.scene.camera;
+    const auto& scene = solver_.scene();
+    int x0 = camera.width, y0 = camera.height, x1 = -1, y1 = -1;
+    for (size_t p = realPolygons_; p < scene.polygons.size(); ++p) {
+        const auto& poly = scene.polygons[p];
+        for (int i = 0; i < poly.vertexCount; ++i) {
+            double u = 0, v = 0, depth = 0;
+            if (!camera.project(poly.v[i], u, v, depth) || !(depth > 0)) {
+                x0 = y0 = 0;  // behind the camera: the whole image
+                x1 = camera.width - 1;
+                y1 = camera.height - 1;
+                continue;
+            }
+            x0 = std::min(x0, static_cast<int>(std::floor(u)));
+            y0 = std::min(y0, static_cast<int>(std::floor(v)));
+            x1 = std::max(x1, static_cast<int>(std::ceil(u)));
+            y1 = std::max(y1, static_cast<int>(std::ceil(v)));
+        }
+    }
+    VirtualOverlay o;
+    o.x0 = std::max(x0, 0);
+    o.y0 = std::max(y0, 0);
+    o.width = std::min(x1, camera.width - 1) - o.x0 + 1;
+    o.height = std::min(y1, camera.height - 1) - o.y0 + 1;
+    if (o.empty()) {
+        o.width = o.height = 0;
+        times_.display = secondsSince(t0);
+        return o;
+    }
+    o.rgba.assign(static_cast<size_t>(o.width) * o.height * 4, 0.0f);
+    const int k =
+        std::max(1, static_cast<int>(std::floor(std::sqrt(static_cast<double>(r_.items.spp)))));
+    const Vec3 eye = camera.position();
+    const auto& h = solver_.hierarchy();
+    const auto& vis = solver_.visibility();
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, o.height), [&](const tbb::blocked_range<int>& rows) {
+            for (int by = rows.begin(); by != rows.end(); ++by)
+                for (int bx = 0; bx < o.width; ++bx) {
+                    const int x = o.x0 + bx, y = o.y0 + by;
+                    double realShare = 0;
+                    Rgb added;
+                    for (int s = 0; s < k * k; ++s) {
+                        const double u = x - 0.5 + ((s % k) + 0.5) / k;
+                        const double v = y - 0.5 + ((s / k) + 0.5) / k;
+                        const Vec3 dir = camera.rayDirection(u, v);
+                        const auto hit = vis.intersect(eye, dir);
+                        if (hit.polygon < static_cast<int>(realPolygons_)) {
+                            realShare += 1;  // the photo's sample, as the ratio display shows
+                            continue;
+                        }
+                        const auto& poly = scene.polygons[hit.polygon];
+                        if (glm::dot(poly.normal, dir) >= 0) continue;  // back: black
+                        if (poly.light >= 0) {
+                            added += radiance_[poly.light];
+                            continue;
+                        }
+                        if (!objectMesh_) continue;
+                        const Vec3 point = eye + hit.t * dir;
+                        const int leaf = h.locateLeaf(hit.polygon, point);
+                        const auto w = objectMesh_->weights(leaf, point);
+                        const auto& corners = objectMesh_->corners(leaf);
+                        for (int i = 0; i < h.nodes[leaf].vertexCount; ++i)
+                            added += objectRadiance_[corners[i]] * w[i];
+                    }
+                    const double n = static_cast<double>(k * k);
+                    float* a = &o.rgba[(static_cast<size_t>(by) * o.width + bx) * 4];
+                    for (int c = 0; c < 3; ++c) a[c] = static_cast<float>(added[c] / n);
+                    a[3] = static_cast<float>(realShare / n);
+                }
+        });
+    times_.display = secondsSince(t0);
+    return o;
+}
+
+}  // namespace relight

@@ -1,0 +1,125 @@
+// DynamicRelighting: virtual lights and virtual objects in the relit photo, and objects
+// moved interactively (Loscos, Drettakis & Robert 2000, §5.1-5.2; Loscos et al. 1999,
+// §5.2), over a prepared Relighting.
+//
+// The solver inserts each virtual part (radiosity/solver.h, insertObject: a cluster under
+// the root, the links whose shafts it cuts get their visibility again, its own links by the
+// refinement oracle, links from a virtual light forced down to leaf elements). The display
+// is then the prepared ratio display with the vertex irradiance changed where the edit
+// changes it:
+//   H(v) = sum_l L_l h_l(v)                          the photo's lights at the edit's radiances
+//        + sum_l L_l C_link(v) pi (G'_l(v) - G_l(v))  direct light the objects now block, at
+//                                                     the corners of the leaves whose light
+//                                                     links an object's shaft cut
+//        + sum_k L_k pi G_k(v)                       direct light of the virtual lights
+//        + H_ind(leaf, now) - H_ind(leaf, before)     indirect light as the solver's leaves
+//                                                     gather it, Gouraud at the vertices
+// and pixel = T * k H/D (Eq. (3)) as for a light edit: new shadows fall on real surfaces
+// through B/D. In the projected bounding boxes of the virtual parts only, the camera's
+// samples are cast again (the item buffer's update): a sample that now sees a virtual
+// object shows rho H / pi of the object's leaf vertices (its own radiosity), one that sees a
+// virtual light's face shows its radiance; the pixel's other samples keep the ratio display.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "radiosity/leaf_mesh.h"
+#include "radiosity/solver.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/image.h"
+#include "relight/relighting.h"
+
+namespace relight {
+
+/// Where the time of the last update and frame went (seconds).
+struct FrameTimes {
+    double shafts = 0;      ///< walking the link tree's shafts
+    double visibility = 0;  ///< visibility rays of the cut links
+    double links = 0;       ///< the object's links (and the removal at the old place)
+    double radiosity = 0;   ///< gather/push-pull
+    double vertices = 0;    ///< direct light at the changed vertices, indirect change
+    double display = 0;     ///< item buffer in the boxes, ratio display, virtual surfaces
+    double total() const { return shafts + visibility + links + radiosity + vertices + display; }
+};
+
+/// What the virtual parts show in their projected bounding box, per pixel of the box: the
+/// share of the pixel's samples that still see the photo's surfaces (they keep the ratio
+/// display) and the radiance the other samples add (virtual objects' rho H / pi, virtual
+/// light faces), already divided by the samples per pixel:
+///   pixel = realShare * ratio display + added.
+/// Pixels outside the box are the ratio display's alone.
+struct VirtualOverlay {
+    int x0 = 0, y0 = 0, width = 0, height = 0;  ///< the box in pixels (empty: nothing)
+    std::vector<float> rgba;                    ///< per box pixel: added r, g, b; realShare
+    bool empty() const { return width <= 0 || height <= 0; }
+};
+
+/// Applies an overlay to a ratio-display image (same size as the photo).
+void applyOverlay(Image& img, const VirtualOverlay& overlay);
+
+class DynamicRelighting {
+  public:
+    /// `r` must come from prepareRelighting() and outlive this object, which changes its
+    /// solver (virtual parts are inserted into it) until it is destroyed: the destructor
+    /// removes them and restores the solver's radiances, so sessions can follow each other.
+    /// `radiance`: the real lights' radiance for the edit (editRadiance()), one per scene light.
+    DynamicRelighting(Relighting& r, std::span<const Rgb> radiance);
+    ~DynamicRelighting();
+
+    /// Inserts a virtual light; returns its index among the solver's lights.
+    int addLight(const VirtualLight& light);
+    /// Inserts a virtual object (its polygons in world space, VirtualObject::polygons).
+    void addObject(const VirtualObject& object);
+    /// Moves the object added last to new world-space polygons (same faces).
+    void moveLastObject(std::vector<radiosity::Polygon> polygons);
+    /// Removes the virtual part added last (object or light).
+    void removeLast();
+
+    /// The relit photo as it stands: the ratio display of vertexRatios() with overlay().
+    Image render();
+    /// Its two parts, for a display that does the per-pixel work itself (the viewer's GPU):
+    /// the display ratio k H/D per leaf vertex of the scene (relight/prepared.h, vertexRatio)
+    /// and the virtual parts' overlay (casts the camera's samples in their box again).
+    std::vector<Rgb> vertexRatios() const;
+    VirtualOverlay overlay();
+    /// Irradiance H per leaf vertex of the scene, with every change the edit makes.
+    std::vector<Rgb> vertexIrradiance() const;
+    /// Radiance of the real lights (scene order), then of the virtual lights.
+    std::span<const Rgb> radiance() const { return radiance_; }
+    int realLights() const { return realLights_; }
+
+    const FrameTimes& times() const { return times_; }
+    const radiosity::DynamicUpdate& lastUpdate() const { return last_; }
+
+  private:
+    void afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices);
+    void refreshDirect(const std::vector<int>& vertices, bool virtualOnly);
+    void refreshIndirect(bool full);  ///< and the virtual objects' surfaces
+    std::vector<Rgb> gatherAtVertices() const;
+    std::vector<Rgb> indirectPerNode() const;
+
+    Relighting& r_;
+    radiosity::HierarchicalSolver& solver_;
+    int realLights_ = 0;
+    size_t realPolygons_ = 0;         ///< polygons below this index are the scene's
+    size_t realNodes_ = 0;            ///< nodes below this id are the scene's
+    std::vector<Rgb> radiance_;       ///< real lights, then virtual lights (solver order)
+    std::vector<Rgb> photoRadiance_;  ///< the solver's radiances before (restored at the end)
+    std::vector<Rgb> base_;           ///< per vertex: sum_l L_l h_l(v)
+    std::vector<Rgb> realDirect_;     ///< per vertex: the real lights' direct light change
+    std::vector<Rgb> virtualDirect_;  ///< per vertex: the virtual lights' direct light
+    std::vector<Rgb> indirect0_;      ///< per node: H_ind before any virtual part
+    std::vector<Rgb> indirect_;       ///< per vertex: H_ind(now) - H_ind(before)
+    // Per vertex: final gather (radiosity/final_gather.h) of the indirect light before any
+    // virtual part, its change at the last full update (a light added or removed), and the
+    // leaf-level change at that time; objects moved since add only their leaf-level change.
+    std::vector<Rgb> gatherBefore_, gatherDelta_, leafAtFull_;
+    std::unique_ptr<radiosity::LeafMesh> objectMesh_;  ///< virtual objects' leaf corners
+    std::vector<Rgb> objectRadiance_;                  ///< per object vertex: rho H / pi
+    FrameTimes times_;
+    radiosity::DynamicUpdate last_;
+};
+
+}  // namespace relight

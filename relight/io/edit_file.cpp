@@ -1,0 +1,243 @@
+// Edit loading ("relight-edit/1", docs/scene-format.md, "Edit"). Strict like the
+// scene loader and with the same messages (json_reader.h): a misspelt key or light name
+// would otherwise be an edit that silently does nothing.
+#include "relight/io/edit_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "relight/io/face_repair.h"
+#include "relight/io/json_reader.h"
+#include "relight/io/light_reader.h"
+#include "relight/io/mesh_reader.h"
+
+namespace relight {
+
+namespace fs = std::filesystem;
+using jsonio::child;
+using jsonio::element;
+using jsonio::JsonReader;
+using nlohmann::json;
+
+namespace {
+
+/// "A, B, C, D": the names a user may write under "lights", for the unknown-light message.
+std::string lightNames(const SceneFile& sf) {
+    if (sf.scene.lights.empty()) return "no lights";
+    std::string names;
+    for (const radiosity::Light& light : sf.scene.lights)
+        names += (names.empty() ? "" : ", ") + light.name;
+    return names;
+}
+
+LightEdit readLightEdit(const JsonReader& r, const json& entry, const std::string& path) {
+    r.checkKeys(entry, path, {"scale", "radiance"});
+    const auto scale = entry.find("scale");
+    const auto radiance = entry.find("radiance");
+    // Both would leave it to us which one wins; neither is most likely a typo'd key that
+    // checkKeys cannot catch (an empty object). Both are errors rather than guesses.
+    if (scale != entry.end() && radiance != entry.end())
+        r.fail(path, "has both \"scale\" and \"radiance\"; give one of them");
+    if (scale == entry.end() && radiance == entry.end())
+        r.fail(path, "says nothing; give \"scale\" or \"radiance\"");
+
+    LightEdit edit;
+    if (scale != entry.end()) {
+        const std::string sPath = child(path, "scale");
+        const double s = r.number(*scale, sPath);
+        if (s < 0) r.fail(sPath, "scale must not be negative");
+        edit.scale = s;
+    } else {
+        const std::string rPath = child(path, "radiance");
+        const Rgb rad = r.rgb(*radiance, rPath);
+        for (int k = 0; k < 3; ++k)
+            if (rad[k] < 0)
+                r.fail(element(rPath, static_cast<size_t>(k)), "radiance must not be negative");
+        edit.radiance = rad;
+    }
+    return edit;
+}
+
+VirtualLight readVirtualLight(const JsonReader& r, const json& lj, const std::string& path) {
+    LightJson l = readLightJson(r, lj, path, /*typeRequired=*/false, /*estimateAllowed=*/false);
+    return {std::move(l.name), std::move(l.corners), l.radiance};
+}
+
+VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::string& path,
+                                const fs::path& editFile, std::vector<std::string>& warnings) {
+    r.checkKeys(oj, path, {"name", "file", "reflectance", "transform"});
+    VirtualObject v;
+    v.name = r.string(r.require(oj, path, "name"), child(path, "name"));
+    if (v.name.empty()) r.fail(child(path, "name"), "empty object name");
+
+    const std::string rPath = child(path, "reflectance");
+    v.reflectance = r.rgb(r.require(oj, path, "reflectance"), rPath);
+    for (int k = 0; k < 3; ++k)
+        if (!(v.reflectance[k] >= 0 && v.reflectance[k] < 1))
+            r.fail(element(rPath, static_cast<size_t>(k)),
+                   "reflectance must be in [0, 1): a surface reflects less than it receives, and "
+                   "1 would make the radiosity system singular");
+
+    const std::string tPath = child(path, "transform");
+    const auto M = r.matrix(r.require(oj, path, "transform"), tPath, 4, 4);
+    for (size_t c = 0; c < 4; ++c)
+        if (std::abs(M[3][c] - (c == 3 ? 1.0 : 0.0)) > 1e-9)
+            r.fail(element(element(tPath, 3), c),
+                   "the last row must be [0, 0, 0, 1] (an affine placement, no projection)");
+    double scale = 0;
+    for (size_t i = 0; i < 3; ++i)
+        for (size_t j = 0; j < 3; ++j) scale = std::max(scale, std::abs(M[i][j]));
+    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    // Relative to the matrix's own scale: a 1 mm-thick flattening of a 1 m box is legal.
+    if (!(std::abs(det) > 1e-9 * scale * scale * scale))
+        r.fail(tPath, "the transform is singular (it flattens the object to a plane or less)");
+    for (size_t i = 0; i < 4; ++i)
+        for (size_t j = 0; j < 4; ++j) v.transform[i][j] = M[i][j];
+
+    const std::string fPath = child(path, "file");
+    const std::string name = r.string(r.require(oj, path, "file"), fPath);
+    if (name.empty()) r.fail(fPath, "empty file name");
+    v.file = editFile.parent_path() / name;
+    std::error_code ec;
+    if (!fs::exists(v.file, ec))
+        r.fail(fPath, "geometry file \"" + v.file.string() + "\" not found");
+    // Any format the scene's geometry may have (OBJ, PLY, glTF: mesh_reader.h).
+    ObjFile obj = readMesh(v.file).geometry;
+    warnings.insert(warnings.end(), obj.warnings.begin(), obj.warnings.end());
+    placeObject(v, obj, warnings);
+    if (v.polygons.empty()) r.fail(fPath, "\"" + v.file.string() + "\" has no usable face");
+    return v;
+}
+
+}  // namespace
+
+void placeObject(VirtualObject& v, ObjFile obj, std::vector<std::string>& warnings) {
+    const auto& M = v.transform;
+    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    for (radiosity::Vec3& p : obj.positions)
+        p = radiosity::Vec3(M[0][0] * p.x + M[0][1] * p.y + M[0][2] * p.z + M[0][3],
+                            M[1][0] * p.x + M[1][1] * p.y + M[1][2] * p.z + M[1][3],
+                            M[2][0] * p.x + M[2][1] * p.y + M[2][2] * p.z + M[2][3]);
+    // A mirroring transform turns counter-clockwise faces clockwise: turn them back, so
+    // that each face's front side stays the one the file meant.
+    if (det < 0)
+        for (ObjFace& f : obj.faces) std::reverse(f.vertices.begin(), f.vertices.end());
+    radiosity::Scene faces;
+    faces.objects.push_back(v.name);
+    const std::vector<int> toObject(obj.objects.size(), 0);
+    addObjFaces(
+        obj, toObject, [&](int) { return v.reflectance; }, faces, warnings);
+    v.polygons = std::move(faces.polygons);
+}
+
+EditFile loadEdit(const fs::path& file, const SceneFile& sf) {
+    EditFile edit;
+    edit.file = file;
+    const json root = jsonio::parseJsonFile(file);
+    const JsonReader r(file.string());
+    if (!root.is_object()) r.fail("", "the top level must be a JSON object");
+
+    // The format first: a scene.json given by mistake is then named as such rather than
+    // reported as a list of unknown keys.
+    const json& format = r.require(root, "", "format");
+    if (!format.is_string() || format.get<std::string>() != "relight-edit/1")
+        r.fail("format", "expected \"relight-edit/1\", got " + format.dump());
+    r.checkKeys(root, "", {"format", "lights", "add_lights", "add_objects", "remove_objects"});
+
+    if (auto it = root.find("lights"); it != root.end()) {
+        if (!it->is_object())
+            r.fail("lights", "expected an object of light names, got " + JsonReader::describe(*it));
+        for (auto l = it->begin(); l != it->end(); ++l) {
+            const std::string path = child("lights", l.key());
+            if (sf.scene.findLight(l.key()) < 0)
+                r.fail(path,
+                       "unknown light \"" + l.key() + "\" (the scene has " + lightNames(sf) + ")");
+            edit.lights[l.key()] = readLightEdit(r, l.value(), path);
+        }
+    }
+
+    if (auto it = root.find("add_lights"); it != root.end()) {
+        const json& list = r.array(*it, "add_lights", 0);
+        for (size_t i = 0; i < list.size(); ++i) {
+            VirtualLight v = readVirtualLight(r, list[i], element("add_lights", i));
+            const std::string nPath = child(element("add_lights", i), "name");
+            if (sf.scene.findLight(v.name) >= 0)
+                r.fail(nPath, "the scene already has a light \"" + v.name + "\"");
+            for (const VirtualLight& other : edit.addLights)
+                if (other.name == v.name) r.fail(nPath, "duplicate light name \"" + v.name + "\"");
+            edit.addLights.push_back(std::move(v));
+        }
+    }
+    if (auto it = root.find("add_objects"); it != root.end()) {
+        const json& list = r.array(*it, "add_objects", 0);
+        for (size_t i = 0; i < list.size(); ++i) {
+            const std::string path = element("add_objects", i);
+            VirtualObject v = readVirtualObject(r, list[i], path, file, edit.warnings);
+            const std::string nPath = child(path, "name");
+            if (sf.scene.findObject(v.name) >= 0)
+                r.fail(nPath, "the scene already has an object \"" + v.name + "\"");
+            for (const VirtualObject& other : edit.addObjects)
+                if (other.name == v.name) r.fail(nPath, "duplicate object name \"" + v.name + "\"");
+            edit.addObjects.push_back(std::move(v));
+        }
+    }
+    if (auto it = root.find("remove_objects"); it != root.end()) {
+        const json& list = r.array(*it, "remove_objects", 0);
+        for (size_t i = 0; i < list.size(); ++i) {
+            const std::string path = element("remove_objects", i);
+            const std::string name = r.string(list[i], path);
+            const auto settings = sf.objectSettings.find(name);
+            if (sf.scene.findObject(name) < 0 || name.starts_with("light:"))
+                r.fail(path, "the scene has no object \"" + name + "\"");
+            if (settings == sf.objectSettings.end() || !settings->second.removable)
+                r.fail(path, "object \"" + name +
+                                 "\" is not marked \"removable\" in scene.json (removing it needs "
+                                 "the photo behind it to be filled in)");
+            if (std::find(edit.removeObjects.begin(), edit.removeObjects.end(), name) !=
+                edit.removeObjects.end())
+                r.fail(path, "object \"" + name + "\" is removed twice");
+            edit.removeObjects.push_back(name);
+        }
+    }
+    return edit;
+}
+
+std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
+                                const std::vector<Rgb>& nominal) {
+    const auto& lights = sf.scene.lights;
+    if (nominal.size() != lights.size())
+        throw std::invalid_argument("editedRadiance: " + std::to_string(nominal.size()) +
+                                    " nominal radiances for " + std::to_string(lights.size()) +
+                                    " lights");
+    for (const auto& [name, change] : edit.lights)
+        if (sf.scene.findLight(name) < 0)
+            throw std::invalid_argument("editedRadiance: " + edit.file.string() +
+                                        " names light \"" + name +
+                                        "\", which this scene does not have");
+
+    std::vector<Rgb> out(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (auto it = edit.lights.find(lights[i].name); it != edit.lights.end()) {
+            out[i] = it->second.scale ? nominal[i] * *it->second.scale : *it->second.radiance;
+            continue;
+        }
+        // The photo's state, applied to the given nominal radiance (maybe an estimated one).
+        out[i] = sf.lightOnInPhoto(i) ? nominal[i] : Rgb{};
+    }
+    return out;
+}
+
+void requireRenderable(const EditFile& edit) {
+    if (edit.removeObjects.empty()) return;
+    throw InputError(edit.file.string() +
+                     ": \"remove_objects\" is not supported yet (this version changes real "
+                     "lights and adds virtual lights and objects)");
+}
+
+}  // namespace relight

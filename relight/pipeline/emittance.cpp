@@ -1,0 +1,257 @@
+#include "relight/pipeline/emittance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "relight/pipeline/leaf_texture.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+
+namespace {
+
+/// A decoded sRGB value at or above this was clipped by the encoding (code 255 of 8 bits
+/// decodes to 1; code 254 to 0.991).
+constexpr double kSrgbClip = 0.999;
+
+std::string rgbText(const Rgb& c) {
+    char s[96];
+    std::snprintf(s, sizeof s, "%.4g %.4g %.4g", c.r, c.g, c.b);
+    return s;
+}
+
+std::string keyOf(const SceneFile& sf, size_t l) {
+    return (sf.dir / "scene.json").string() + ": key \"lights[" + std::to_string(l) +
+           "].radiance\"";
+}
+
+double median(std::vector<double>& v) {
+    const size_t n = v.size(), mid = n / 2;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+    const double hi = v[mid];
+    if (n % 2 == 1) return hi;
+    const double lo = *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid));
+    return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+bool EmittanceReport::anyEstimated() const {
+    return std::any_of(lights.begin(), lights.end(), [](const LightEmittance& l) {
+        return l.method != LightEmittance::Method::given;
+    });
+}
+
+std::vector<std::string> EmittanceReport::summary() const {
+    std::vector<std::string> out;
+    for (const LightEmittance& l : lights) {
+        if (l.method == LightEmittance::Method::photo)
+            out.push_back("light \"" + l.name + "\": " + rgbText(l.radiance) + " from " +
+                          std::to_string(l.pixels) + " photo pixels on its face");
+        else if (l.method == LightEmittance::Method::ambient) {
+            char s[200];
+            std::snprintf(s, sizeof s,
+                          " by Eq. (2'): rho^ %.3g, mean surface radiance %s over %.3g of "
+                          "%.3g m^2",
+                          averageReflectance, rgbText(meanSurfaceRadiance).c_str(), seenArea,
+                          reflectingArea);
+            out.push_back("light \"" + l.name + "\": " + rgbText(l.radiance) + s);
+        }
+    }
+    return out;
+}
+
+void checkEstimableLights(const SceneFile& sf) {
+    for (size_t l = 0; l < sf.estimateRadiance.size(); ++l)
+        if (sf.estimateRadiance[l] && sf.photos.empty())
+            throw InputError(keyOf(sf, l) + ": light \"" + sf.scene.lights[l].name +
+                             "\" says \"estimate\" but the scene has no photo to estimate it "
+                             "from; give its radiance as [r, g, b]");
+    for (size_t l = 0; l < sf.estimateRadiance.size(); ++l)
+        if (sf.estimateRadiance[l] && !sf.lightOnInPhoto(l))
+            throw InputError(keyOf(sf, l) + ": light \"" + sf.scene.lights[l].name +
+                             "\" says \"estimate\" but is off in the first photo (not in "
+                             "photos[0].lights_on), so the photo cannot calibrate it; give "
+                             "its radiance as [r, g, b]");
+}
+
+Rgb ambientRadiance(const Rgb& meanSurfaceRadiance, double rho, double areaReflecting,
+                    const Rgb& knownPower, double areaEstimated, bool* negative) {
+    if (negative) *negative = false;
+    Rgb out;
+    for (int c = 0; c < 3; ++c) {
+        const double total = (1.0 - rho) / rho * meanSurfaceRadiance[c] * areaReflecting;
+        const double v = (total - knownPower[c]) / areaEstimated;
+        if (v < 0 || !std::isfinite(v)) {
+            out[c] = 0;
+            if (negative) *negative = true;
+        } else {
+            out[c] = v;
+        }
+    }
+    return out;
+}
+
+EmittanceReport estimateEmittance(const SceneFile& sf, const radiosity::Scene& scene,
+                                  const ItemBuffer& items, const Image& photo,
+                                  const EmittanceOptions& o) {
+    checkEstimableLights(sf);
+    EmittanceReport rep;
+    const size_t nLights = scene.lights.size();
+    rep.lights.resize(nLights);
+    for (size_t l = 0; l < nLights; ++l) {
+        rep.lights[l].name = scene.lights[l].name;
+        rep.lights[l].radiance = scene.lights[l].radiance;  // the photo's state
+    }
+    const bool anyEstimate = std::any_of(sf.estimateRadiance.begin(), sf.estimateRadiance.end(),
+                                         [](bool b) { return b; });
+    if (!anyEstimate) return rep;
+
+    const int w = items.width, h = items.height;
+    const bool srgb = !sf.photos.empty() && sf.photos.front().encoding == PhotoSpec::Encoding::srgb;
+
+    // Way 1: per pixel, the light whose face covers all its samples (-1: none).
+    std::vector<int> faceOf(static_cast<size_t>(w) * h, -1);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            int light = -1;
+            for (int s = 0; s < items.spp; ++s) {
+                const int p = items.polygon[items.sampleIndex(x, y, s)];
+                const int lp = p >= 0 ? scene.polygons[p].light : -1;
+                if (lp < 0 || (s > 0 && lp != light)) {
+                    light = -1;
+                    break;
+                }
+                light = lp;
+            }
+            faceOf[static_cast<size_t>(y) * w + x] = light;
+        }
+    auto clean = [&](int x, int y, int light) {
+        if (x < 0 || y < 0 || x >= w || y >= h) return false;
+        if (faceOf[static_cast<size_t>(y) * w + x] != light) return false;
+        const float* px = photo.at(x, y);
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(px[c]) || (srgb && static_cast<double>(px[c]) >= kSrgbClip))
+                return false;
+        return true;
+    };
+
+    std::vector<bool> known(nLights, false);
+    for (size_t l = 0; l < nLights; ++l) {
+        if (!sf.estimateRadiance[l]) {
+            known[l] = true;
+            continue;
+        }
+        const int light = static_cast<int>(l);
+        std::vector<std::pair<int, int>> all, interior;
+        int covered = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                if (faceOf[static_cast<size_t>(y) * w + x] != light) continue;
+                ++covered;
+                if (!clean(x, y, light)) continue;
+                all.emplace_back(x, y);
+                if (clean(x - 1, y, light) && clean(x + 1, y, light) && clean(x, y - 1, light) &&
+                    clean(x, y + 1, light))
+                    interior.emplace_back(x, y);
+            }
+        const auto& use = static_cast<int>(interior.size()) >= o.minPixels ? interior : all;
+        if (static_cast<int>(use.size()) >= o.minPixels) {
+            Rgb value;
+            std::vector<double> v(use.size());
+            for (int c = 0; c < 3; ++c) {
+                for (size_t i = 0; i < use.size(); ++i)
+                    v[i] = photo.at(use[i].first, use[i].second)[c];
+                value[c] = median(v);
+            }
+            rep.lights[l].method = LightEmittance::Method::photo;
+            rep.lights[l].radiance = value;
+            rep.lights[l].pixels = static_cast<int>(use.size());
+            known[l] = true;
+            continue;
+        }
+        rep.lights[l].method = LightEmittance::Method::ambient;
+        rep.lights[l].pixels = static_cast<int>(all.size());
+        if (covered >= o.minPixels)
+            rep.warnings.push_back(
+                keyOf(sf, l) + ": light \"" + scene.lights[l].name +
+                "\": the photo sees its face on " + std::to_string(covered) + " pixels but only " +
+                std::to_string(all.size()) +
+                " are usable (clipped or not finite); estimated from the power balance instead");
+    }
+
+    // Way 2 for the lights left.
+    double areaEstimated = 0;
+    for (size_t l = 0; l < nLights; ++l)
+        if (!known[l])
+            for (int p : scene.lights[l].polygons) areaEstimated += scene.polygons[p].area;
+    if (areaEstimated <= 0) return rep;
+
+    rep.ambientUsed = true;
+    if (sf.averageReflectance) {
+        rep.averageReflectance = *sf.averageReflectance;
+    } else {
+        rep.averageReflectance = kDefaultAverageReflectance;
+        char s[64];
+        std::snprintf(s, sizeof s, "%.2g", kDefaultAverageReflectance);
+        rep.warnings.push_back((sf.dir / "scene.json").string() +
+                               ": key \"average_reflectance\" is absent; the power balance "
+                               "(Eq. (2')) assumes " +
+                               s);
+    }
+    if (!(rep.averageReflectance > 0))
+        throw InputError((sf.dir / "scene.json").string() +
+                         ": key \"average_reflectance\": 0 (black surfaces) leaves the photo "
+                         "nothing to estimate the \"estimate\" lights' power from");
+    // L^_A: area-weighted mean over the polygons the photo sees of each polygon's mean
+    // over its clean pixels.
+    const std::vector<uint8_t> usable = usablePixels(items, scene, photo);
+    std::vector<Rgb> sum(scene.polygons.size());
+    std::vector<int> count(scene.polygons.size(), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!usable[static_cast<size_t>(y) * w + x]) continue;
+            const int p = items.polygon[items.sampleIndex(x, y, 0)];
+            if (scene.polygons[p].light >= 0) continue;
+            const float* px = photo.at(x, y);
+            sum[p] += Rgb(px[0], px[1], px[2]);
+            ++count[p];
+        }
+    Rgb weighted;
+    for (size_t p = 0; p < scene.polygons.size(); ++p) {
+        if (scene.polygons[p].light >= 0) continue;
+        rep.reflectingArea += scene.polygons[p].area;
+        if (count[p] == 0) continue;
+        weighted += sum[p] * (scene.polygons[p].area / count[p]);
+        rep.seenArea += scene.polygons[p].area;
+    }
+    if (!(rep.seenArea > 0))
+        throw InputError(sf.photos.front().file.string() +
+                         ": the photo shows no reflecting surface on a clean pixel, so the "
+                         "radiance of the \"estimate\" lights cannot be estimated");
+    rep.meanSurfaceRadiance = weighted * (1.0 / rep.seenArea);
+    for (size_t l = 0; l < nLights; ++l) {
+        if (!known[l]) continue;
+        double area = 0;
+        for (int p : scene.lights[l].polygons) area += scene.polygons[p].area;
+        rep.knownPower += rep.lights[l].radiance * area;
+    }
+    bool negative = false;
+    const Rgb value = ambientRadiance(rep.meanSurfaceRadiance, rep.averageReflectance,
+                                      rep.reflectingArea, rep.knownPower, areaEstimated, &negative);
+    if (negative)
+        rep.warnings.push_back(
+            "Eq. (2'): the lights of known radiance emit more than the power balance of the "
+            "photo allows (" +
+            rgbText(rep.knownPower) + " > " +
+            rgbText(rep.meanSurfaceRadiance * ((1.0 - rep.averageReflectance) /
+                                               rep.averageReflectance * rep.reflectingArea)) +
+            " in photo units x m^2); the estimated radiance is clamped to 0 where negative");
+    for (size_t l = 0; l < nLights; ++l)
+        if (!known[l]) rep.lights[l].radiance = value;
+    return rep;
+}
+
+}  // namespace relight

@@ -1,0 +1,61 @@
+#include "relight/pipeline/item_buffer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace relight {
+
+SamplingPlan planSampling(int width, int height, int spp, int64_t budget) {
+    SamplingPlan plan;
+    int k = std::max(1, static_cast<int>(std::floor(std::sqrt(std::max(1, spp)))));
+    const int64_t pixels = static_cast<int64_t>(width) * height;
+    if (budget > 0)
+        while (k > 1 && int64_t{k} * k * pixels > budget) --k;
+    plan.spp = k * k;
+    if (budget > 0) {
+        auto samples = [&](int s) {
+            return int64_t{(width + s - 1) / s} * ((height + s - 1) / s) * plan.spp;
+        };
+        while (samples(plan.stride) > budget) ++plan.stride;
+    }
+    return plan;
+}
+
+ItemBuffer castItemBuffer(const Camera& camera, const radiosity::Scene& scene,
+                          const radiosity::Visibility& vis, int spp) {
+    ItemBuffer items;
+    items.width = camera.width;
+    items.height = camera.height;
+    const int k = std::max(1, static_cast<int>(std::floor(std::sqrt(std::max(1, spp)))));
+    items.spp = k * k;
+    const size_t n = static_cast<size_t>(items.width) * items.height * items.spp;
+    items.polygon.assign(n, -1);
+    items.point.assign(n, radiosity::Vec3{0, 0, 0});
+    const radiosity::Vec3 eye = camera.position();
+    tbb::parallel_for(tbb::blocked_range<int>(0, items.height),
+                      [&](const tbb::blocked_range<int>& rows) {
+                          for (int y = rows.begin(); y != rows.end(); ++y) {
+                              for (int x = 0; x < items.width; ++x) {
+                                  for (int s = 0; s < items.spp; ++s) {
+                                      const double u = x - 0.5 + ((s % k) + 0.5) / k;
+                                      const double v = y - 0.5 + ((s / k) + 0.5) / k;
+                                      const radiosity::Vec3 dir = camera.rayDirection(u, v);
+                                      const auto hit = vis.intersect(eye, dir);
+                                      const int idx = items.sampleIndex(x, y, s);
+                                      if (hit.polygon < 0) continue;
+                                      // One-sided surfaces: the back of a polygon shows nothing.
+                                      if (glm::dot(scene.polygons[hit.polygon].normal, dir) >= 0)
+                                          continue;
+                                      items.polygon[idx] = hit.polygon;
+                                      items.point[idx] = eye + hit.t * dir;
+                                  }
+                              }
+                          }
+                      });
+    return items;
+}
+
+}  // namespace relight

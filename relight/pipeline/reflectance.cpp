@@ -1,0 +1,229 @@
+#include "relight/pipeline/reflectance.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <numbers>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include "radiosity/final_gather.h"
+#include "radiosity/leaf_mesh.h"
+#include "relight/pipeline/leaf_texture.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+
+namespace {
+
+/// Surfaces: polygons joined where they share a corner and their normals are within 25
+/// degrees (radiosity::LeafMesh's rule), so that a wall a reconstruction cut into
+/// triangles is one surface. Returns a surface id per polygon (union-find).
+std::vector<int> surfaceOf(const radiosity::Scene& scene) {
+    const int np = static_cast<int>(scene.polygons.size());
+    std::vector<int> parent(np);
+    for (int p = 0; p < np; ++p) parent[p] = p;
+    const auto find = [&](int p) {
+        while (parent[p] != p) p = parent[p] = parent[parent[p]];
+        return p;
+    };
+    std::map<std::array<double, 3>, std::vector<int>> atCorner;
+    for (int p = 0; p < np; ++p) {
+        const radiosity::Polygon& P = scene.polygons[p];
+        if (P.light >= 0) continue;
+        for (int i = 0; i < P.vertexCount; ++i)
+            atCorner[{P.v[i].x + 0.0, P.v[i].y + 0.0, P.v[i].z + 0.0}].push_back(p);
+    }
+    for (const auto& [corner, polys] : atCorner)
+        for (size_t i = 1; i < polys.size(); ++i)
+            for (size_t j = 0; j < i; ++j) {
+                const auto& a = scene.polygons[polys[i]];
+                const auto& b = scene.polygons[polys[j]];
+                if (glm::dot(a.normal, b.normal) >= radiosity::LeafMesh::kSmoothCos)
+                    parent[find(polys[i])] = find(polys[j]);
+            }
+    for (int p = 0; p < np; ++p) parent[p] = find(p);
+    return parent;
+}
+
+}  // namespace
+
+ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
+                                             const SceneFile& sceneFile, const ItemBuffer& items,
+                                             const LightingBuffer& lighting, const Image& photo,
+                                             int rounds, int minSamples, double tolerance) {
+    ReflectanceReport report;
+    const radiosity::Scene& scene = solver.scene();
+    const int np = static_cast<int>(scene.polygons.size());
+    const int w = items.width, hgt = items.height;
+    // The lighting buffer's sub-grid (its stride) decides which pixels the sums take.
+    const std::vector<uint8_t> usable = usablePixels(items, scene, photo, lighting.stride);
+    // What does not change between rounds: per polygon, the photo's sum and the direct
+    // light's sum over the usable samples (direct light depends on the lights only).
+    std::vector<Rgb> sumL(np), sumDirect(np);
+    std::vector<int> count(np, 0);
+    // Indirect light varies slowly: its mean over a polygon's usable samples is taken from
+    // at most kIndirectPoints of their gather points, evenly spread in scan order, each
+    // weighted by the number of usable samples it stands for.
+    constexpr int kIndirectPoints = 256;
+    std::vector<std::vector<std::pair<int, int>>> points(np);  // (gather point, samples)
+    for (int y = 0; y < hgt; ++y) {
+        for (int x = 0; x < w; ++x) {
+            if (!usable[static_cast<size_t>(y) * w + x]) continue;
+            const float* px = photo.at(x, y);
+            const int idx0 = items.sampleIndex(x, y, 0);
+            const int p = items.polygon[idx0];
+            for (int s = 0; s < items.spp; ++s) {
+                const int idx = items.sampleIndex(x, y, s);
+                sumL[p] += Rgb{px[0], px[1], px[2]};
+                const float* G = lighting.direct(idx);
+                for (int l = 0; l < lighting.lights; ++l)
+                    sumDirect[p] += scene.lights[l].emittance() * static_cast<double>(G[l]);
+                ++count[p];
+            }
+            points[p].push_back({lighting.gatherPointOf(idx0), items.spp});  // a pure pixel: one
+        }
+    }
+    // And at most kGatherBudget points in all per round: a mesh of 22 k small triangles
+    // would otherwise gather at every usable pixel, 12 times (30 s); each polygon keeps its
+    // share, at least one point.
+    constexpr double kGatherBudget = 16384;
+    double total = 0;
+    for (const auto& list : points) total += std::min<double>(list.size(), kIndirectPoints);
+    const double share = total > kGatherBudget ? kGatherBudget / total : 1.0;
+    for (auto& list : points) {
+        const int cap =
+            std::max(1, static_cast<int>(std::min<double>(list.size(), kIndirectPoints) * share));
+        if (static_cast<int>(list.size()) <= cap) continue;
+        std::vector<std::pair<int, int>> kept;
+        const double step = static_cast<double>(list.size()) / cap;
+        for (int i = 0; i < cap; ++i) kept.push_back(list[static_cast<size_t>(i * step)]);
+        list.swap(kept);
+    }
+    const std::vector<int> surface = surfaceOf(scene);
+    // The gather points' terms, once: between rounds only the radiosities change.
+    std::vector<std::vector<std::vector<radiosity::GatherWeight>>> terms(np);
+    tbb::parallel_for(0, np, [&](int p) {
+        terms[p].reserve(points[p].size());
+        for (auto [g, n] : points[p])
+            terms[p].push_back(radiosity::finalGatherWeights(solver, p, lighting.gatherPosition[g],
+                                                             4, static_cast<uint64_t>(g)));
+    });
+    const auto& nodes = solver.hierarchy().nodes;
+    for (int round = 0; round < rounds; ++round) {
+        std::vector<Rgb> sumH(np);
+        tbb::parallel_for(0, np, [&](int p) {
+            Rgb sumI;
+            double weight = 0;
+            for (size_t i = 0; i < points[p].size(); ++i) {
+                Rgb H;
+                for (const radiosity::GatherWeight& t : terms[p][i]) {
+                    const radiosity::Node& S = nodes[t.node];
+                    H += (S.emitting ? S.B - S.E : S.B) * t.w;
+                }
+                const int n = points[p][i].second;
+                sumI += H * static_cast<double>(n);
+                weight += n;
+            }
+            sumH[p] = sumDirect[p] + (weight > 0 ? sumI * (count[p] / weight) : Rgb{});
+        });
+        // A polygon with too few samples of its own (a small triangle of a reconstructed
+        // wall) takes its surface's: the sums pooled over the surface's polygons.
+        std::vector<Rgb> poolL(np), poolH(np);
+        std::vector<int> poolCount(np, 0);
+        for (int p = 0; p < np; ++p) {
+            poolL[surface[p]] += sumL[p];
+            poolH[surface[p]] += sumH[p];
+            poolCount[surface[p]] += count[p];
+        }
+        // Estimates, and their area-weighted mean for the polygons the photo misses.
+        std::vector<Rgb> rho(np);
+        std::vector<bool> seen(np, false);
+        Rgb meanRho;
+        double meanArea = 0;
+        report.polygonsSeen = 0;
+        for (int p = 0; p < np; ++p) {
+            if (scene.polygons[p].light >= 0) continue;
+            const bool own = count[p] >= minSamples;
+            if (!own && poolCount[surface[p]] < minSamples) continue;
+            const Rgb& L = own ? sumL[p] : poolL[surface[p]];
+            const Rgb& H = own ? sumH[p] : poolH[surface[p]];
+            for (int c = 0; c < 3; ++c)  // guard: a polygon in darkness (H = 0) says nothing
+                rho[p][c] = H[c] > 0 ? std::numbers::pi * L[c] / H[c] : scene.polygons[p].rho[c];
+            rho[p] = clampReflectance(rho[p]);
+            seen[p] = true;
+            ++report.polygonsSeen;
+            meanRho += rho[p] * scene.polygons[p].area;
+            meanArea += scene.polygons[p].area;
+        }
+        if (meanArea > 0) meanRho = meanRho * (1.0 / meanArea);
+        report.polygonsDefaulted = 0;
+        report.lastChange = 0;
+        for (int p = 0; p < np; ++p) {
+            const radiosity::Polygon& poly = scene.polygons[p];
+            if (poly.light >= 0) continue;
+            if (!seen[p]) {
+                ++report.polygonsDefaulted;
+                const std::string& name = scene.objects[poly.object];
+                auto it = sceneFile.objectSettings.find(name);
+                rho[p] = it != sceneFile.objectSettings.end() && it->second.reflectance
+                             ? *it->second.reflectance
+                             : (meanArea > 0 ? meanRho : poly.rho);
+            }
+            // Damped update (see the header): a full step from the first guess, half
+            // steps after.
+            const Rgb previous = poly.rho;
+            const double alpha = round == 0 ? 1.0 : 0.5;
+            const Rgb next = previous * (1.0 - alpha) + rho[p] * alpha;
+            for (int c = 0; c < 3; ++c)
+                report.lastChange = std::max(report.lastChange, std::abs(next[c] - previous[c]));
+            solver.setReflectance(p, next);
+        }
+        solver.pullReflectance();
+        // Between rounds only the radiosity changes: the links stay (re-refining 700 k
+        // links each round made a 22 k-triangle room's reflectance take a minute). The
+        // links are refined for the final reflectances once the rounds end.
+        solver.gatherPushPull();
+        report.rounds = round + 1;
+        if (round > 0 && report.lastChange < tolerance) break;
+    }
+    solver.solve();
+    return report;
+}
+
+bool leafReflectanceFromTexture(const radiosity::Hierarchy& h, const radiosity::LeafMesh& mesh,
+                                const LeafTexture& texture, std::span<const Rgb> H, int leaf,
+                                int minSamples, Rgb* rho) {
+    if (texture.samples(leaf) < minSamples) return false;
+    const int k = h.nodes[leaf].vertexCount;
+    Rgb Hn;
+    for (int i = 0; i < k; ++i) Hn += H[mesh.corners(leaf)[i]];
+    Hn = Hn * (1.0 / k);
+    if (!(Hn.minComponent() > 0)) return false;
+    const Rgb c = texture.colour(leaf);
+    for (int ch = 0; ch < 3; ++ch) (*rho)[ch] = std::numbers::pi * c[ch] / Hn[ch];
+    return true;
+}
+
+int estimateLeafReflectance(radiosity::HierarchicalSolver& solver, const radiosity::LeafMesh& mesh,
+                            const LeafTexture& texture, std::span<const Rgb> H, int minSamples) {
+    const radiosity::Hierarchy& h = solver.hierarchy();
+    const radiosity::Scene& scene = solver.scene();
+    int set = 0;
+    for (int n = 0; n < static_cast<int>(h.nodes.size()); ++n) {
+        const radiosity::Node& node = h.nodes[n];
+        if (node.isCluster() || !node.isLeaf() || scene.polygons[node.polygon].light >= 0) continue;
+        Rgb rho;
+        if (!leafReflectanceFromTexture(h, mesh, texture, H, n, minSamples, &rho)) continue;
+        solver.setElementReflectance(n, clampReflectance(rho));
+        ++set;
+    }
+    solver.pullReflectance();
+    return set;
+}
+
+}  // namespace relight
