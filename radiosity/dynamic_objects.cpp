@@ -118,7 +118,7 @@ void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, Dynam
     tbb::parallel_for(tbb::blocked_range<size_t>(0, cut.size(), 8),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i)
-                              transfer_->visibility(links_[cut[i]]);
+                              transfer_->visibility(links_.mutableAt(cut[i]));
                       });
     report.linksCut += static_cast<int>(cut.size());
     for (int a : cut) {
@@ -133,7 +133,7 @@ void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, Dynam
         kept.reserve(links_.size());
         for (int a = 0; a < A; ++a)
             if (!erased[a]) kept.push_back(links_[a]);
-        links_.swap(kept);
+        links_.replace(std::move(kept));
     }
     for (const Link& c : revived) links_.push_back(c);
     report.rays += transfer_->counters.rays.load() - raysBefore;
@@ -170,10 +170,10 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
                                      const Rgb* lightRadiance, DynamicUpdate* reportOut) {
     if (!started_) throw std::logic_error("insertObject: solve() first");
     if (polygons.empty()) throw std::invalid_argument("insertObject: the object has no polygon");
-    if (indexDirty_) finishSplits();
+    links_.index();
     DynamicUpdate report;
     Insertion rec;
-    rec.links = links_;
+    rec.links = links_.all();
     rec.passive = passive_.size();
     rec.polygons = scene_.polygons.size();
     rec.objects = scene_.objects.size();
@@ -230,20 +230,19 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
         h_.attachObject(added, first, emittance, options_.maxPolygonsPerCluster, &oldRoot);
     inserted_.back().visGroup = vis_->addPolygons(added, first);
     // The root's links (if any: usually refined away) now belong to its copy.
-    for (Link& l : links_) {
+    links_.relabel([&](Link& l) {
         if (l.receiver == Hierarchy::kRoot) l.receiver = oldRoot;
         if (l.source == Hierarchy::kRoot) l.source = oldRoot;
-    }
+    });
     for (Link& l : passive_) {
         if (l.receiver == Hierarchy::kRoot) l.receiver = oldRoot;
         if (l.source == Hierarchy::kRoot) l.source = oldRoot;
     }
 
     cutLinks(box, first, report);
-    const size_t sorted = links_.size() - static_cast<size_t>(report.linksReactivated);
     const size_t firstNode = static_cast<size_t>(oldRoot);
     linkObject(cluster, oldRoot, report);
-    buildReceiverIndex(sorted);
+    links_.index();
     // A virtual light delivers its power as a lamp of the scene does (normaliseLamps);
     // its links are new, so removal takes the scaling away with them.
     if (light >= 0) normaliseLamps(first);
@@ -294,7 +293,7 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
     vis_->removePolygons(rec.visGroup);
     h_.detachLastObject();
     const int oldRoot = static_cast<int>(rec.B.size());  // the root's copy was the next node
-    links_ = std::move(rec.links);
+    links_.replace(std::move(rec.links));
     passive_.resize(rec.passive);
     for (Link& l : passive_) {
         if (l.receiver == oldRoot) l.receiver = Hierarchy::kRoot;
@@ -318,7 +317,7 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
         h_.nodes[leaf].seenError = seenError;
     }
     frozenNodes_ = rec.frozenNodes;
-    buildReceiverIndex(links_.size());
+    links_.index();
     if (report) report->shadowLeaves = std::move(rec.shadowLeaves);
 }
 

@@ -36,13 +36,13 @@ void HierarchicalSolver::normaliseLamps(int firstPolygon) {
         if (delivered[p] > 0 && nodes[h_.polygonRoot[p]].seen < 0)
             faces.push_back(h_.polygonRoot[p]);
     measureSeen(faces);
-    for (Link& l : links_) {
+    links_.forEachMutable([&](Link& l) {
         const Node& S = nodes[l.source];
-        if (reflects(S)) continue;
+        if (reflects(S)) return;
         const Node& face = nodes[h_.polygonRoot[S.polygon]];
-        if (!(delivered[S.polygon] > 0) || !(face.seen >= 0)) continue;
+        if (!(delivered[S.polygon] > 0) || !(face.seen >= 0)) return;
         l.F *= std::min(face.area * face.seen / delivered[S.polygon], kMaxRenormalisation);
-    }
+    });
 }
 
 void HierarchicalSolver::boundGather(size_t firstNode, bool balance, const std::vector<int>* also) {

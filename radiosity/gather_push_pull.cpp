@@ -30,8 +30,8 @@ void HierarchicalSolver::gatherInto(const Link& l) {
 }
 
 void HierarchicalSolver::gatherRun(size_t i) {
-    Node& R = h_.nodes[receivers_[i]];
-    const int first = receiverStart_[i], last = receiverStart_[i + 1];
+    Node& R = h_.nodes[links_.receiver(i)];
+    const int first = links_.start(i), last = links_.start(i + 1);
     if (R.isCluster()) {
         const Vec3* dir = layout_.dir.data() + layout_.dirStart[i] - first;
         for (int k = first; k < last; ++k) {
@@ -58,22 +58,29 @@ void HierarchicalSolver::buildPushPullLayout() {
     L.slot.assign(nodes.size(), -1);
     L.frame.clear();
     for (size_t n = 0; n < nodes.size(); ++n) L.parent[n] = nodes[n].parent;
-    L.dirStart.assign(receivers_.size(), -1);
+    const size_t runs = links_.receiverCount();  // indexes the links if they changed
+    L.dirStart.assign(runs, -1);
     L.dir.clear();
-    for (size_t i = 0; i < receivers_.size(); ++i) {
-        const int r = receivers_[i];
+    for (size_t i = 0; i < runs; ++i) {
+        const int r = links_.receiver(i);
         if (!nodes[r].isCluster()) continue;
         L.slot[r] = static_cast<int>(L.frame.size());
         L.frame.push_back(nodes[r].frame);
         // The direction of each link's source in the receiving cluster's frame, which the
         // gather bins by (it was a tenth of the gather's time, recomputed every sweep).
         L.dirStart[i] = static_cast<int>(L.dir.size());
-        for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k)
+        for (int k = links_.start(i); k < links_.start(i + 1); ++k)
             L.dir.push_back(toFrame(nodes[r], linkDirection(nodes[r], nodes[links_[k].source])));
     }
     h_.clustersAndRoots(L.clusters, L.roots);
     L.nodes = nodes.size();
+    L.generation = links_.generation();
     L.valid = true;
+}
+
+bool HierarchicalSolver::layoutCurrent() const {
+    return layout_.valid && layout_.nodes == h_.nodes.size() &&
+           layout_.generation == links_.generation();
 }
 
 Rgb HierarchicalSolver::fromClusterAncestors(int element) const {
@@ -82,7 +89,7 @@ Rgb HierarchicalSolver::fromClusterAncestors(int element) const {
     // that receive links gather anything.
     const Node& e = h_.nodes[element];
     Rgb H;
-    if (layout_.valid && layout_.nodes == h_.nodes.size()) {
+    if (layoutCurrent()) {
         for (int a = layout_.parent[element]; a >= 0; a = layout_.parent[a]) {
             const int s = layout_.slot[a];
             if (s < 0) continue;
@@ -100,8 +107,8 @@ Rgb HierarchicalSolver::fromClusterAncestors(int element) const {
 }
 
 double HierarchicalSolver::sweep() {
-    if (indexDirty_) finishSplits();
-    if (!layout_.valid || layout_.nodes != h_.nodes.size()) buildPushPullLayout();
+    links_.index();
+    if (!layoutCurrent()) buildPushPullLayout();
     auto t0 = Clock::now();
     // Only receivers gather; the rest keep zero from the last full clear (after the links
     // changed, a node that stopped receiving still holds its last sum).
@@ -109,23 +116,23 @@ double HierarchicalSolver::sweep() {
         n.H = n.Hd = Rgb{};
         if (n.isCluster()) n.Hv = DirectionalIrradiance{};
     };
-    if (clearAll_) {
+    if (sweptGeneration_ != links_.generation()) {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, h_.nodes.size(), 4096),
                           [&](const tbb::blocked_range<size_t>& range) {
                               for (size_t i = range.begin(); i != range.end(); ++i)
                                   clear(h_.nodes[i]);
                           });
-        clearAll_ = false;
+        sweptGeneration_ = links_.generation();
     } else {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 1024),
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, links_.receiverCount(), 1024),
                           [&](const tbb::blocked_range<size_t>& range) {
                               for (size_t i = range.begin(); i != range.end(); ++i)
-                                  clear(h_.nodes[receivers_[i]]);
+                                  clear(h_.nodes[links_.receiver(i)]);
                           });
     }
     // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
     // result does not depend on the thread count.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, links_.receiverCount(), 64),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) gatherRun(i);
                       });
@@ -174,7 +181,7 @@ void HierarchicalSolver::pushPullAll() {
     // gathered: each is pushed down and pulled up on its own, in parallel; then the
     // clusters take their means bottom-up. The sums are those of pushPull(root) in the
     // same order, so the result does not depend on the thread count.
-    if (!layout_.valid || layout_.nodes != h_.nodes.size()) buildPushPullLayout();
+    if (!layoutCurrent()) buildPushPullLayout();
     const std::vector<int>&clusters = layout_.clusters, &roots = layout_.roots;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, roots.size(), 256),
                       [&](const tbb::blocked_range<size_t>& range) {

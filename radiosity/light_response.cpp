@@ -260,7 +260,6 @@ class ResponseSweeps {
 LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses* warm)
     : lights_(static_cast<int>(solver.scene().lights.size())) {
     solver.ensureLightLinks();
-    solver.finishSplits();  // links grouped by receiver
     const Hierarchy& h = solver.hierarchy();
     const Scene& scene = solver.scene();
     const auto& nodes = h.nodes;

@@ -256,14 +256,13 @@ void HierarchicalSolver::evaluateVisibility(const std::vector<size_t>& pending) 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pending.size(), 16),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i)
-                              transfer_->visibility(links_[pending[i]]);
+                              transfer_->visibility(links_.mutableAt(pending[i]));
                       });
 }
 
 size_t HierarchicalSolver::refineAll() {
     changedInRefine_ = false;
-    std::vector<Link> old;
-    old.swap(links_);
+    std::vector<Link> old = links_.take();
     links_.reserve(old.size() * 2);
     // Most links stay as they are: the oracle is asked for all of them in parallel, and
     // only those to refine go through the priority queue. Accepted links keep their order
@@ -295,7 +294,7 @@ size_t HierarchicalSolver::refineAll() {
 
 void HierarchicalSolver::pushLightLinksToLeaves(size_t from) {
     std::vector<Link> old(links_.begin() + static_cast<std::ptrdiff_t>(from), links_.end());
-    links_.resize(from);
+    links_.truncate(from);
     links_.reserve(from + old.size() * 2);
     std::vector<Link> stack;
     std::vector<size_t> pending;  // links whose visibility is still to be evaluated
@@ -323,50 +322,21 @@ void HierarchicalSolver::pushLightLinksToLeaves(size_t from) {
     evaluateVisibility(pending);
 }
 
-void HierarchicalSolver::buildReceiverIndex(size_t sortedPrefix) {
-    const auto byReceiver = [](const Link& a, const Link& b) { return a.receiver < b.receiver; };
-    sortedPrefix = std::min(sortedPrefix, links_.size());
-    const auto mid = links_.begin() + static_cast<std::ptrdiff_t>(sortedPrefix);
-    // Stable sort of the tail and a stable merge: the same order as a stable sort of all.
-    std::stable_sort(mid, links_.end(), byReceiver);
-    std::inplace_merge(links_.begin(), mid, links_.end(), byReceiver);
-    receivers_.clear();
-    receiverStart_.clear();
-    for (size_t i = 0; i < links_.size(); ++i) {
-        if (i == 0 || links_[i].receiver != links_[i - 1].receiver) {
-            receivers_.push_back(links_[i].receiver);
-            receiverStart_.push_back(static_cast<int>(i));
-        }
-    }
-    receiverStart_.push_back(static_cast<int>(links_.size()));
-    receiverSlot_.assign(h_.nodes.size(), -1);
-    for (size_t i = 0; i < receivers_.size(); ++i)
-        receiverSlot_[receivers_[i]] = static_cast<int>(i);
-    layout_.valid = false;
-    clearAll_ = true;
-}
-
 std::span<const Link> HierarchicalSolver::linksOf(int node) const {
-    if (indexDirty_) throw std::logic_error("linksOf: call finishSplits() after splitForLights");
-    if (node < 0 || node >= static_cast<int>(receiverSlot_.size()) || receiverSlot_[node] < 0)
-        return {};
-    const int i = receiverSlot_[node];
-    return {links_.data() + receiverStart_[i],
-            static_cast<size_t>(receiverStart_[i + 1] - receiverStart_[i])};
+    return links_.of(node);
 }
 
 std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& value,
                                                 bool bounded) const {
-    if (indexDirty_) throw std::logic_error("gatherDown: call finishSplits() after splitForLights");
     const auto& nodes = h_.nodes;
     std::vector<Rgb> H(nodes.size()), Hd(nodes.size());
     std::vector<DirectionalIrradiance> Hv(nodes.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, links_.receiverCount(), 64),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              const int r = receivers_[i];
+                              const int r = links_.receiver(i);
                               const Node& R = nodes[r];
-                              for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
+                              for (int k = links_.start(i); k < links_.start(i + 1); ++k) {
                                   const Link& l = links_[k];
                                   const Node& S = nodes[l.source];
                                   const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
@@ -495,7 +465,7 @@ void HierarchicalSolver::solve() {
                                              kSettled * static_cast<double>(links_.size());
         const bool last = round + 1 == options_.maxRefineRounds || settled;
         if (last && options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
-        buildReceiverIndex();
+        links_.index();
         normaliseLamps();
         boundGather(0, /*balance=*/last);  // the sends once the links are final
         timing_.timeRefine += secondsSince(t0);
@@ -552,7 +522,7 @@ bool HierarchicalSolver::addMissingLightLinks() {
     }
     if (added) {
         if (options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
-        buildReceiverIndex();
+        links_.index();
         normaliseLamps();
         boundGather(0, /*balance=*/true);
     }
@@ -687,7 +657,7 @@ bool HierarchicalSolver::splitForLights(int leaf,
             kept.push_back(l);
         }
     }
-    links_.swap(kept);
+    links_.replace(std::move(kept));
     h_.subdivide(leaf);
     const Node& parent = h_.nodes[leaf];
     if (children) children->assign(4, std::vector<LightExchange>(scene_.lights.size()));
@@ -715,7 +685,6 @@ bool HierarchicalSolver::splitForLights(int leaf,
         }
     }
     lastSplit_ = std::move(rec);
-    indexDirty_ = true;
     return true;
 }
 
@@ -725,31 +694,25 @@ void HierarchicalSolver::unsplit(int leaf) {
         n.firstChild + 4 != static_cast<int>(h_.nodes.size()))
         throw std::logic_error("unsplit: only the last splitForLights can be cancelled");
     const int first = n.firstChild;
-    std::erase_if(links_, [&](const Link& l) { return l.receiver >= first; });
+    links_.eraseIf([&](const Link& l) { return l.receiver >= first; });
     passive_.resize(passive_.size() - lastSplit_.removed.size());
     for (size_t k = 0; k < lastSplit_.removed.size(); ++k)  // ascending indices
-        links_.insert(links_.begin() + static_cast<std::ptrdiff_t>(lastSplit_.at[k]),
-                      lastSplit_.removed[k]);
+        links_.insert(lastSplit_.at[k], lastSplit_.removed[k]);
     h_.unsubdivide(leaf);
     lastSplit_ = {};
-    indexDirty_ = true;
-}
-
-void HierarchicalSolver::finishSplits() {
-    buildReceiverIndex();
-    indexDirty_ = false;
 }
 
 void HierarchicalSolver::scaleLightLinks(int node, double c) {
-    if (indexDirty_) finishSplits();
     if (!(c >= 0) || !std::isfinite(c))
         throw std::invalid_argument("scaleLightLinks: the correction must be finite and >= 0");
-    if (node < 0 || node >= static_cast<int>(receiverSlot_.size()) || receiverSlot_[node] < 0)
-        return;
-    const int i = receiverSlot_[node];
-    for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k)
-        if (lightOfNode(links_[k].source) >= 0)
-            links_[k].V = static_cast<float>(static_cast<double>(links_[k].V) * c);
+    const std::span<const Link> run = links_.of(node);
+    if (run.empty()) return;
+    const size_t first = static_cast<size_t>(run.data() - links_.all().data());
+    for (size_t k = first; k < first + run.size(); ++k)
+        if (lightOfNode(links_[k].source) >= 0) {
+            Link& l = links_.mutableAt(k);
+            l.V = static_cast<float>(static_cast<double>(l.V) * c);
+        }
 }
 
 }  // namespace radiosity

@@ -92,6 +92,7 @@
 #include <tuple>
 #include <vector>
 
+#include "radiosity/active_links.h"
 #include "radiosity/detail/transfer.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/link.h"
@@ -255,15 +256,12 @@ class HierarchicalSolver {
     /// gathers from other nodes stay on it: indirect light is gathered higher up and
     /// pushed down. Fills `children` with each child's lightExchange. Returns false (and
     /// changes nothing) for a cluster, a non-leaf, or a leaf at the minimum area.
-    /// The receiver index is rebuilt at the next gather (or by finishSplits()).
     bool splitForLights(int leaf, std::vector<std::vector<LightExchange>>* children = nullptr);
     /// Cancels the last splitForLights(leaf): the children (the newest nodes) and their
     /// links go, the leaf's light links come back at their places in the link list (the
-    /// list is then the one before the split, unless finishSplits() sorted a list that was
-    /// not sorted). Throws std::logic_error otherwise.
+    /// list is then the one before the split, unless a read by receiver sorted it in
+    /// between). Throws std::logic_error otherwise.
     void unsplit(int leaf);
-    /// Rebuilds the receiver index after splits (linksOf needs it).
-    void finishSplits();
 
     /// Link correction of real-shadow removal (Loscos et al. 2000, Eq. (14)-(15)):
     /// multiplies V of the links `node` gathers from lights by c >= 0, so that they carry
@@ -272,7 +270,8 @@ class HierarchicalSolver {
 
     const Scene& scene() const { return scene_; }
     const Hierarchy& hierarchy() const { return h_; }
-    const std::vector<Link>& links() const { return links_; }
+    /// The active links, sorted by receiver.
+    const std::vector<Link>& links() const { return links_.byReceiver(); }
     const std::vector<Link>& passiveLinks() const { return passive_; }
     const Visibility& visibility() const { return *vis_; }
     const SolverOptions& options() const { return options_; }
@@ -318,7 +317,7 @@ class HierarchicalSolver {
     bool withinBudget(size_t queued) const;
     /// Adds what link l brings to its receiver's H (element) or Hv (cluster).
     void gatherInto(const Link& l);
-    /// The same for all the links of receivers_[i] (the layout's directions: valid layout).
+    /// The same for all the links of the i-th receiver run (the layout's directions: valid layout).
     void gatherRun(size_t i);
     /// Energy bound: sets gatherScale of the leaf elements with id >= firstNode from the
     /// sum G of their links' form factors (see the header).
@@ -361,9 +360,8 @@ class HierarchicalSolver {
     /// Links for the lights that are on and have none (see setLightRadiances); returns
     /// whether any were added.
     bool addMissingLightLinks();
-    /// Sorts links_ by receiver (stable) and indexes them; links_[0, sortedPrefix) must
-    /// already be sorted (the rest is sorted and merged in, linear time).
-    void buildReceiverIndex(size_t sortedPrefix = 0);
+    /// Whether the push-pull layout is that of the links and nodes as they are.
+    bool layoutCurrent() const;
     void pushPull(int node, const Rgb& Hdown, const Rgb& HdDown);
     /// What the cluster ancestors of a polygon's root element gathered, by its normal.
     Rgb fromClusterAncestors(int element) const;
@@ -379,11 +377,8 @@ class HierarchicalSolver {
     Hierarchy h_;
     std::unique_ptr<Visibility> vis_;
     std::unique_ptr<TransferEvaluator> transfer_;
-    std::vector<Link> links_;     ///< active links, grouped by receiver after buildReceiverIndex
-    std::vector<Link> passive_;   ///< refined-away links, kept for dynamic updates
-    std::vector<int> receivers_;  ///< distinct receivers, in link order
-    std::vector<int> receiverStart_;  ///< links of receivers_[i]: [start[i], start[i+1])
-    std::vector<int> receiverSlot_;   ///< node -> i with receivers_[i] == node, or -1
+    ActiveLinks links_;          ///< active links, grouped by receiver (active_links.h)
+    std::vector<Link> passive_;  ///< refined-away links, kept for dynamic updates
     double minArea_ = 0;
     double powerThreshold_ = 0;            ///< epsilon * emitted power (max channel)
     size_t maxLinks_ = 0, maxMemory_ = 0;  ///< the budget in force
@@ -392,12 +387,15 @@ class HierarchicalSolver {
     double maxGather_ = 1;
     bool started_ = false;
     bool changedInRefine_ = false;
-    bool indexDirty_ = false;  ///< links_ changed since buildReceiverIndex
+    /// The links' generation (ActiveLinks::generation) of the last sweep: when it changed,
+    /// the next sweep clears every node's irradiance, not only the receivers'.
+    uint64_t sweptGeneration_ = ~uint64_t{0};
     /// What the push-pull reads: per node its parent and (receiving clusters) a slot, per
     /// slot the cluster's frame; the clusters and the polygons' root elements. Rebuilt
-    /// after buildReceiverIndex and when the node count changes.
+    /// when the links are indexed again (their generation) and when the node count changes.
     struct PushPullLayout {
         bool valid = false;
+        uint64_t generation = 0;  ///< the links' generation it was built for
         size_t nodes = 0;
         std::vector<int> parent, slot, clusters, roots;
         std::vector<std::array<Vec3, 3>> frame;
@@ -407,9 +405,6 @@ class HierarchicalSolver {
         std::vector<Vec3> dir;
     };
     PushPullLayout layout_;
-    /// The next sweep clears every node's irradiance, not only the receivers' (the links
-    /// changed: a node that stopped receiving still holds its last sum).
-    bool clearAll_ = true;
     struct SplitRecord {
         int leaf = -1;
         std::vector<Link> removed;  ///< the leaf's light links, moved to passive_

@@ -102,7 +102,6 @@ ShadowRefinementReport refineShadowBoundaries(radiosity::HierarchicalSolver& sol
         if (o.progress && splits % 500 == 0)
             o.progress("shadow refinement: " + std::to_string(splits) + " splits");
     }
-    solver.finishSplits();
     solver.gatherPushPull();
     rep.leavesAfter = rep.leavesBefore + 3 * (rep.splitSameColour + rep.splitDifferentColour);
     return rep;

@@ -82,7 +82,6 @@ TEST(SplitForLights, ChildrenShareTheLeafsFormFactorAndLinksGoPassive) {
     EXPECT_LE(std::abs(meanF - reference),
               std::max(std::abs(before[0].F - reference), 1e-9 * reference));
     EXPECT_NEAR(meanF, reference, 2e-3 * reference);
-    solver.finishSplits();
     EXPECT_TRUE(
         solver.linksOf(leaf).empty() ||
         std::none_of(solver.linksOf(leaf).begin(), solver.linksOf(leaf).end(), [&](const Link& l) {
