@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
+#include "relight/json_reader.h"
 #include "relight/lighting_buffer.h"
 #include "relight/reflectance.h"
 
@@ -219,6 +221,43 @@ std::vector<Rgb> editRadiance(const SceneFile& scene, const EditFile& edit,
     for (size_t l = 0; l < nominal.size(); ++l)
         if (scene.estimateRadiance[l]) nominal[l] = photoRadiance[l];
     return editedRadiance(scene, edit, nominal);
+}
+
+void requireFiniteImage(const Image& image, const SceneFile& scene, const EditFile& edit,
+                        std::span<const Rgb> radiance, const std::string& what) {
+    size_t bad = 0;
+    for (const float v : image.rgb) bad += std::isfinite(v) ? 0 : 1;
+    if (bad == 0) return;
+    const std::string count =
+        std::to_string(bad) + " of its " + std::to_string(image.rgb.size()) + " values";
+    // The radiances the edit sets, by key; a non-finite one counts as the brightest.
+    std::string key;
+    Rgb blamed;
+    double brightest = -1;
+    const auto consider = [&](const std::string& k, const Rgb& c) {
+        const bool finite = std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);
+        const double value = finite ? c.maxComponent() : HUGE_VAL;
+        if (value > brightest) {
+            brightest = value;
+            key = k;
+            blamed = c;
+        }
+    };
+    for (const auto& [name, change] : edit.lights) {
+        const int l = scene.scene.findLight(name);
+        if (l < 0 || static_cast<size_t>(l) >= radiance.size()) continue;
+        consider(jsonio::child(jsonio::child("lights", name), change.scale ? "scale" : "radiance"),
+                 radiance[static_cast<size_t>(l)]);
+    }
+    for (size_t i = 0; i < edit.addLights.size(); ++i)
+        consider(jsonio::child(jsonio::element("add_lights", i), "radiance"),
+                 edit.addLights[i].radiance);
+    if (key.empty()) throw std::runtime_error(what + " is not finite (" + count + ")");
+    char text[160];
+    std::snprintf(text, sizeof text, "[%.6g, %.6g, %.6g]", blamed.r, blamed.g, blamed.b);
+    jsonio::JsonReader(edit.file.string())
+        .fail(key, what + " is not finite (" + count + "): the light's radiance " + text +
+                       " is too large");
 }
 
 }  // namespace relight

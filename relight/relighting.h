@@ -122,4 +122,16 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
 std::vector<radiosity::Rgb> editRadiance(const SceneFile& scene, const EditFile& edit,
                                          std::span<const radiosity::Rgb> photoRadiance);
 
+/// Refuses an image relit for `edit` (`radiance`: the real lights', editRadiance()) that has
+/// a value that is not finite, before anything is written: throws InputError naming the
+/// edit's file and the key to blame, the radiance ("lights.A.scale", "lights.A.radiance",
+/// "add_lights[0].radiance") of the brightest light the edit sets. A pixel is the photo
+/// times the ratio of the edit's light to the photo's, so what overflows a float is a
+/// radiance far beyond the photo's, and the brightest is the one. Throws std::runtime_error
+/// when the edit sets no radiance (the fault is then not the edit's). `what` names the image
+/// in the message.
+void requireFiniteImage(const Image& image, const SceneFile& scene, const EditFile& edit,
+                        std::span<const radiosity::Rgb> radiance,
+                        const std::string& what = "the relit image");
+
 }  // namespace relight

@@ -137,13 +137,19 @@ int run(const Args& a) {
     frame.view = view;
     frame.framebuffer = a.framebuffer == "float" ? Framebuffer::float32 : Framebuffer::multipass8;
     frame.exposure = a.exposure;
+    // The first frame, refused when not finite before it is shown or anything is written
+    // (the session refuses a radiance that overflows; a finite one may overflow the floats).
+    const FrameStats s = frame.render();
+    const Image img = frame.read();
+    requireFiniteImage(img, prepared->scene, edit,
+                       editRadiance(prepared->scene, edit, prepared->prepared.photoRadiance),
+                       view == ViewKind::relit ? "the relit image"
+                                               : std::string("the ") + viewName(view) + " view");
     if (!a.saveEdit.empty() && !interactive) {
         session.save(a.saveEdit);
         std::printf("wrote %s\n", a.saveEdit.c_str());
     }
     if (!interactive) {
-        const FrameStats s = frame.render();
-        const Image img = frame.read();
         writeImage(a.screenshot, img);  // exposure already applied by the display
         std::printf("wrote %s (%dx%d, %s framebuffer, %d pass%s, draw %.1f ms)\n",
                     a.screenshot.c_str(), img.width, img.height, a.framebuffer.c_str(), s.passes,

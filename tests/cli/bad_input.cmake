@@ -1,7 +1,8 @@
 # End to end through the `relight` binary: bad input gives exit code 2 and one clear line
 # naming the file and the key, and the output file already there is left as it was (no
-# half-written or replaced picture). Also: the preparation switches --no-refinement and
-# --no-shadow-removal reach the report and the cache key. Run by ctest:
+# half-written or replaced picture); an edit whose relit image is not finite is such bad
+# input. Also: the preparation switches --no-refinement and --no-shadow-removal reach the
+# report and the cache key. Run by ctest:
 #   cmake -DRELIGHT=<relight binary> -DSCENE=<data/room> -DWORK=<scratch folder> -P this
 include("${CMAKE_CURRENT_LIST_DIR}/common.cmake")
 
@@ -70,6 +71,19 @@ file(WRITE "${WORK}/unknown_key.json"
 expect_failure("edit with an unknown key" "[^\n]*unknown_key\\.json[^\n]*hue"
                --edit "${WORK}/unknown_key.json")
 expect_failure("missing edit" "[^\n]*missing\\.json" --edit "${WORK}/missing.json")
+
+# Edits whose relit image is not finite: a scale that overflows the radiance (refused at
+# load, before the preparation), a finite radiance that overflows the image's floats.
+file(WRITE "${WORK}/huge_scale.json"
+     "{\"format\": \"relight-edit/1\", \"lights\": {\"A\": {\"scale\": 1e308}}}")
+expect_failure("edit with a scale that overflows"
+               "[^\n]*huge_scale\\.json: key \"lights\\.A\\.scale\": the relit image is not finite"
+               --edit "${WORK}/huge_scale.json")
+file(WRITE "${WORK}/huge_radiance.json"
+     "{\"format\": \"relight-edit/1\", \"lights\": {\"B\": {\"radiance\": [1e300, 1, 1]}}}")
+expect_failure("edit whose image overflows"
+               "[^\n]*huge_radiance\\.json: key \"lights\\.B\\.radiance\": the relit image is not finite"
+               --edit "${WORK}/huge_radiance.json")
 
 # The preparation switches: in the report, and a different cache key (so a cache prepared
 # with the full method is never used for the 1997 method).

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
@@ -338,6 +339,24 @@ TEST_F(EditFixture, OverflowingNumberIsRejected) {
             loadError(R"({"format":"relight-edit/1","lights":{"L1":)" + std::string(entry) + "}}");
         EXPECT_TRUE(contains(msg, editFile() + ": invalid JSON: number overflow")) << msg;
     }
+}
+
+TEST_F(EditFixture, ScaleThatOverflowsTheRadianceIsRefused) {
+    // Finite in the file, but 1e308 x L1's nominal 3 overflows a double: refused at load
+    // (against scene.json's radiance), naming the key, rather than rendered as inf and NaN.
+    const std::string msg = loadError(withL1({{"scale", 1e308}}));
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1.scale\": the relit image is not "
+                                           "finite: the light's radiance overflows (1e+308 x "))
+        << msg;
+    // The largest scale that does not overflow any channel is accepted.
+    const double largest = std::numeric_limits<double>::max() / 4;
+    EXPECT_NO_THROW(load(withL1({{"scale", largest}})));
+    // A scale applied later to an estimated radiance (nominal 0 at load) is checked then.
+    const EditFile edit = load(withL1({{"scale", 1e300}}));
+    const std::string later = errorOf([&] {
+        editedRadiance(sf, edit, {Rgb(1e10, 1, 1), Rgb(4, 5, 6)});
+    });
+    EXPECT_TRUE(contains(later, editFile() + ": key \"lights.L1.scale\"")) << later;
 }
 
 TEST_F(EditFixture, RadianceMustBeThreeFiniteNonNegativeNumbers) {

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "relight/edit_file.h"
 #include "relight/ratio_display.h"
@@ -178,6 +180,41 @@ TEST(Relighting, RealEditsLoadAndRender) {
     EXPECT_EQ(out.width, r.prepared.photo.width);
     EXPECT_EQ(out.height, r.prepared.photo.height);
     for (float v : out.rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0);
+}
+
+TEST(Relighting, EditWhoseImageIsNotFiniteIsRefusedNamingItsKey) {
+    const Relighting& r = room();
+    const test::TempDir dir;
+    // B's radiance is finite, but the relit image (photo x B/D, in float) overflows; A's
+    // change is harmless, and the brightest light is the one named.
+    const auto file = dir.write("huge.json", R"({"format": "relight-edit/1", "lights": {
+        "A": {"scale": 2}, "B": {"radiance": [1e300, 1, 1]}}})");
+    const EditFile e = loadEdit(file, r.scene);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
+    const Image out = renderEdit(r.prepared, radiance);
+    ASSERT_FALSE(
+        std::all_of(out.rgb.begin(), out.rgb.end(), [](float v) { return std::isfinite(v); }));
+    try {
+        requireFiniteImage(out, r.scene, e, radiance);
+        ADD_FAILURE() << "a relit image that is not finite was accepted";
+    } catch (const InputError& err) {
+        const std::string msg = err.what();
+        EXPECT_NE(msg.find(file.string() + ": key \"lights.B.radiance\": the relit image is not "
+                                           "finite ("),
+                  std::string::npos)
+            << msg;
+    }
+    // The same lights at the photo's radiances: a finite image, accepted.
+    const Image photoLit = renderEdit(r.prepared, r.prepared.photoRadiance);
+    EXPECT_NO_THROW(requireFiniteImage(photoLit, r.scene, e, r.prepared.photoRadiance));
+    // Without a radiance in the edit to blame, it is not an input error.
+    try {
+        requireFiniteImage(out, r.scene, EditFile{}, radiance);
+        ADD_FAILURE() << "a relit image that is not finite was accepted";
+    } catch (const InputError& err) {
+        ADD_FAILURE() << "blamed on an edit that sets no radiance: " << err.what();
+    } catch (const std::runtime_error&) {
+    }
 }
 
 namespace {
