@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "radiosity/light_reach.h"
 #include "relight/json_reader.h"
 #include "relight/lighting_buffer.h"
 #include "relight/reflectance.h"
@@ -43,6 +44,25 @@ Image loadFirstPhoto(const SceneFile& sf) {
     return photo;
 }
 
+std::vector<std::string> lightReachWarnings(const SceneFile& sf, const radiosity::Scene& faces,
+                                            const radiosity::Visibility& vis) {
+    std::vector<std::string> out;
+    for (size_t l = 0; l < faces.lights.size(); ++l) {
+        const radiosity::LightReach reach = radiosity::lightReach(faces, vis, static_cast<int>(l));
+        if (reach.fraction >= kMinLightReach) continue;
+        char share[160];
+        std::snprintf(share, sizeof share,
+                      "%d of %d rays from its face meet the front of a surface", reach.hits,
+                      reach.rays);
+        out.push_back((sf.dir / "scene.json").string() + ": key \"lights[" + std::to_string(l) +
+                      "]\": light \"" + faces.lights[l].name + "\": its emitting side sees " +
+                      (reach.hits == 0 ? "no" : "almost no") + " part of the scene (" + share +
+                      "; is it below the floor, facing away or inside an object?): its power is "
+                      "lost to the room");
+    }
+    return out;
+}
+
 radiosity::LeafMesh::SplitRule displaySplits(const LeafTexture& texture, const SamplingPlan& plan,
                                              double piecePixels) {
     if (!(piecePixels > 0)) return {};
@@ -75,6 +95,9 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     so.progress = o.progress;
     auto t0 = Clock::now();
     r->solver = std::make_unique<radiosity::HierarchicalSolver>(r->scene.scene, so);
+    for (const std::string& w :
+         lightReachWarnings(r->scene, r->solver->scene(), r->solver->visibility()))
+        say("warning: " + w);
     say("item buffer");
     r->sampling =
         planSampling(r->scene.camera.width, r->scene.camera.height, o.spp, o.sampleBudget);

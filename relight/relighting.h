@@ -100,6 +100,17 @@ struct Relighting {
     ShadowRemoval removal;  ///< empty when options.shadowRemoval is off
 };
 
+/// Below this share of its emission meeting the front of a surface (radiosity::lightReach), a
+/// light is reported: "almost none" rather than none, as a stray ray may graze an edge.
+inline constexpr double kMinLightReach = 0.02;
+
+/// One warning per light of the scene whose emitting side sees (almost) no part of the scene
+/// (below the floor, facing away from the room, inside an object), naming scene.json, its key
+/// and its name. `faces` and `vis`: the solver's scene and visibility (its lights in
+/// scene.json's order). prepareRelighting() reports them through its progress.
+std::vector<std::string> lightReachWarnings(const SceneFile& scene, const radiosity::Scene& faces,
+                                            const radiosity::Visibility& vis);
+
 /// The scene's first photo, linear (sRGB decoded when the scene says so), checked against
 /// the camera's size; a non-finite pixel is an error naming it (it would spread through
 /// every ratio that touches it). Throws InputError naming the file; also without photos.
