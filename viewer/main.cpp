@@ -8,8 +8,8 @@
 //   light:U,V          a virtual light on the surface under photo pixel (U, V)
 //   box:U,V            a box standing on the surface under (U, V)
 //   drag:U0,V0:U1,V1   grabs the object under (U0, V0) and drags it to (U1, V1)
-// Errors (no display, no OpenGL 3.3, a scene or edit that does not load) print one clear
-// line and exit with 2 for bad input, 1 otherwise.
+// Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option)
+// print one clear line and exit with 2 for bad input, 1 otherwise.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -182,7 +182,15 @@ int main(int argc, char** argv) {
                    "with --screenshot: write the session's edit here; else the panel's default");
     app.add_option("--epsilon", a.epsilon, "BF refinement threshold")->check(CLI::PositiveNumber);
     app.add_option("--spp", a.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // --help as CLI11 prints it; a bad option is bad input: one line, exit code 2 (as
+        // `relight`), not CLI11's own codes.
+        if (e.get_exit_code() == 0) return app.exit(e);
+        std::fprintf(stderr, "relight-viewer: error: %s; see relight-viewer --help\n", e.what());
+        return 2;
+    }
     try {
         return run(a);
     } catch (const InputError& e) {
