@@ -6,12 +6,14 @@
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
 //                        --max-links N, --max-memory MiB, --display-pixels P
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
-// Errors in the input print one clear line naming the file and line or key, exit code 2.
+// Errors in the input print one clear line naming the file and line or key, exit code 2;
+// so do errors in the command line's options.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdlib>
 
 #include <cstdio>
+#include <string>
 
 #include "relight/cli/commands.h"
 #include "relight/errors.h"
@@ -136,7 +138,26 @@ int main(int argc, char** argv) {
                         "where to write it (default <scene_dir>/.relight/prepared.bin)");
     prepare->add_flag("--force", pa.cache.force, "prepare again even when the cache is valid");
 
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // --help (exit code 0) as CLI11 prints it. A bad option is bad input like any other:
+        // one line and exit code 2, not CLI11's own codes (105 for a value that fails its
+        // check, 106 for a missing one, ...), which scripts could not tell from a crash.
+        if (e.get_exit_code() == 0) return app.exit(e);
+        const auto given = app.get_subcommands();
+        const std::string help = given.empty() ? "relight" : "relight " + given.front()->get_name();
+        // A misspelt command is not one CLI11 knows, so it only says that one is required.
+        const std::string first = argc > 1 ? argv[1] : "";
+        if (given.empty() && !first.empty() && first[0] != '-')
+            std::fprintf(stderr,
+                         "error: unknown command \"%s\" (solve, prepare, render or eval); see "
+                         "relight --help\n",
+                         first.c_str());
+        else
+            std::fprintf(stderr, "error: %s; see %s --help\n", e.what(), help.c_str());
+        return 2;
+    }
     try {
         if (*solve) {
             if (sa.maxRays < sa.minRays) sa.maxRays = sa.minRays;

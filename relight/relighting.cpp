@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
+#include "radiosity/light_reach.h"
+#include "relight/io/json_reader.h"
 #include "relight/pipeline/lighting_buffer.h"
 #include "relight/pipeline/reflectance.h"
 
@@ -41,6 +44,25 @@ Image loadFirstPhoto(const SceneFile& sf) {
     return photo;
 }
 
+std::vector<std::string> lightReachWarnings(const SceneFile& sf, const radiosity::Scene& faces,
+                                            const radiosity::Visibility& vis) {
+    std::vector<std::string> out;
+    for (size_t l = 0; l < faces.lights.size(); ++l) {
+        const radiosity::LightReach reach = radiosity::lightReach(faces, vis, static_cast<int>(l));
+        if (reach.fraction >= kMinLightReach) continue;
+        char share[160];
+        std::snprintf(share, sizeof share,
+                      "%d of %d rays from its face meet the front of a surface", reach.hits,
+                      reach.rays);
+        out.push_back((sf.dir / "scene.json").string() + ": key \"lights[" + std::to_string(l) +
+                      "]\": light \"" + faces.lights[l].name + "\": its emitting side sees " +
+                      (reach.hits == 0 ? "no" : "almost no") + " part of the scene (" + share +
+                      "; is it below the floor, facing away or inside an object?): its power is "
+                      "lost to the room");
+    }
+    return out;
+}
+
 radiosity::LeafMesh::SplitRule displaySplits(const LeafTexture& texture, const SamplingPlan& plan,
                                              double piecePixels) {
     if (!(piecePixels > 0)) return {};
@@ -73,6 +95,9 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     so.progress = o.progress;
     auto t0 = Clock::now();
     r->solver = std::make_unique<radiosity::HierarchicalSolver>(r->scene.scene, so);
+    for (const std::string& w :
+         lightReachWarnings(r->scene, r->solver->scene(), r->solver->visibility()))
+        say("warning: " + w);
     say("item buffer");
     r->sampling =
         planSampling(r->scene.camera.width, r->scene.camera.height, o.spp, o.sampleBudget);
@@ -219,6 +244,43 @@ std::vector<Rgb> editRadiance(const SceneFile& scene, const EditFile& edit,
     for (size_t l = 0; l < nominal.size(); ++l)
         if (scene.estimateRadiance[l]) nominal[l] = photoRadiance[l];
     return editedRadiance(scene, edit, nominal);
+}
+
+void requireFiniteImage(const Image& image, const SceneFile& scene, const EditFile& edit,
+                        std::span<const Rgb> radiance, const std::string& what) {
+    size_t bad = 0;
+    for (const float v : image.rgb) bad += std::isfinite(v) ? 0 : 1;
+    if (bad == 0) return;
+    const std::string count =
+        std::to_string(bad) + " of its " + std::to_string(image.rgb.size()) + " values";
+    // The radiances the edit sets, by key; a non-finite one counts as the brightest.
+    std::string key;
+    Rgb blamed;
+    double brightest = -1;
+    const auto consider = [&](const std::string& k, const Rgb& c) {
+        const bool finite = std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);
+        const double value = finite ? c.maxComponent() : HUGE_VAL;
+        if (value > brightest) {
+            brightest = value;
+            key = k;
+            blamed = c;
+        }
+    };
+    for (const auto& [name, change] : edit.lights) {
+        const int l = scene.scene.findLight(name);
+        if (l < 0 || static_cast<size_t>(l) >= radiance.size()) continue;
+        consider(jsonio::child(jsonio::child("lights", name), change.scale ? "scale" : "radiance"),
+                 radiance[static_cast<size_t>(l)]);
+    }
+    for (size_t i = 0; i < edit.addLights.size(); ++i)
+        consider(jsonio::child(jsonio::element("add_lights", i), "radiance"),
+                 edit.addLights[i].radiance);
+    if (key.empty()) throw std::runtime_error(what + " is not finite (" + count + ")");
+    char text[160];
+    std::snprintf(text, sizeof text, "[%.6g, %.6g, %.6g]", blamed.r, blamed.g, blamed.b);
+    jsonio::JsonReader(edit.file.string())
+        .fail(key, what + " is not finite (" + count + "): the light's radiance " + text +
+                       " is too large");
 }
 
 }  // namespace relight

@@ -104,6 +104,17 @@ struct Relighting {
     ShadowRemoval removal;  ///< empty when options.shadowRemoval is off
 };
 
+/// Below this share of its emission meeting the front of a surface (radiosity::lightReach), a
+/// light is reported: "almost none" rather than none, as a stray ray may graze an edge.
+inline constexpr double kMinLightReach = 0.02;
+
+/// One warning per light of the scene whose emitting side sees (almost) no part of the scene
+/// (below the floor, facing away from the room, inside an object), naming scene.json, its key
+/// and its name. `faces` and `vis`: the solver's scene and visibility (its lights in
+/// scene.json's order). prepareRelighting() reports them through its progress.
+std::vector<std::string> lightReachWarnings(const SceneFile& scene, const radiosity::Scene& faces,
+                                            const radiosity::Visibility& vis);
+
 /// The scene's first photo, linear (sRGB decoded when the scene says so), checked against
 /// the camera's size; a non-finite pixel is an error naming it (it would spread through
 /// every ratio that touches it). Throws InputError naming the file; also without photos.
@@ -125,5 +136,17 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
 /// has the wrong size.
 std::vector<radiosity::Rgb> editRadiance(const SceneFile& scene, const EditFile& edit,
                                          std::span<const radiosity::Rgb> photoRadiance);
+
+/// Refuses an image relit for `edit` (`radiance`: the real lights', editRadiance()) that has
+/// a value that is not finite, before anything is written: throws InputError naming the
+/// edit's file and the key to blame, the radiance ("lights.A.scale", "lights.A.radiance",
+/// "add_lights[0].radiance") of the brightest light the edit sets. A pixel is the photo
+/// times the ratio of the edit's light to the photo's, so what overflows a float is a
+/// radiance far beyond the photo's, and the brightest is the one. Throws std::runtime_error
+/// when the edit sets no radiance (the fault is then not the edit's). `what` names the image
+/// in the message.
+void requireFiniteImage(const Image& image, const SceneFile& scene, const EditFile& edit,
+                        std::span<const radiosity::Rgb> radiance,
+                        const std::string& what = "the relit image");
 
 }  // namespace relight

@@ -8,8 +8,8 @@
 //   light:U,V          a virtual light on the surface under photo pixel (U, V)
 //   box:U,V            a box standing on the surface under (U, V)
 //   drag:U0,V0:U1,V1   grabs the object under (U0, V0) and drags it to (U1, V1)
-// Errors (no display, no OpenGL 3.3, a scene or edit that does not load) print one clear
-// line and exit with 2 for bad input, 1 otherwise.
+// Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option)
+// print one clear line and exit with 2 for bad input, 1 otherwise.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -137,13 +137,19 @@ int run(const Args& a) {
     frame.view = view;
     frame.framebuffer = a.framebuffer == "float" ? Framebuffer::float32 : Framebuffer::multipass8;
     frame.exposure = a.exposure;
+    // The first frame, refused when not finite before it is shown or anything is written
+    // (the session refuses a radiance that overflows; a finite one may overflow the floats).
+    const FrameStats s = frame.render();
+    const Image img = frame.read();
+    requireFiniteImage(img, prepared->scene, edit,
+                       editRadiance(prepared->scene, edit, prepared->prepared.photoRadiance),
+                       view == ViewKind::relit ? "the relit image"
+                                               : std::string("the ") + viewName(view) + " view");
     if (!a.saveEdit.empty() && !interactive) {
         session.save(a.saveEdit);
         std::printf("wrote %s\n", a.saveEdit.c_str());
     }
     if (!interactive) {
-        const FrameStats s = frame.render();
-        const Image img = frame.read();
         writeImage(a.screenshot, img);  // exposure already applied by the display
         std::printf("wrote %s (%dx%d, %s framebuffer, %d pass%s, draw %.1f ms)\n",
                     a.screenshot.c_str(), img.width, img.height, a.framebuffer.c_str(), s.passes,
@@ -176,7 +182,15 @@ int main(int argc, char** argv) {
                    "with --screenshot: write the session's edit here; else the panel's default");
     app.add_option("--epsilon", a.epsilon, "BF refinement threshold")->check(CLI::PositiveNumber);
     app.add_option("--spp", a.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // --help as CLI11 prints it; a bad option is bad input: one line, exit code 2 (as
+        // `relight`), not CLI11's own codes.
+        if (e.get_exit_code() == 0) return app.exit(e);
+        std::fprintf(stderr, "relight-viewer: error: %s; see relight-viewer --help\n", e.what());
+        return 2;
+    }
     try {
         return run(a);
     } catch (const InputError& e) {

@@ -43,17 +43,22 @@ int runRender(const RenderArgs& a) {
     const double tPrepare = s.seconds;
     // The PreparedImage's photo radiance holds the estimates of "estimate" lights.
     const auto radiance = editRadiance(sf, edit, p.photoRadiance);
+    // The real lights' part of the edit (all of it without virtual parts), refused when not
+    // finite before anything is written, the debug views (which show that part) included.
+    auto t0 = Clock::now();
+    Image img = renderEdit(p, radiance);
+    requireFiniteImage(img, sf, edit, radiance);
+    double tEdit = since(t0);
     double tViews = 0;
     size_t viewFiles = 0;
-    auto t0 = Clock::now();
+    t0 = Clock::now();
     if (full && !a.debugViews.empty()) {
         viewFiles = writeDebugViews(*full, radiance, a.debugViews).size();
         tViews = since(t0);
     }
-    t0 = Clock::now();
-    Image img;
     nlohmann::json virtualJson = nlohmann::json::array();
     if (virtualParts) {
+        t0 = Clock::now();
         DynamicRelighting dyn(*full, radiance);
         const auto note = [&](const std::string& kind, const std::string& name) {
             const FrameTimes& ft = dyn.times();
@@ -84,10 +89,9 @@ int runRender(const RenderArgs& a) {
             note("object", obj.name);
         }
         img = dyn.render();
-    } else {
-        img = renderEdit(p, radiance);
+        requireFiniteImage(img, sf, edit, radiance);
+        tEdit = since(t0);
     }
-    const double tEdit = since(t0);
     writeImage(a.output, img, a.exposure);
     std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
     if (s.cache == "hit")

@@ -35,6 +35,8 @@ int runSolve(const SolveArgs& a) {
     std::fprintf(stderr, "relight solve %s: %zu polygons, %zu lights, epsilon %g\n",
                  a.scene.c_str(), sf.scene.polygons.size(), sf.scene.lights.size(), a.epsilon);
     radiosity::HierarchicalSolver solver(sf.scene, o);
+    for (const auto& w : lightReachWarnings(sf, solver.scene(), solver.visibility()))
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
     ItemBuffer items;
     bool haveItems = false;
     auto needItems = [&] {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -30,6 +31,14 @@ std::string lightNames(const SceneFile& sf) {
     for (const radiosity::Light& light : sf.scene.lights)
         names += (names.empty() ? "" : ", ") + light.name;
     return names;
+}
+
+/// "1e+308 x [13, 11.2, 9]": a scale and the radiance it multiplies, as a message shows
+/// them (with snprintf, as GCC 12 warns wrongly (-Wrestrict) on short string sums).
+std::string productText(double scale, const Rgb& c) {
+    char s[128];
+    std::snprintf(s, sizeof s, "%.6g x [%.6g, %.6g, %.6g]", scale, c.r, c.g, c.b);
+    return s;
 }
 
 LightEdit readLightEdit(const JsonReader& r, const json& entry, const std::string& path) {
@@ -205,6 +214,9 @@ EditFile loadEdit(const fs::path& file, const SceneFile& sf) {
             edit.removeObjects.push_back(name);
         }
     }
+    // A scale that overflows scene.json's radiance fails here, before the preparation; that
+    // of an "estimate" light (nominal 0 until estimated) when editRadiance() applies it.
+    editedRadiance(sf, edit, sf.nominalRadiance);
     return edit;
 }
 
@@ -224,7 +236,16 @@ std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
     std::vector<Rgb> out(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) {
         if (auto it = edit.lights.find(lights[i].name); it != edit.lights.end()) {
-            out[i] = it->second.scale ? nominal[i] * *it->second.scale : *it->second.radiance;
+            const LightEdit& change = it->second;
+            out[i] = change.scale ? nominal[i] * *change.scale : *change.radiance;
+            // A scale may overflow the radiance (a given radiance was checked finite): an
+            // infinite radiance makes every pixel it reaches inf, or NaN where inf meets 0.
+            if (change.scale &&
+                !(std::isfinite(out[i].r) && std::isfinite(out[i].g) && std::isfinite(out[i].b)))
+                JsonReader(edit.file.string())
+                    .fail(child(child("lights", lights[i].name), "scale"),
+                          "the relit image is not finite: the light's radiance overflows (" +
+                              productText(*change.scale, nominal[i]) + ")");
             continue;
         }
         // The photo's state, applied to the given nominal radiance (maybe an estimated one).

@@ -60,16 +60,18 @@ struct EditFile {
 /// non-finite values; a virtual light with a duplicate name, a degenerate or zero-area
 /// face or no radiance; a virtual object whose file is missing or has no faces, whose
 /// reflectance is not below 1, whose transform is not affine or is singular; a removal
-/// naming an object the scene lacks or does not mark removable).
+/// naming an object the scene lacks or does not mark removable; a scale that overflows the
+/// light's scene.json radiance, as editedRadiance() does).
 EditFile loadEdit(const std::filesystem::path& file, const SceneFile& sf);
 
 /// Radiance of every real light after the edit (same index as sf.scene.lights), given the
 /// lights' nominal radiance (scene.json's, or the estimated one where scene.json says
 /// "estimate"). A light the edit does not name keeps its state in the first photo: nominal
 /// when it is in photos[0].lightsOn or when there is no photo, zero otherwise. A named
-/// light gets scale * nominal, or the given radiance. Throws std::invalid_argument when
-/// `nominal` has the wrong size or the edit names a light the scene lacks (an edit loaded
-/// against another scene).
+/// light gets scale * nominal, or the given radiance. Throws InputError naming the edit's
+/// file and key ("lights.A.scale") when scale * nominal is not finite (the relit image would
+/// not be), and std::invalid_argument when `nominal` has the wrong size or the edit names a
+/// light the scene lacks (an edit loaded against another scene).
 std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
                                 const std::vector<Rgb>& nominal);
 

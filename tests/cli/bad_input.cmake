@@ -1,7 +1,8 @@
 # End to end through the `relight` binary: bad input gives exit code 2 and one clear line
 # naming the file and the key, and the output file already there is left as it was (no
-# half-written or replaced picture). Also: the preparation switches --no-refinement and
-# --no-shadow-removal reach the report and the cache key. Run by ctest:
+# half-written or replaced picture); an edit whose relit image is not finite is such bad
+# input, and so is a bad command-line option. Also: the preparation switches
+# --no-refinement and --no-shadow-removal reach the report and the cache key. Run by ctest:
 #   cmake -DRELIGHT=<relight binary> -DSCENE=<data/room> -DWORK=<scratch folder> -P this
 include("${CMAKE_CURRENT_LIST_DIR}/common.cmake")
 
@@ -71,6 +72,19 @@ expect_failure("edit with an unknown key" "[^\n]*unknown_key\\.json[^\n]*hue"
                --edit "${WORK}/unknown_key.json")
 expect_failure("missing edit" "[^\n]*missing\\.json" --edit "${WORK}/missing.json")
 
+# Edits whose relit image is not finite: a scale that overflows the radiance (refused at
+# load, before the preparation), a finite radiance that overflows the image's floats.
+file(WRITE "${WORK}/huge_scale.json"
+     "{\"format\": \"relight-edit/1\", \"lights\": {\"A\": {\"scale\": 1e308}}}")
+expect_failure("edit with a scale that overflows"
+               "[^\n]*huge_scale\\.json: key \"lights\\.A\\.scale\": the relit image is not finite"
+               --edit "${WORK}/huge_scale.json")
+file(WRITE "${WORK}/huge_radiance.json"
+     "{\"format\": \"relight-edit/1\", \"lights\": {\"B\": {\"radiance\": [1e300, 1, 1]}}}")
+expect_failure("edit whose image overflows"
+               "[^\n]*huge_radiance\\.json: key \"lights\\.B\\.radiance\": the relit image is not finite"
+               --edit "${WORK}/huge_radiance.json")
+
 # The preparation switches: in the report, and a different cache key (so a cache prepared
 # with the full method is never used for the 1997 method).
 fresh_room()
@@ -85,5 +99,31 @@ string(JSON refinement GET "${json}" shadow_refinement)
 if(NOT removal STREQUAL "OFF" OR NOT refinement STREQUAL "OFF")
   message(FATAL_ERROR "report: shadow_removal ${removal}, shadow_refinement ${refinement}")
 endif()
+
+# Bad command-line options: exit code 2, as for any bad input (not CLI11's own codes: 105
+# for a value that fails its check, 106 for a missing option), one line that names the
+# option, and the output left as it was; --help still exits 0.
+function(expect_option_error what regex)
+  relight(out 2 ${ARGN})
+  expect("${out}" "^error: ${regex}[^\n]*\n$" "${what}")
+  file(SHA256 "${output}" h)
+  if(NOT h STREQUAL output_hash)
+    message(FATAL_ERROR "${what}: the output file was changed")
+  endif()
+endfunction()
+expect_option_error("a value that fails its check" "--epsilon: must be a finite number > 0, got abc"
+                    solve "${room}" --epsilon abc)
+expect_option_error("a value out of range" "--spp: " render "${room}" --spp 0 -o "${output}")
+expect_option_error("a missing option" "--output is required" render "${room}")
+expect_option_error("an unknown option" "[^\n]*--no-such-option"
+                    render "${room}" --no-such-option -o "${output}")
+expect_option_error("options that exclude each other" "--cache excludes --no-cache"
+                    render "${room}" --cache "${WORK}/c.bin" --no-cache -o "${output}")
+expect_option_error("an unknown command" "unknown command \"rendr\"" rendr "${room}")
+expect_option_error("no command" "A subcommand is required")
+relight(out 0 --help)
+expect("${out}" "render" "relight --help")
+relight(out 0 render --help)
+expect("${out}" "--edit" "relight render --help")
 
 file(REMOVE_RECURSE "${WORK}")

@@ -6,7 +6,7 @@
 #    `relight render` to the viewer's screenshot within the same step;
 #  - the window with its panel opens and draws;
 #  - clear messages and no output for a missing display, an OpenGL older than 3.3, a scene
-#    or edit that does not load, a bad --do.
+#    or edit that does not load, an edit whose display is not finite, a bad option or --do.
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=data/room -DWORK=... -P this
 include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
 foreach(var VIEWER XVFB_RUN)
@@ -87,6 +87,18 @@ expect("${o}" "no_such_scene/scene.json" "missing scene")
 file(WRITE "${WORK}/bad_edit.json" "{\"format\": \"relight-edit/1\", \"lights\": {\"Q\": {\"scale\": 2}}}")
 viewer(o 2 "${SCENE}" --edit "${WORK}/bad_edit.json" --screenshot "${WORK}/keep.png")
 expect("${o}" "bad_edit.json: key \"lights.Q\"" "bad edit")
+# A finite radiance whose display overflows the floats: refused, naming the edit's key.
+file(WRITE "${WORK}/huge_edit.json"
+     "{\"format\": \"relight-edit/1\", \"lights\": {\"B\": {\"radiance\": [1e300, 1, 1]}}}")
+viewer(o 2 "${SCENE}" --edit "${WORK}/huge_edit.json" --epsilon 1e-3 --spp 2
+       --screenshot "${WORK}/keep.png")
+expect("${o}" "huge_edit.json: key \"lights.B.radiance\": the relit image is not finite"
+       "edit whose display overflows")
+# A bad option: exit code 2 as for any bad input (not CLI11's 105), one line naming it.
+viewer(o 2 "${SCENE}" --spp 0 --screenshot "${WORK}/keep.png")
+expect("${o}" "^relight-viewer: error: --spp: [^\n]*\n$" "bad option")
+viewer(o 0 --help)
+expect("${o}" "--screenshot" "--help")
 viewer(o 1 "${SCENE}" --do light:abc --screenshot "${WORK}/keep.png")
 expect("${o}" "--do light:abc" "bad action")
 file(READ "${WORK}/keep.png" kept)

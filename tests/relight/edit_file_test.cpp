@@ -11,6 +11,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
@@ -175,7 +176,9 @@ SceneFile twoLightScene() {
     return sf;
 }
 
-class EditFixture : public ::testing::Test {
+/// loadEdit()'s tests (and editedRadiance()'s on what it loads): twoLightScene(), the edit
+/// written to a temporary folder.
+class LoadEdit : public ::testing::Test {
   protected:
     TempDir dir;
     SceneFile sf = twoLightScene();
@@ -194,7 +197,7 @@ class EditFixture : public ::testing::Test {
     }
 };
 
-TEST_F(EditFixture, EmptyEditGivesThePhotosState) {
+TEST_F(LoadEdit, EmptyEditGivesThePhotosState) {
     const EditFile edit = load(R"({"format":"relight-edit/1"})");
     EXPECT_EQ(edit.file, dir.path() / "edit.json");
     EXPECT_TRUE(edit.lights.empty());
@@ -203,7 +206,7 @@ TEST_F(EditFixture, EmptyEditGivesThePhotosState) {
     EXPECT_EQ(out, (std::vector<Rgb>{Rgb(1, 2, 3), Rgb{}}));
 }
 
-TEST_F(EditFixture, LightOffInThePhotoStaysOffUnlessNamed) {
+TEST_F(LoadEdit, LightOffInThePhotoStaysOffUnlessNamed) {
     // Naming only L1 leaves L2 off...
     EditFile edit = load(withL1({{"scale", 0.5}}));
     EXPECT_EQ(editedRadiance(sf, edit, sf.nominalRadiance),
@@ -216,13 +219,13 @@ TEST_F(EditFixture, LightOffInThePhotoStaysOffUnlessNamed) {
     EXPECT_EQ(editedRadiance(sf, edit, sf.nominalRadiance)[1], Rgb(7, 8, 9));
 }
 
-TEST_F(EditFixture, WithoutAPhotoEveryLightIsOn) {
+TEST_F(LoadEdit, WithoutAPhotoEveryLightIsOn) {
     sf.photos.clear();
     const EditFile edit = load(R"({"format":"relight-edit/1"})");
     EXPECT_EQ(editedRadiance(sf, edit, sf.nominalRadiance), sf.nominalRadiance);
 }
 
-TEST_F(EditFixture, EmptyAddAndRemoveListsChangeNothing) {
+TEST_F(LoadEdit, EmptyAddAndRemoveListsChangeNothing) {
     const EditFile edit = load(
         R"({"format":"relight-edit/1","lights":{},"add_lights":[],"add_objects":[],"remove_objects":[]})");
     EXPECT_FALSE(!edit.addLights.empty() || !edit.addObjects.empty() ||
@@ -230,7 +233,7 @@ TEST_F(EditFixture, EmptyAddAndRemoveListsChangeNothing) {
     EXPECT_NO_THROW(requireRenderable(edit));
 }
 
-TEST_F(EditFixture, EditLoadedAgainstAnotherSceneIsAProgrammingError) {
+TEST_F(LoadEdit, EditLoadedAgainstAnotherSceneIsAProgrammingError) {
     const EditFile edit = load(withL1({{"scale", 1}}));
     SceneFile other = sf;
     other.scene.lights[0].name = "X";
@@ -239,18 +242,18 @@ TEST_F(EditFixture, EditLoadedAgainstAnotherSceneIsAProgrammingError) {
 
 // ---- one bad input per error class -----------------------------------------------------
 
-TEST_F(EditFixture, MissingFile) {
+TEST_F(LoadEdit, MissingFile) {
     const std::string msg = errorOf([&] { loadEdit(dir.path() / "none.json", sf); });
     EXPECT_TRUE(contains(msg, (dir.path() / "none.json").string() + ": file not found")) << msg;
 }
 
-TEST_F(EditFixture, InvalidJsonNamesFileAndLine) {
+TEST_F(LoadEdit, InvalidJsonNamesFileAndLine) {
     const std::string msg = loadError("{\n \"format\": \"relight-edit/1\",\n \"lights\": {,}\n}\n");
     EXPECT_TRUE(contains(msg, editFile() + ": invalid JSON")) << msg;
     EXPECT_TRUE(contains(msg, "line 3")) << msg;
 }
 
-TEST_F(EditFixture, DuplicateKeysAreErrors) {
+TEST_F(LoadEdit, DuplicateKeysAreErrors) {
     std::string msg =
         loadError(R"({"format":"relight-edit/1","lights":{"L1":{"scale":0},"L1":{"scale":2}}})");
     EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1\": duplicate key")) << msg;
@@ -258,17 +261,17 @@ TEST_F(EditFixture, DuplicateKeysAreErrors) {
     EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1.scale\": duplicate key")) << msg;
 }
 
-TEST_F(EditFixture, TopLevelMustBeAnObject) {
+TEST_F(LoadEdit, TopLevelMustBeAnObject) {
     const std::string msg = loadError("[1, 2]");
     EXPECT_TRUE(contains(msg, editFile() + ": the top level must be a JSON object")) << msg;
 }
 
-TEST_F(EditFixture, MissingFormat) {
+TEST_F(LoadEdit, MissingFormat) {
     const std::string msg = loadError(R"({"lights":{}})");
     EXPECT_TRUE(contains(msg, editFile() + ": key \"format\": missing required key")) << msg;
 }
 
-TEST_F(EditFixture, WrongFormatIsCheckedFirst) {
+TEST_F(LoadEdit, WrongFormatIsCheckedFirst) {
     // A scene.json given as an edit: named by its format, not by its unknown keys.
     const std::string msg = loadError(R"({"format":"relight-scene/1","camera":{}})");
     EXPECT_TRUE(contains(msg, editFile() + ": key \"format\": expected \"relight-edit/1\", got "
@@ -277,47 +280,47 @@ TEST_F(EditFixture, WrongFormatIsCheckedFirst) {
     EXPECT_TRUE(contains(loadError(R"({"format":1})"), "key \"format\": expected"));
 }
 
-TEST_F(EditFixture, UnknownTopLevelKey) {
+TEST_F(LoadEdit, UnknownTopLevelKey) {
     const std::string msg = loadError(R"({"format":"relight-edit/1","light":{}})");
     EXPECT_TRUE(contains(msg, editFile() + ": key \"light\": unknown key")) << msg;
 }
 
-TEST_F(EditFixture, LightsMustBeAnObject) {
+TEST_F(LoadEdit, LightsMustBeAnObject) {
     const std::string msg = loadError(R"({"format":"relight-edit/1","lights":[{"L1":{}}]})");
     EXPECT_TRUE(contains(msg, editFile() + ": key \"lights\": expected an object of light names"))
         << msg;
 }
 
-TEST_F(EditFixture, UnknownLightListsTheScenesLights) {
+TEST_F(LoadEdit, UnknownLightListsTheScenesLights) {
     const std::string msg = loadError(R"({"format":"relight-edit/1","lights":{"Q":{"scale":0}}})");
     EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.Q\": unknown light \"Q\" (the scene "
                                            "has L1, L2)"))
         << msg;
 }
 
-TEST_F(EditFixture, LightEntryMustBeAnObject) {
+TEST_F(LoadEdit, LightEntryMustBeAnObject) {
     const std::string msg = loadError(withL1(0.5));
     EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1\": expected an object")) << msg;
 }
 
-TEST_F(EditFixture, LightEntryUnknownKey) {
+TEST_F(LoadEdit, LightEntryUnknownKey) {
     const std::string msg = loadError(withL1({{"scale", 1}, {"gain", 2}}));
     EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1.gain\": unknown key")) << msg;
 }
 
-TEST_F(EditFixture, LightEntryWithBothScaleAndRadiance) {
+TEST_F(LoadEdit, LightEntryWithBothScaleAndRadiance) {
     const std::string msg = loadError(withL1({{"scale", 1}, {"radiance", {1, 1, 1}}}));
     EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1\": has both \"scale\" and "
                                            "\"radiance\""))
         << msg;
 }
 
-TEST_F(EditFixture, LightEntryWithNeitherScaleNorRadiance) {
+TEST_F(LoadEdit, LightEntryWithNeitherScaleNorRadiance) {
     const std::string msg = loadError(withL1(json::object()));
     EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1\": says nothing")) << msg;
 }
 
-TEST_F(EditFixture, ScaleMustBeAFiniteNonNegativeNumber) {
+TEST_F(LoadEdit, ScaleMustBeAFiniteNonNegativeNumber) {
     const std::pair<std::string, std::string> cases[] = {
         {R"("2")", "expected a number, got string"},
         {"null", "expected a number, got null"},
@@ -330,7 +333,7 @@ TEST_F(EditFixture, ScaleMustBeAFiniteNonNegativeNumber) {
     }
 }
 
-TEST_F(EditFixture, OverflowingNumberIsRejected) {
+TEST_F(LoadEdit, OverflowingNumberIsRejected) {
     // nlohmann::json refuses a literal that overflows a double at parse time, so the key
     // path is not known; the reader's "number is not finite" check stays as a safety net.
     for (const char* entry : {R"({"scale":1e999})", R"({"radiance":[1, 2, 1e999]})"}) {
@@ -340,7 +343,25 @@ TEST_F(EditFixture, OverflowingNumberIsRejected) {
     }
 }
 
-TEST_F(EditFixture, RadianceMustBeThreeFiniteNonNegativeNumbers) {
+TEST_F(LoadEdit, ScaleThatOverflowsTheRadianceIsRefused) {
+    // Finite in the file, but 1e308 x L1's nominal 3 overflows a double: refused at load
+    // (against scene.json's radiance), naming the key, rather than rendered as inf and NaN.
+    const std::string msg = loadError(withL1({{"scale", 1e308}}));
+    EXPECT_TRUE(contains(msg, editFile() + ": key \"lights.L1.scale\": the relit image is not "
+                                           "finite: the light's radiance overflows (1e+308 x "))
+        << msg;
+    // The largest scale that does not overflow any channel is accepted.
+    const double largest = std::numeric_limits<double>::max() / 4;
+    EXPECT_NO_THROW(load(withL1({{"scale", largest}})));
+    // A scale applied later to an estimated radiance (nominal 0 at load) is checked then.
+    const EditFile edit = load(withL1({{"scale", 1e300}}));
+    const std::string later = errorOf([&] {
+        editedRadiance(sf, edit, {Rgb(1e10, 1, 1), Rgb(4, 5, 6)});
+    });
+    EXPECT_TRUE(contains(later, editFile() + ": key \"lights.L1.scale\"")) << later;
+}
+
+TEST_F(LoadEdit, RadianceMustBeThreeFiniteNonNegativeNumbers) {
     const std::pair<std::string, std::string> cases[] = {
         {"5", "\"lights.L1.radiance\": expected an array"},
         {"[1, 2]", "\"lights.L1.radiance\": expected an array of 3 elements, got 2"},
@@ -355,7 +376,7 @@ TEST_F(EditFixture, RadianceMustBeThreeFiniteNonNegativeNumbers) {
     }
 }
 
-TEST_F(EditFixture, AddAndRemovePartsMustBeArrays) {
+TEST_F(LoadEdit, AddAndRemovePartsMustBeArrays) {
     for (const char* key : {"add_lights", "add_objects", "remove_objects"}) {
         json j = {{"format", "relight-edit/1"}, {key, {{"name", "table"}}}};
         const std::string msg = loadError(j.dump(1));
@@ -379,7 +400,7 @@ json quadLight(const std::string& name) {
             {"radiance", {1, 2, 3}}};
 }
 
-TEST_F(EditFixture, VirtualLightIsRead) {
+TEST_F(LoadEdit, VirtualLightIsRead) {
     const EditFile edit = load(withList("add_lights", quadLight("V1")));
     ASSERT_EQ(edit.addLights.size(), 1u);
     EXPECT_EQ(edit.addLights[0].name, "V1");
@@ -388,7 +409,7 @@ TEST_F(EditFixture, VirtualLightIsRead) {
     EXPECT_NO_THROW(requireRenderable(edit));
 }
 
-TEST_F(EditFixture, VirtualLightErrorsNameTheKey) {
+TEST_F(LoadEdit, VirtualLightErrorsNameTheKey) {
     json zeroArea = quadLight("V1");
     zeroArea["vertices"] = {{0, 0, 2}, {1, 0, 2}, {2, 0, 2}, {3, 0, 2}};
     EXPECT_TRUE(
@@ -441,7 +462,7 @@ json boxObject(const json& transform) {
 
 const json kIdentity = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
 
-TEST_F(EditFixture, VirtualObjectIsReadRelativeToTheEditAndPlacedByItsTransform) {
+TEST_F(LoadEdit, VirtualObjectIsReadRelativeToTheEditAndPlacedByItsTransform) {
     dir.write("cube.obj", kCube);
     // Scale 2 on x, then move by (1, 2, 3): the cube spans [1, 3] x [2, 3] x [3, 4].
     const json t = {{2, 0, 0, 1}, {0, 1, 0, 2}, {0, 0, 1, 3}, {0, 0, 0, 1}};
@@ -467,7 +488,7 @@ TEST_F(EditFixture, VirtualObjectIsReadRelativeToTheEditAndPlacedByItsTransform)
     EXPECT_EQ(hi, radiosity::Vec3(3, 3, 4));
 }
 
-TEST_F(EditFixture, MirroringTransformKeepsTheFacesOutward) {
+TEST_F(LoadEdit, MirroringTransformKeepsTheFacesOutward) {
     dir.write("cube.obj", kCube);
     const json mirror = {{-1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
     const EditFile edit = load(withList("add_objects", boxObject(mirror)));
@@ -476,7 +497,7 @@ TEST_F(EditFixture, MirroringTransformKeepsTheFacesOutward) {
         EXPECT_GT(glm::dot(p.normal, p.centroid() - radiosity::Vec3(-0.5, 0.5, 0.5)), 0);
 }
 
-TEST_F(EditFixture, VirtualObjectErrorsNameTheKey) {
+TEST_F(LoadEdit, VirtualObjectErrorsNameTheKey) {
     EXPECT_TRUE(contains(loadError(withList("add_objects", boxObject(kIdentity))),
                          "key \"add_objects[0].file\": geometry file \"" +
                              (dir.path() / "cube.obj").string() + "\" not found"));
@@ -500,7 +521,7 @@ TEST_F(EditFixture, VirtualObjectErrorsNameTheKey) {
     EXPECT_TRUE(contains(loadError(withList("add_objects", empty)), "has no usable face"));
 }
 
-TEST_F(EditFixture, RemovalsMustNameRemovableObjects) {
+TEST_F(LoadEdit, RemovalsMustNameRemovableObjects) {
     sf.scene.objects = {"table", "wall", "light:L1"};
     sf.objectSettings["table"].removable = true;
     EXPECT_EQ(load(withList("remove_objects", "table")).removeObjects,

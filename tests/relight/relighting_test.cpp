@@ -6,8 +6,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "relight/display/ratio_display.h"
 #include "relight/io/edit_file.h"
@@ -178,6 +181,87 @@ TEST(Relighting, RealEditsLoadAndRender) {
     EXPECT_EQ(out.width, r.prepared.photo.width);
     EXPECT_EQ(out.height, r.prepared.photo.height);
     for (float v : out.rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0);
+}
+
+TEST(Relighting, EditWhoseImageIsNotFiniteIsRefusedNamingItsKey) {
+    const Relighting& r = room();
+    const test::TempDir dir;
+    // B's radiance is finite, but the relit image (photo x B/D, in float) overflows; A's
+    // change is harmless, and the brightest light is the one named.
+    const auto file = dir.write("huge.json", R"({"format": "relight-edit/1", "lights": {
+        "A": {"scale": 2}, "B": {"radiance": [1e300, 1, 1]}}})");
+    const EditFile e = loadEdit(file, r.scene);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
+    const Image out = renderEdit(r.prepared, radiance);
+    ASSERT_FALSE(
+        std::all_of(out.rgb.begin(), out.rgb.end(), [](float v) { return std::isfinite(v); }));
+    try {
+        requireFiniteImage(out, r.scene, e, radiance);
+        ADD_FAILURE() << "a relit image that is not finite was accepted";
+    } catch (const InputError& err) {
+        const std::string msg = err.what();
+        EXPECT_NE(msg.find(file.string() + ": key \"lights.B.radiance\": the relit image is not "
+                                           "finite ("),
+                  std::string::npos)
+            << msg;
+    }
+    // The same lights at the photo's radiances: a finite image, accepted.
+    const Image photoLit = renderEdit(r.prepared, r.prepared.photoRadiance);
+    EXPECT_NO_THROW(requireFiniteImage(photoLit, r.scene, e, r.prepared.photoRadiance));
+    // Without a radiance in the edit to blame, it is not an input error.
+    try {
+        requireFiniteImage(out, r.scene, EditFile{}, radiance);
+        ADD_FAILURE() << "a relit image that is not finite was accepted";
+    } catch (const InputError& err) {
+        ADD_FAILURE() << "blamed on an edit that sets no radiance: " << err.what();
+    } catch (const std::runtime_error&) {
+    }
+}
+
+TEST(LightReachWarnings, ALampBelowTheFloorIsNamedAndOneInTheRoomIsNot) {
+    // A 4 x 3 x 2.5 m room, faces inward; "Lamp" under the ceiling faces down into it, "Under"
+    // lies below the floor facing up at its back. Only the solver's scene is needed.
+    const test::TempDir dir;
+    dir.write("room.obj",
+              "v 0 0 0\nv 4 0 0\nv 4 3 0\nv 0 3 0\nv 0 0 2.5\nv 4 0 2.5\nv 4 3 2.5\nv 0 3 2.5\n"
+              "o room\nf 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n");
+    dir.write("scene.json", R"({
+      "format": "relight-scene/1",
+      "geometry": ["room.obj"],
+      "camera": {"width": 64, "height": 48, "K": [[50, 0, 31.5], [0, 50, 23.5], [0, 0, 1]],
+                 "world_to_camera": [[1, 0, 0, -2], [0, -1, 0, 1.5], [0, 0, -1, 2.4]]},
+      "lights": [
+        {"name": "Lamp", "type": "quad", "radiance": [10, 10, 10],
+         "vertices": [[1.1, 1.1, 2.45], [1.4, 1.1, 2.45], [1.4, 0.8, 2.45], [1.1, 0.8, 2.45]]},
+        {"name": "Under", "type": "quad", "radiance": [10, 10, 10],
+         "vertices": [[1.1, 0.8, -0.2], [1.4, 0.8, -0.2], [1.4, 1.1, -0.2], [1.1, 1.1, -0.2]]}
+      ]})");
+    const SceneFile sf = loadScene(dir.path());
+    const radiosity::HierarchicalSolver solver(sf.scene, radiosity::SolverOptions{});
+    const std::vector<std::string> warnings =
+        lightReachWarnings(sf, solver.scene(), solver.visibility());
+    ASSERT_EQ(warnings.size(), 1u);
+    const std::string& w = warnings[0];
+    EXPECT_NE(w.find((dir.path() / "scene.json").string() +
+                     ": key \"lights[1]\": light \"Under\": "
+                     "its emitting side sees no part of the scene"),
+              std::string::npos)
+        << w;
+    EXPECT_EQ(w.find("Lamp"), std::string::npos) << w;
+
+    // Moved above the floor, facing down at it, it is not reported.
+    dir.write("scene.json", [&] {
+        std::ifstream in(dir.path() / "scene.json");
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string up =
+            "[[1.1, 0.8, -0.2], [1.4, 0.8, -0.2], [1.4, 1.1, -0.2], [1.1, 1.1, -0.2]]";
+        text.replace(text.find(up), up.size(),
+                     "[[1.1, 1.1, 0.2], [1.4, 1.1, 0.2], [1.4, 0.8, 0.2], [1.1, 0.8, 0.2]]");
+        return text;
+    }());
+    const SceneFile moved = loadScene(dir.path());
+    const radiosity::HierarchicalSolver solver2(moved.scene, radiosity::SolverOptions{});
+    EXPECT_TRUE(lightReachWarnings(moved, solver2.scene(), solver2.visibility()).empty());
 }
 
 namespace {

@@ -75,8 +75,9 @@ json baseScene() {
     })");
 }
 
-/// A fixture scene written to a temporary folder; tests change `scene` and `obj` first.
-class SceneFixture : public ::testing::Test {
+/// loadScene()'s tests: the bundled scenes, and a scene written to a temporary folder
+/// (tests change `scene` and `obj` first).
+class LoadScene : public ::testing::Test {
   protected:
     TempDir dir;
     json scene = baseScene();
@@ -108,7 +109,7 @@ class SceneFixture : public ::testing::Test {
 
 // ---- the bundled scenes ----------------------------------------------------------------
 
-TEST(LoadScene, RoomCountsAreasAndSettings) {
+TEST_F(LoadScene, RoomCountsAreasAndSettings) {
     const SceneFile sf = loadScene(fs::path(RELIGHT_DATA_DIR) / "room");
     EXPECT_TRUE(sf.warnings.empty()) << allWarnings(sf);
     // 9 OBJ objects (floor, ceiling, 4 walls, poster, table, cabinet) + 4 "light:X".
@@ -160,10 +161,10 @@ TEST(LoadScene, RoomCountsAreasAndSettings) {
     EXPECT_EQ(sf.photos[0].lightsOn.size(), 4u);
 }
 
-TEST(LoadScene, RoomCameraMatchesRowMajorWorldToCamera) {
-    const fs::path dir = fs::path(RELIGHT_DATA_DIR) / "room";
-    const SceneFile sf = loadScene(dir);
-    std::ifstream in(dir / "scene.json");
+TEST_F(LoadScene, RoomCameraMatchesRowMajorWorldToCamera) {
+    const fs::path room = fs::path(RELIGHT_DATA_DIR) / "room";
+    const SceneFile sf = loadScene(room);
+    std::ifstream in(room / "scene.json");
     const json W = json::parse(in)["camera"]["world_to_camera"];
     const relight::Camera& cam = sf.camera;
     EXPECT_EQ(cam.width, 320);
@@ -189,7 +190,7 @@ TEST(LoadScene, RoomCameraMatchesRowMajorWorldToCamera) {
     EXPECT_NEAR(depth, 2.0, 1e-9);
 }
 
-TEST(LoadScene, CornellCountsAndCamera) {
+TEST_F(LoadScene, CornellCountsAndCamera) {
     const SceneFile sf = loadScene(fs::path(RELIGHT_DATA_DIR) / "cornell");
     EXPECT_TRUE(sf.warnings.empty()) << allWarnings(sf);
     // floor, ceiling, back_wall, left_wall, right_wall, short_block, tall_block + light.
@@ -227,7 +228,7 @@ TEST(LoadScene, CornellCountsAndCamera) {
     EXPECT_FALSE(cam.project({0.278, 0.273, -1.0}, u, v, depth));
 }
 
-TEST(LoadScene, SetPhotoLightStateFollowsFirstPhoto) {
+TEST_F(LoadScene, SetPhotoLightStateFollowsFirstPhoto) {
     SceneFile sf = loadScene(fs::path(RELIGHT_DATA_DIR) / "room");
     sf.photos[0].lightsOn = {"B", "D"};
     sf.setPhotoLightState();
@@ -243,7 +244,7 @@ TEST(LoadScene, SetPhotoLightStateFollowsFirstPhoto) {
 
 // ---- fixture scenes that load ------------------------------------------------------------
 
-TEST_F(SceneFixture, BaseSceneLoads) {
+TEST_F(LoadScene, BaseSceneLoads) {
     const SceneFile sf = load();
     EXPECT_TRUE(sf.warnings.empty()) << allWarnings(sf);
     ASSERT_EQ(sf.scene.polygons.size(), 2u);
@@ -251,7 +252,7 @@ TEST_F(SceneFixture, BaseSceneLoads) {
     EXPECT_EQ(sf.scene.lights[0].radiance, radiosity::Rgb(1, 2, 3));
 }
 
-TEST_F(SceneFixture, LightsOffInPhotoAreOff) {
+TEST_F(LoadScene, LightsOffInPhotoAreOff) {
     scene["lights"].push_back({{"name", "M"},
                                {"type", "quad"},
                                {"vertices", {{0.1, 0.1, 0.9}, {0.1, 0.2, 0.9}, {0.2, 0.1, 0.9}}},
@@ -264,14 +265,14 @@ TEST_F(SceneFixture, LightsOffInPhotoAreOff) {
     EXPECT_EQ(sf.scene.polygons.back().vertexCount, 3);
 }
 
-TEST_F(SceneFixture, EstimatedRadiance) {
+TEST_F(LoadScene, EstimatedRadiance) {
     scene["lights"][0]["radiance"] = "estimate";
     const SceneFile sf = load();
     EXPECT_TRUE(sf.estimateRadiance[0]);
     EXPECT_EQ(sf.nominalRadiance[0], radiosity::Rgb{});
 }
 
-TEST_F(SceneFixture, LightWithSixVerticesIsAFan) {
+TEST_F(LoadScene, LightWithSixVerticesIsAFan) {
     json hexagon = json::array();
     for (int k = 0; k < 6; ++k) {
         // Clockwise seen from above = counter-clockwise seen from below, where it emits.
@@ -294,7 +295,7 @@ TEST_F(SceneFixture, LightWithSixVerticesIsAFan) {
     EXPECT_NEAR(area, 1.5 * std::sqrt(3.0) * 0.01, 1e-9);
 }
 
-TEST_F(SceneFixture, PhotoEncodingInferredFromExtension) {
+TEST_F(LoadScene, PhotoEncodingInferredFromExtension) {
     scene["photos"][0].erase("encoding");
     scene["photos"][0]["file"] = "shots/photo.PNG";
     const SceneFile sf = load();
@@ -302,7 +303,7 @@ TEST_F(SceneFixture, PhotoEncodingInferredFromExtension) {
     EXPECT_EQ(sf.photos[0].file, dir.path() / "shots/photo.PNG");  // not checked for existence
 }
 
-TEST_F(SceneFixture, ConvexPentagonIsSplitIntoAFanWithWarning) {
+TEST_F(LoadScene, ConvexPentagonIsSplitIntoAFanWithWarning) {
     obj += "o pent\nv 0 0 1\nv 1 0 1\nv 1.5 0.5 1\nv 1 1 1\nv 0 1 1\nf 5 6 7 8 9\n";  // f: line 14
     const SceneFile sf = load();
     EXPECT_EQ(countWarnings(sf, objFile() + ":14: convex face with 5 vertices"), 1)
@@ -319,7 +320,7 @@ TEST_F(SceneFixture, ConvexPentagonIsSplitIntoAFanWithWarning) {
     EXPECT_NEAR(area, 1.25, 1e-12);
 }
 
-TEST_F(SceneFixture, NonConvexQuadIsSplitKeepingBothHalvesConvex) {
+TEST_F(LoadScene, NonConvexQuadIsSplitKeepingBothHalvesConvex) {
     // A dart: corner 3 (0.3, 0.3) is reflex; only the diagonal 1-3 keeps both halves convex.
     obj += "o dart\nv 0 0 1\nv 1 0 1\nv 0.3 0.3 1\nv 0 1 1\nf 5 6 7 8\n";  // f: line 13
     const SceneFile sf = load();
@@ -339,7 +340,7 @@ TEST_F(SceneFixture, NonConvexQuadIsSplitKeepingBothHalvesConvex) {
     EXPECT_NEAR(area, 0.3, 1e-12);  // 0.5 * (1 * 0.3) * 2
 }
 
-TEST_F(SceneFixture, NonConvexPentagonWhoseReflexCornerTouchesACut) {
+TEST_F(LoadScene, NonConvexPentagonWhoseReflexCornerTouchesACut) {
     // Corner (0.5, 0.5) lies on the cut from (0, 1) to (1, 0): cutting there would make a
     // triangle that covers the notch.
     obj += "o notch\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0.5 0.5 1\nv 0 1 1\nf 5 6 7 8 9\n";
@@ -359,7 +360,7 @@ TEST_F(SceneFixture, NonConvexPentagonWhoseReflexCornerTouchesACut) {
     EXPECT_NEAR(area, 0.75, 1e-12);
 }
 
-TEST_F(SceneFixture, ObjectsOfTheSameNameInTwoFilesAreOne) {
+TEST_F(LoadScene, ObjectsOfTheSameNameInTwoFilesAreOne) {
     scene["geometry"].push_back("more.obj");
     scene["objects"]["floor"]["reflectance"] = {0.2, 0.3, 0.4};
     dir.write("more.obj", "o floor\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -451,7 +452,7 @@ TEST(ObjReader, MalformedInputNeverCrashes) {
 
 // ---- one bad input per error class ----------------------------------------------------------
 
-TEST_F(SceneFixture, UnknownJsonKeysAreErrorsNamingThePath) {
+TEST_F(LoadScene, UnknownJsonKeysAreErrorsNamingThePath) {
     const std::pair<json::json_pointer, std::string> cases[] = {
         {json::json_pointer("/colour"), "\"colour\": unknown key"},
         {json::json_pointer("/camera/Kx"), "\"camera.Kx\": unknown key"},
@@ -467,7 +468,7 @@ TEST_F(SceneFixture, UnknownJsonKeysAreErrorsNamingThePath) {
     }
 }
 
-TEST_F(SceneFixture, MissingRequiredKeysAreErrors) {
+TEST_F(LoadScene, MissingRequiredKeysAreErrors) {
     for (const char* key : {"geometry", "camera", "lights", "format"}) {
         scene = baseScene();
         scene.erase(key);
@@ -477,7 +478,7 @@ TEST_F(SceneFixture, MissingRequiredKeysAreErrors) {
     }
 }
 
-TEST_F(SceneFixture, WrongTypesAndSizesNameTheElement) {
+TEST_F(LoadScene, WrongTypesAndSizesNameTheElement) {
     scene["lights"][0]["vertices"][1] = {0.4, 0.6};
     std::string msg = loadError();
     EXPECT_TRUE(contains(msg, "key \"lights[0].vertices[1]\": expected an array of 3")) << msg;
@@ -491,7 +492,7 @@ TEST_F(SceneFixture, WrongTypesAndSizesNameTheElement) {
     EXPECT_TRUE(contains(msg, "key \"camera.K[2][2]\"")) << msg;
 }
 
-TEST_F(SceneFixture, CameraRotationMustBeARotation) {
+TEST_F(LoadScene, CameraRotationMustBeARotation) {
     scene["camera"]["world_to_camera"][0][0] = 1.1;
     std::string msg = loadError();
     EXPECT_TRUE(contains(msg, "key \"camera.world_to_camera\": the left 3x3 block R is not"))
@@ -502,14 +503,14 @@ TEST_F(SceneFixture, CameraRotationMustBeARotation) {
     EXPECT_TRUE(contains(msg, "determinant -1")) << msg;
 }
 
-TEST_F(SceneFixture, WrongFormatString) {
+TEST_F(LoadScene, WrongFormatString) {
     scene["format"] = "relight-edit/1";
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, jsonFile() + ": key \"format\": expected \"relight-scene/1\""))
         << msg;
 }
 
-TEST_F(SceneFixture, JsonSyntaxErrorNamesFileAndLine) {
+TEST_F(LoadScene, JsonSyntaxErrorNamesFileAndLine) {
     write();
     dir.write("scene.json",
               "{\n \"format\": \"relight-scene/1\",\n \"geometry\": [\"box.obj\",]\n}\n");
@@ -522,7 +523,7 @@ TEST_F(SceneFixture, JsonSyntaxErrorNamesFileAndLine) {
     }
 }
 
-TEST_F(SceneFixture, DuplicateJsonKeyIsAnError) {
+TEST_F(LoadScene, DuplicateJsonKeyIsAnError) {
     write();
     std::string text = scene.dump(1);
     text.insert(text.find("\"name\": \"L\""), "\"name\": \"X\",\n");
@@ -535,7 +536,7 @@ TEST_F(SceneFixture, DuplicateJsonKeyIsAnError) {
     }
 }
 
-TEST_F(SceneFixture, MissingSceneJson) {
+TEST_F(LoadScene, MissingSceneJson) {
     try {
         loadScene(dir.path());
         ADD_FAILURE() << "no error";
@@ -544,39 +545,39 @@ TEST_F(SceneFixture, MissingSceneJson) {
     }
 }
 
-TEST_F(SceneFixture, MissingObjFileIsNamed) {
+TEST_F(LoadScene, MissingObjFileIsNamed) {
     scene["geometry"] = {"nothere.obj"};
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, "key \"geometry[0]\"")) << msg;
     EXPECT_TRUE(contains(msg, (dir.path() / "nothere.obj").string() + "\" not found")) << msg;
 }
 
-TEST_F(SceneFixture, ObjIndexOutOfRangeNamesTheLine) {
+TEST_F(LoadScene, ObjIndexOutOfRangeNamesTheLine) {
     obj += "f 1 2 9\n";  // line 8
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, objFile() + ":8: face references vertex 9, but only 4 are defined"))
         << msg;
 }
 
-TEST_F(SceneFixture, ObjBadNumberNamesTheLine) {
+TEST_F(LoadScene, ObjBadNumberNamesTheLine) {
     obj = "o floor\nv 0 0 0\nv 1 0,5 0\n";
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, objFile() + ":3: bad number \"0,5\"")) << msg;
 }
 
-TEST_F(SceneFixture, ObjFaceWithTwoVerticesIsAnError) {
+TEST_F(LoadScene, ObjFaceWithTwoVerticesIsAnError) {
     obj += "f 1 2\n";
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, objFile() + ":8: face needs at least 3 vertices")) << msg;
 }
 
-TEST_F(SceneFixture, NaNCoordinateIsAnErrorWithItsLine) {
+TEST_F(LoadScene, NaNCoordinateIsAnErrorWithItsLine) {
     obj = "o floor\nv 0 0 0\nv 1 0 0\nv 1 nan 0\nf 1 2 3\n";
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, objFile() + ":4: vertex coordinate \"nan\" is not finite")) << msg;
 }
 
-TEST_F(SceneFixture, NonPlanarQuadIsSplitWithWarning) {
+TEST_F(LoadScene, NonPlanarQuadIsSplitWithWarning) {
     // Corner 3 is 5 cm above the plane of the others; diagonal 2-4 (1.56 m) is shorter
     // than 1-3 (2.12 m).
     obj += "o bent\nv 0 0 1\nv 1.2 0 1\nv 1.5 1.5 1.05\nv 0 1 1\nf 5 6 7 8\n";  // f: line 13
@@ -602,21 +603,21 @@ TEST_F(SceneFixture, NonPlanarQuadIsSplitWithWarning) {
     }
 }
 
-TEST_F(SceneFixture, DegenerateFaceIsDroppedWithWarning) {
+TEST_F(LoadScene, DegenerateFaceIsDroppedWithWarning) {
     obj += "v 2 0 0\nf 1 2 5\n";  // collinear: line 9
     const SceneFile sf = load();
     EXPECT_EQ(countWarnings(sf, objFile() + ":9: degenerate face"), 1) << allWarnings(sf);
     EXPECT_EQ(sf.scene.polygons.size(), 2u);  // the floor and the light only
 }
 
-TEST_F(SceneFixture, ZeroAreaLightIsAnError) {
+TEST_F(LoadScene, ZeroAreaLightIsAnError) {
     scene["lights"][0]["vertices"] = {{0.4, 0.4, 0.9}, {0.5, 0.5, 0.9}, {0.6, 0.6, 0.9}};
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, jsonFile() + ": key \"lights[0].vertices\"")) << msg;
     EXPECT_TRUE(contains(msg, "degenerate")) << msg;
 }
 
-TEST_F(SceneFixture, NonPlanarAndNonConvexLightsAreErrors) {
+TEST_F(LoadScene, NonPlanarAndNonConvexLightsAreErrors) {
     scene["lights"][0]["vertices"][2] = {0.6, 0.6, 0.95};
     std::string msg = loadError();
     EXPECT_TRUE(contains(msg, "key \"lights[0].vertices\"") && contains(msg, "non-planar")) << msg;
@@ -631,7 +632,7 @@ TEST_F(SceneFixture, NonPlanarAndNonConvexLightsAreErrors) {
         << msg;
 }
 
-TEST_F(SceneFixture, LightsOnNamingAnUnknownLight) {
+TEST_F(LoadScene, LightsOnNamingAnUnknownLight) {
     scene["photos"][0]["lights_on"] = {"L", "Q"};
     const std::string msg = loadError();
     EXPECT_TRUE(
@@ -639,7 +640,7 @@ TEST_F(SceneFixture, LightsOnNamingAnUnknownLight) {
         << msg;
 }
 
-TEST_F(SceneFixture, NegativeRadianceIsAnError) {
+TEST_F(LoadScene, NegativeRadianceIsAnError) {
     scene["lights"][0]["radiance"] = {1, -0.5, 1};
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, jsonFile() + ": key \"lights[0].radiance[1]\": radiance must not"))
@@ -648,7 +649,7 @@ TEST_F(SceneFixture, NegativeRadianceIsAnError) {
     EXPECT_TRUE(contains(loadError(), "key \"lights[0].radiance\""));
 }
 
-TEST_F(SceneFixture, UnsupportedLightTypeAndDuplicateNames) {
+TEST_F(LoadScene, UnsupportedLightTypeAndDuplicateNames) {
     scene["lights"][0]["type"] = "point";
     std::string msg = loadError();
     EXPECT_TRUE(contains(msg, "key \"lights[0].type\": light type point not supported")) << msg;
@@ -658,7 +659,7 @@ TEST_F(SceneFixture, UnsupportedLightTypeAndDuplicateNames) {
     EXPECT_TRUE(contains(msg, "key \"lights[1].name\": duplicate light name \"L\"")) << msg;
 }
 
-TEST_F(SceneFixture, ReflectanceOfOneIsClampedWithWarning) {
+TEST_F(LoadScene, ReflectanceOfOneIsClampedWithWarning) {
     scene["objects"]["floor"]["reflectance"] = {1.0, 0.5, 0.2};
     const SceneFile sf = load();
     EXPECT_EQ(countWarnings(sf, jsonFile() + ": key \"objects.floor.reflectance\": reflectance 1 "
@@ -669,7 +670,7 @@ TEST_F(SceneFixture, ReflectanceOfOneIsClampedWithWarning) {
     EXPECT_EQ(*sf.objectSettings.at("floor").reflectance, radiosity::Rgb(0.99, 0.5, 0.2));
 }
 
-TEST_F(SceneFixture, ReflectanceOutsideUnitRangeIsAnError) {
+TEST_F(LoadScene, ReflectanceOutsideUnitRangeIsAnError) {
     scene["objects"]["floor"]["reflectance"] = {0.5, 1.5, 0.2};
     std::string msg = loadError();
     EXPECT_TRUE(contains(msg, "key \"objects.floor.reflectance[1]\": must be in [0, 1]")) << msg;
@@ -679,13 +680,13 @@ TEST_F(SceneFixture, ReflectanceOutsideUnitRangeIsAnError) {
     EXPECT_TRUE(contains(msg, "key \"average_reflectance\": must be in [0, 1)")) << msg;
 }
 
-TEST_F(SceneFixture, ObjectsEntryForAnUnknownObject) {
+TEST_F(LoadScene, ObjectsEntryForAnUnknownObject) {
     scene["objects"]["ghost"] = {{"removable", true}};
     const std::string msg = loadError();
     EXPECT_TRUE(contains(msg, "key \"objects.ghost\": no object of this name")) << msg;
 }
 
-TEST_F(SceneFixture, OverflowingNumberIsNotFinite) {
+TEST_F(LoadScene, OverflowingNumberIsNotFinite) {
     write();
     std::string text = scene.dump(1);
     const std::string from = "\"width\": 64";
@@ -701,7 +702,7 @@ TEST_F(SceneFixture, OverflowingNumberIsNotFinite) {
 
 /// Replaces every value of the base scene, one at a time, by values of the wrong type:
 /// each load must either succeed or throw InputError, never anything else.
-TEST_F(SceneFixture, NoValueOfTheWrongTypeCrashes) {
+TEST_F(LoadScene, NoValueOfTheWrongTypeCrashes) {
     std::vector<json::json_pointer> pointers;
     auto collect = [&](auto&& self, const json& j, const json::json_pointer& at) -> void {
         if (!at.empty()) pointers.push_back(at);
