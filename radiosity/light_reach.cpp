@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "radiosity/hierarchy.h"
 #include "radiosity/detail/rng.h"
+#include "radiosity/hierarchy.h"
 
 namespace radiosity {
 
