@@ -6,7 +6,9 @@
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
 //                        --max-links N, --max-memory MiB, --display-pixels P
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
-// Errors in the input print one clear line naming the file and line or key, exit code 2.
+// Errors print one clear line naming the file (and the line or key); the exit code says
+// which kind (relight/errors.h): 2 the input is wrong, 3 an output cannot be written, 1
+// anything else.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -145,12 +147,9 @@ int main(int argc, char** argv) {
         if (*render) return cli::runRender(ra);
         if (*prepare) return cli::runPrepare(pa);
         if (*eval) return cli::runEval(evScene, evEdit, evImage, evErrorMap);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
+        return exitCode(e);
     }
     return 0;
 }

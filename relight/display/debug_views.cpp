@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "relight/display/ratio_display.h"
+#include "relight/errors.h"
 #include "relight/io/json_file.h"
 
 namespace relight {
@@ -204,8 +205,8 @@ void createDebugViewsFolder(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir))
-        throw InputError(dir.string() + ": cannot create the debug-views folder" +
-                         (ec ? ": " + ec.message() : ": a file of that name is in the way"));
+        throw OutputError(dir.string() + ": cannot create the debug-views folder" +
+                          (ec ? ": " + ec.message() : ": a file of that name is in the way"));
 }
 
 std::vector<std::string> writeDebugViews(const Relighting& r, std::span<const Rgb> radianceNow,
