@@ -3,9 +3,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
+
+#include "radiosity/stopwatch.h"
 
 namespace radiosity {
 
@@ -46,7 +47,7 @@ void ReferenceSolver::solve() {
         options_.progress("reference: " + std::to_string(n) + " elements, " +
                           std::to_string(static_cast<long long>(n) * n) + " pairs");
     }
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     // K_ij = F_ij V_ij, one row per receiver; rows of non-reflecting elements stay empty.
     std::vector<float> K(static_cast<size_t>(n) * n, 0.0f);
     tbb::parallel_for(tbb::blocked_range<int>(0, n, 8), [&](const tbb::blocked_range<int>& range) {
@@ -67,7 +68,7 @@ void ReferenceSolver::solve() {
             }
         }
     });
-    timeFF_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    timeFF_ = secondsSince(t0);
 
     // Gauss-Seidel, all channels at once.
     std::vector<Rgb> B(n);

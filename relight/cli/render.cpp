@@ -48,7 +48,7 @@ int runRender(const RenderArgs& a) {
     auto t0 = Clock::now();
     if (full && !a.debugViews.empty()) {
         viewFiles = writeDebugViews(*full, radiance, a.debugViews).size();
-        tViews = since(t0);
+        tViews = secondsSince(t0);
     }
     t0 = Clock::now();
     Image img;
@@ -87,7 +87,7 @@ int runRender(const RenderArgs& a) {
     } else {
         img = renderEdit(p, radiance);
     }
-    const double tEdit = since(t0);
+    const double tEdit = secondsSince(t0);
     writeImage(a.output, img, a.exposure);
     std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
     if (s.cache == "hit")
@@ -139,7 +139,7 @@ int runRender(const RenderArgs& a) {
                                     {"prepare", tPrepare},  // or the cache's loading
                                     {"edit", tEdit},
                                     {"debug_views", tViews},
-                                    {"total", since(tAll)}}}};
+                                    {"total", secondsSince(tAll)}}}};
         writeJsonAtomic(a.report, j);
         std::printf("wrote %s\n", a.report.c_str());
     }

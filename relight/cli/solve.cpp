@@ -2,7 +2,6 @@
 #include "relight/cli/commands.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -66,7 +65,7 @@ int runSolve(const SolveArgs& a) {
         dlo.minRays = a.minRays;
         dlo.maxRays = a.maxRays;
         lighting = computeLightingBuffer(items, solver, dlo);
-        tLighting = since(t0);
+        tLighting = secondsSince(t0);
         haveLighting = true;
         std::fprintf(stderr, "per-pixel lighting: %llu shadow rays, %zu gather points, %.3f s\n",
                      static_cast<unsigned long long>(lighting.rays), lighting.gatherPolygon.size(),
@@ -85,7 +84,7 @@ int runSolve(const SolveArgs& a) {
                      a.reflectanceRounds);
         auto rep =
             estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds);
-        tReflectance = since(t0);
+        tReflectance = secondsSince(t0);
         reflectanceJson = {{"rounds", rep.rounds},
                            {"polygons_seen", rep.polygonsSeen},
                            {"polygons_defaulted", rep.polygonsDefaulted},
@@ -149,7 +148,7 @@ int runSolve(const SolveArgs& a) {
               {"push_pull", st.timePushPull},
               {"reflectance_total", tReflectance},
               {"per_pixel_lighting", tLighting},
-              {"total", since(tAll)}}},
+              {"total", secondsSince(tAll)}}},
             {"sweeps", st.sweeps},
             {"budget",
              {{"reached", st.budgetReached},
