@@ -43,7 +43,9 @@ CLI::Validator finiteNumber(Sign sign) {
 
 /// The options of the preparation, the same for `prepare` and `render`.
 void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
+    // The default shown is the pipeline's, finer than solve's (radiosity/defaults.h).
     app->add_option("--epsilon", p.epsilon, "BF refinement threshold")
+        ->capture_default_str()
         ->check(finiteNumber(Sign::kPositive));
     app->add_option("--max-links", p.maxLinks,
                     "refinement budget in links (default: what fits in --max-memory)");
@@ -72,6 +74,7 @@ int main(int argc, char** argv) {
         app.add_subcommand("solve", "clustered hierarchical radiosity solution of a scene");
     solve->add_option("scene_dir", sa.scene, "scene folder holding scene.json")->required();
     solve->add_option("--epsilon", sa.epsilon, "BF refinement threshold, fraction of emitted power")
+        ->capture_default_str()
         ->check(finiteNumber(Sign::kPositive));
     solve
         ->add_option("--min-area", sa.minArea,
@@ -84,8 +87,10 @@ int main(int argc, char** argv) {
                      "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
         ->check(finiteNumber(Sign::kNonNegative));
     solve->add_option("--min-rays", sa.minRays, "visibility rays per link, first round")
+        ->capture_default_str()
         ->check(CLI::Range(1, 256));
     solve->add_option("--max-rays", sa.maxRays, "visibility rays per link in penumbra")
+        ->capture_default_str()
         ->check(CLI::Range(1, 256));
     solve->add_option("--spp", sa.spp, "camera samples per pixel for -o")
         ->check(CLI::Range(1, 1024));

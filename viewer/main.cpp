@@ -38,7 +38,7 @@ struct Args {
     std::string scene, edit, screenshot, saveEdit, framebuffer = "float", view = "relit";
     std::vector<std::string> actions;
     std::string windowShot;
-    double exposure = 0, epsilon = 1e-4;
+    double exposure = 0, epsilon = RelightOptions{}.epsilon;
     int spp = 16;
 };
 
