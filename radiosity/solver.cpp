@@ -174,7 +174,7 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
     seeds = {};
     std::vector<size_t> pending;  // accepted links whose visibility is still to be evaluated
     const auto accept = [&](const Link& l) {
-        if (l.rays == 0 && !l.shaftEmpty) pending.push_back(links_.size());
+        if (needsVisibility(l)) pending.push_back(links_.size());
         links_.push_back(l);
     };
     while (!queue.empty()) {
@@ -202,7 +202,7 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
             // to refine it. That verdict must rest on all maxRays rays, not on the first few
             // (4 blocked rays happen 1 time in 10 for a link that is 45 % visible). Cluster
             // links are refined whatever their sampled visibility.
-            const bool evaluated = link.rays > 0 || link.shaftEmpty;
+            const bool evaluated = !needsVisibility(link);
             const bool sure = link.shaftEmpty || link.rays >= transfer_->options().maxRays;
             if (!evaluated || (link.type == VisibilityType::invisible && !sure))
                 transfer_->visibility(link, /*thorough=*/true);
@@ -240,13 +240,9 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
 Link HierarchicalSolver::childLink(const Link& parent, int parentIndex, int r, int s) const {
     Link c = makeLink(r, s);
     c.parent = parentIndex;
-    if (parent.shaftEmpty) {
-        // The shaft of two sub-volumes lies in the convex hull of the parents' volumes,
-        // which held no occluder: the child is visible too.
-        c.shaftEmpty = true;
-        c.type = VisibilityType::visible;
-        c.V = 1;
-    }
+    // The shaft of two sub-volumes lies in the convex hull of the parents' volumes, which
+    // held no occluder: the child is visible too.
+    if (parent.shaftEmpty) setShaftEmpty(c);
     return c;
 }
 
@@ -280,7 +276,7 @@ size_t HierarchicalSolver::refineAll() {
         if (decision[i] == Decision::drop) continue;
         if (decision[i] == Decision::accept) {
             const Link& l = old[i];
-            if (l.rays == 0 && !l.shaftEmpty) pending.push_back(links_.size());
+            if (needsVisibility(l)) pending.push_back(links_.size());
             links_.push_back(l);
         } else {
             seeds.push_back(old[i]);
@@ -307,7 +303,7 @@ void HierarchicalSolver::pushLightLinksToLeaves(size_t from) {
             const Node& S = h_.nodes[link.source];
             const Node& R = h_.nodes[link.receiver];
             if (!(S.emitting && !S.isCluster()) || R.isLeaf()) {
-                if (link.rays == 0 && !link.shaftEmpty) pending.push_back(links_.size());
+                if (needsVisibility(link)) pending.push_back(links_.size());
                 links_.push_back(link);
                 continue;
             }
@@ -697,15 +693,8 @@ bool HierarchicalSolver::splitForLights(int leaf,
         for (int k = 0; k < parent.childCount; ++k) {
             const int rc = parent.firstChild + k;
             if (!transfer_->facing(rc, old.source)) continue;
-            Link c = makeLink(rc, old.source);
-            c.parent = me;
-            if (old.shaftEmpty) {  // no occluder between the parent and the light
-                c.shaftEmpty = true;
-                c.type = VisibilityType::visible;
-                c.V = 1;
-            } else {
-                transfer_->visibility(c);
-            }
+            Link c = childLink(old, me, rc, old.source);
+            if (needsVisibility(c)) transfer_->visibility(c);
             links_.push_back(c);
             if (children) {
                 LightExchange& e = (*children)[k][lightOfNode(old.source)];
