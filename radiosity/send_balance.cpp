@@ -6,14 +6,12 @@
 // receivers' gather scales), with the solver's own rules: a leaf gathers through its own
 // links and its ancestors', and a cluster receiver hands a link's light to each surface
 // by the surface's orientation (directional_irradiance.h).
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
 
+#include "radiosity/parallel.h"
 #include "radiosity/solver.h"
 #include "radiosity/tree_walks.h"
 
@@ -175,22 +173,20 @@ void HierarchicalSolver::balanceSends(const std::vector<Rgb>& Gd, size_t firstNo
                     bins[ancestor[k]][bin(ancestorNormal[k], a)] +=
                         x[roots[i]] * static_cast<double>(std::abs(ancestorNormal[k][a]));
         // P_s: what the links from s deliver per unit of what s sends (m^2).
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 1024), [&](const auto& r) {
-            for (size_t s = r.begin(); s != r.end(); ++s) {
-                double p = 0;
-                for (int j = L.sourceStart[s]; j < L.sourceStart[s + 1]; ++j) {
-                    const int k = L.bySource[j], rc = L.receiver[k];
-                    double w = 0;
-                    if (cluster[rc]) {
-                        const Bins& b = bins[slot[rc]];
-                        for (int a = 0; a < 3; ++a) w += std::abs(L.w[k][a]) * b[bin(L.w[k], a)];
-                    } else {
-                        w = x[rc];
-                    }
-                    p += L.FV[k] * w;
+        parallelFor(N, 1024, [&](size_t s) {
+            double p = 0;
+            for (int j = L.sourceStart[s]; j < L.sourceStart[s + 1]; ++j) {
+                const int k = L.bySource[j], rc = L.receiver[k];
+                double w = 0;
+                if (cluster[rc]) {
+                    const Bins& b = bins[slot[rc]];
+                    for (int a = 0; a < 3; ++a) w += std::abs(L.w[k][a]) * b[bin(L.w[k], a)];
+                } else {
+                    w = x[rc];
                 }
-                P[s] = p;
+                p += L.FV[k] * w;
             }
+            P[s] = p;
         });
         // C_m: P / A summed down from the root.
         for (int n : pre)
@@ -228,28 +224,25 @@ void HierarchicalSolver::balanceSends(const std::vector<Rgb>& Gd, size_t firstNo
         const std::vector<double> sourceSend = x;
         std::fill(x.begin(), x.end(), 0.0);
         std::fill(bins.begin(), bins.end(), Bins{});
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, L.receiverStart.size() - 1, 64), [&](const auto& r) {
-                for (size_t i = r.begin(); i != r.end(); ++i)
-                    for (int k = L.receiverStart[i]; k < L.receiverStart[i + 1]; ++k) {
-                        const int rc = L.receiver[k];
-                        const double v = L.FV[k] * sourceSend[L.source[k]];
-                        if (!cluster[rc]) {
-                            x[rc] += v;
-                            continue;
-                        }
-                        for (int a = 0; a < 3; ++a)
-                            bins[slot[rc]][bin(L.w[k], a)] += v * std::abs(L.w[k][a]);
-                    }
-            });
+        parallelFor(L.receiverStart.size() - 1, 64, [&](size_t i) {
+            for (int k = L.receiverStart[i]; k < L.receiverStart[i + 1]; ++k) {
+                const int rc = L.receiver[k];
+                const double v = L.FV[k] * sourceSend[L.source[k]];
+                if (!cluster[rc]) {
+                    x[rc] += v;
+                    continue;
+                }
+                for (int a = 0; a < 3; ++a)
+                    bins[slot[rc]][bin(L.w[k], a)] += v * std::abs(L.w[k][a]);
+            }
+        });
         // Down: a root element takes what its cluster ancestors gathered, by its normal;
         // every element what its element ancestors gathered.
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, roots.size(), 256), [&](const auto& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i)
-                for (int k = ancestorStart[i]; k < ancestorStart[i + 1]; ++k)
-                    for (int a = 0; a < 3; ++a)
-                        x[roots[i]] += bins[ancestor[k]][bin(ancestorNormal[k], a)] *
-                                       static_cast<double>(std::abs(ancestorNormal[k][a]));
+        parallelFor(roots.size(), 256, [&](size_t i) {
+            for (int k = ancestorStart[i]; k < ancestorStart[i + 1]; ++k)
+                for (int a = 0; a < 3; ++a)
+                    x[roots[i]] += bins[ancestor[k]][bin(ancestorNormal[k], a)] *
+                                   static_cast<double>(std::abs(ancestorNormal[k][a]));
         });
         for (int n : pre)
             if (!cluster[n] && parent[n] >= 0 && !cluster[parent[n]]) x[n] += x[parent[n]];

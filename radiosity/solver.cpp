@@ -1,10 +1,8 @@
 #include "radiosity/solver.h"
 #include "radiosity/detail/rng.h"
+#include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
 #include "radiosity/tree_walks.h"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -249,11 +247,7 @@ Link HierarchicalSolver::childLink(const Link& parent, int parentIndex, int r, i
 void HierarchicalSolver::evaluateVisibility(const std::vector<size_t>& pending) {
     // Each link's rays come from a generator seeded by its two nodes: evaluating them in
     // parallel gives the same result as one by one.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, pending.size(), 16),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              transfer_->visibility(links_[pending[i]]);
-                      });
+    parallelFor(pending.size(), 16, [&](size_t i) { transfer_->visibility(links_[pending[i]]); });
 }
 
 size_t HierarchicalSolver::refineAll() {
@@ -265,11 +259,7 @@ size_t HierarchicalSolver::refineAll() {
     // only those to refine go through the priority queue. Accepted links keep their order
     // (the gather sums each receiver's links in list order).
     std::vector<Decision> decision(old.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, old.size(), 4096),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              decision[i] = oracle(old[i]).decision;
-                      });
+    parallelFor(old.size(), 4096, [&](size_t i) { decision[i] = oracle(old[i]).decision; });
     std::vector<Link> seeds;
     std::vector<size_t> pending;
     for (size_t i = 0; i < old.size(); ++i) {
@@ -357,24 +347,21 @@ std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& v
     const auto& nodes = h_.nodes;
     std::vector<Rgb> H(nodes.size()), Hd(nodes.size());
     std::vector<DirectionalIrradiance> Hv(nodes.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers_.size(), 64),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i) {
-                              const int r = receivers_[i];
-                              const Node& R = nodes[r];
-                              for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
-                                  const Link& l = links_[k];
-                                  const Node& S = nodes[l.source];
-                                  const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
-                                  if (R.isCluster())
-                                      Hv[r].add(h, toFrame(R, linkDirection(R, S)));
-                                  else if (reflects(S))
-                                      H[r] += h;
-                                  else
-                                      Hd[r] += h;
-                              }
-                          }
-                      });
+    parallelFor(receivers_.size(), 64, [&](size_t i) {
+        const int r = receivers_[i];
+        const Node& R = nodes[r];
+        for (int k = receiverStart_[i]; k < receiverStart_[i + 1]; ++k) {
+            const Link& l = links_[k];
+            const Node& S = nodes[l.source];
+            const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
+            if (R.isCluster())
+                Hv[r].add(h, toFrame(R, linkDirection(R, S)));
+            else if (reflects(S))
+                H[r] += h;
+            else
+                Hd[r] += h;
+        }
+    });
     std::vector<Rgb> out = pushDown(
         h_, [&](int n) -> const Rgb& { return H[n]; },
         [&](int n) -> const DirectionalIrradiance& { return Hv[n]; });
