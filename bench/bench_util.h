@@ -2,7 +2,6 @@
 #pragma once
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -10,13 +9,6 @@
 #include <vector>
 
 namespace bench {
-
-using Clock = std::chrono::steady_clock;
-
-/// Seconds since t0.
-inline double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// The q-quantile of v (the element at rank q n, no interpolation); 0 when v is empty.
 inline double quantile(std::vector<double> v, double q) {

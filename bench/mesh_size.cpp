@@ -34,14 +34,15 @@
 #include "bench/bench_util.h"
 #include "bench/plot.h"
 #include "radiosity/detail/rng.h"
+#include "radiosity/stopwatch.h"
 #include "relight/display/metric.h"
 #include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 
 using namespace relight;
-using bench::Clock;
-using bench::since;
+using radiosity::Clock;
 using radiosity::Polygon;
+using radiosity::secondsSince;
 using radiosity::Vec3;
 
 namespace {
@@ -99,7 +100,7 @@ int runOne(const std::string& data, int cut, double jitter, double epsilon) {
     o.epsilon = epsilon;
     const auto t0 = Clock::now();
     const auto r = prepareRelighting(std::move(sf), o);
-    const double prepare = since(t0);
+    const double prepare = secondsSince(t0);
     const auto st = r->solver->stats();
     std::ostringstream line;
     line << "RESULT " << cut << " " << jitter << " " << triangles << " " << prepare << " "

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "radiosity/stopwatch.h"
 #include "relight/display/metric.h"
 #include "relight/dynamic/dynamic_relighting.h"
 #include "relight/io/edit_file.h"
@@ -31,9 +32,9 @@
 #include "relight/relighting.h"
 
 using namespace relight;
-using bench::Clock;
 using bench::quantile;
-using bench::since;
+using radiosity::Clock;
+using radiosity::secondsSince;
 
 namespace {
 
@@ -95,7 +96,7 @@ int main(int argc, char** argv) {
                 dyn.moveLastObject(placeBox(local, box.reflectance, t * angle1, x0 + t * (x1 - x0),
                                             y0 + t * (y1 - y0)));
                 last = dyn.render();
-                frame.push_back(since(t0));
+                frame.push_back(secondsSince(t0));
                 const FrameTimes& ft = dyn.times();
                 shafts.push_back(ft.shafts);
                 vis.push_back(ft.visibility);
@@ -148,7 +149,7 @@ int main(int argc, char** argv) {
                 const auto t0 = Clock::now();
                 dyn.addLight(eLight.addLights.at(0));
                 dyn.render();
-                insert.push_back(since(t0));
+                insert.push_back(secondsSince(t0));
                 const FrameTimes& ft = dyn.times();
                 if (i == 5)
                     std::printf(

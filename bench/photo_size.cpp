@@ -37,12 +37,13 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_util.h"
+#include "radiosity/stopwatch.h"
 #include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 
 using namespace relight;
-using bench::Clock;
-using bench::since;
+using radiosity::Clock;
+using radiosity::secondsSince;
 namespace fs = std::filesystem;
 
 namespace {
@@ -97,7 +98,7 @@ int runOne(const std::string& dir, int edits, double epsilon) {
     o.epsilon = epsilon;
     auto t0 = Clock::now();
     const auto r = prepareRelighting(loadScene(dir), o);
-    const double tPrepare = since(t0);
+    const double tPrepare = secondsSince(t0);
     const PreparedImage& P = r->prepared;
     const PrepareTimes& t = P.times;
     const double steps = t.itemBuffer + t.solve + t.reflectance + t.refinement + t.responses +
@@ -130,12 +131,12 @@ int runOne(const std::string& dir, int edits, double epsilon) {
     for (const auto& L : radiance) {
         const auto t1 = Clock::now();
         renderEdit(P, L, out);
-        reused.push_back(since(t1));
+        reused.push_back(secondsSince(t1));
     }
     for (size_t i = 0; i < radiance.size() && i < 10; ++i) {
         const auto t1 = Clock::now();
         const Image img = renderEdit(P, radiance[i]);
-        fresh.push_back(since(t1));
+        fresh.push_back(secondsSince(t1));
     }
     std::printf(
         "   edit (%zu edits, display included, image reused): median %.1f ms, p90 %.1f "
@@ -206,7 +207,7 @@ int main(int argc, char** argv) {
             const fs::path dir = root / ("room-" + size);
             auto t0 = Clock::now();
             writeScaledRoom(fs::path(data) / "room", dir, w, h);
-            std::printf("\n(scene %s written in %.1f s)\n", dir.c_str(), since(t0));
+            std::printf("\n(scene %s written in %.1f s)\n", dir.c_str(), secondsSince(t0));
             std::fflush(stdout);
             char eps[32];
             std::snprintf(eps, sizeof eps, "%.17g", epsilon);

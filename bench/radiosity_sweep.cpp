@@ -15,7 +15,6 @@
 // Writes bench/figures/time_vs_error.png (log-log plot) when OpenImageIO can draw it.
 #include <tbb/global_control.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -29,6 +28,7 @@
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
 #include "relight/display/metric.h"
 #include "relight/io/image.h"
 #include "relight/io/scene_file.h"
@@ -37,8 +37,8 @@
 #include "relight/pipeline/reflectance.h"
 
 using namespace radiosity;
-using bench::Clock;
-using bench::since;
+using radiosity::Clock;
+using radiosity::secondsSince;
 
 namespace {
 
@@ -65,7 +65,7 @@ std::vector<Row> sweepScene(const std::string& name, const Scene& scene, double 
         ref.solve();
     }
     std::printf("   %zu elements, %d Gauss-Seidel sweeps, %.1f s (2 threads)\n",
-                ref.leaves().size(), ref.sweeps(), since(t0));
+                ref.leaves().size(), ref.sweeps(), secondsSince(t0));
     std::printf("   %-8s %-6s %8s %8s %9s %10s %9s %8s %8s %8s %9s\n", "epsilon", "rays", "leaves",
                 "links", "passive", "rays cast", "solve s", "rel err", "vertex", "gathered",
                 "gather s");
@@ -80,7 +80,7 @@ std::vector<Row> sweepScene(const std::string& name, const Scene& scene, double 
             t0 = Clock::now();
             HierarchicalSolver hr(scene, o);
             hr.solve();
-            const double secs = since(t0);
+            const double secs = secondsSince(t0);
             const double err =
                 relativeRmsError(ref, [&](int p, const Vec3& x) { return hr.radiosityAt(p, x); });
             // The same solution read by final gather at each point (per-point direct
@@ -91,7 +91,7 @@ std::vector<Row> sweepScene(const std::string& name, const Scene& scene, double 
             const double errGather = relativeRmsError(ref, [&](int p, const Vec3& x) {
                 return gatheredRadiosity(hr, direct, p, x, ++seed);
             });
-            const double secsGather = since(t0);
+            const double secsGather = secondsSince(t0);
             // The paper's display: leaf values averaged at the leaf vertices (Gouraud) and
             // interpolated across each leaf.
             const LeafMesh mesh(hr.hierarchy());
@@ -120,7 +120,7 @@ void throughput(const std::string& name, const Scene& scene, double eps) {
     const int sweeps = 50;
     auto t0 = Clock::now();
     for (int i = 0; i < sweeps; ++i) hr.sweep();
-    const double secs = since(t0);
+    const double secs = secondsSince(t0);
     const double updates = static_cast<double>(hr.links().size()) * sweeps;
     std::printf(
         "\n== %s gather + push-pull, 1 core, epsilon %g: %zu links, %d nodes, %d sweeps in %.3f s: "
@@ -174,16 +174,16 @@ int main(int argc, char** argv) {
             est.solve();
             auto estLighting = relight::computeLightingBuffer(items, est);
             relight::estimatePolygonReflectance(est, cornell, items, estLighting, photo);
-            const double tEst = since(t0);
+            const double tEst = secondsSince(t0);
             t0 = Clock::now();
             HierarchicalSolver hr(est.scene(), o);  // a fresh solve with the estimated reflectances
             hr.solve();
-            const double tSolve = since(t0);
+            const double tSolve = secondsSince(t0);
             t0 = Clock::now();
             auto lighting = relight::computeLightingBuffer(items, hr);
             relight::updateIndirect(lighting, hr);
             relight::Image img = relight::renderRadiosity(items, lighting, hr.scene());
-            const double tRender = since(t0);
+            const double tRender = secondsSince(t0);
             const auto score = relight::scoreImage(img, truth, photo, maskT, maskP);
             const auto st = hr.stats();
             std::printf("   %-8.0e %8d %8d %10.3f %10.3f %12.3f %9.4f\n", e, st.leaves, st.links,

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "radiosity/stopwatch.h"
 #include "relight/display/metric.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/image.h"
@@ -84,9 +85,9 @@ int main(int argc, char** argv) {
                 RelightOptions ov = o;
                 ov.shadowRefinement = v.refinement;
                 ov.shadowRemoval = v.removal;
-                const auto t0 = bench::Clock::now();
+                const auto t0 = radiosity::Clock::now();
                 const auto r = prepareRelighting(moved, ov);
-                const double tPrepare = bench::since(t0);
+                const double tPrepare = radiosity::secondsSince(t0);
                 std::printf("   %4.0fcm %-8s", delta * 100, v.name);
                 double sum = 0;
                 for (size_t e = 0; e < edits.size(); ++e) {

@@ -18,13 +18,13 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "bench/bench_util.h"
 #include "radiosity/final_gather.h"
+#include "radiosity/stopwatch.h"
 #include "relight/display/metric.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/image.h"
@@ -32,8 +32,8 @@
 #include "relight/relighting.h"
 
 using namespace relight;
-using bench::Clock;
-using bench::since;
+using radiosity::Clock;
+using radiosity::secondsSince;
 
 int main(int argc, char** argv) {
     std::string data;
@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
         const auto rRefine = prepareRelighting(loadScene(dir), oRefine);
         auto t0 = Clock::now();
         const auto r = prepareRelighting(loadScene(dir), o);
-        const double tPrepare = since(t0);
+        const double tPrepare = secondsSince(t0);
         const auto st = r->solver->stats();
         std::printf(
             "\n== prepare (2 threads): %.3f s; %d leaves (%d before shadow refinement), "
@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
                 for (int i = 0; i < 50; ++i) {
                     const auto t1 = Clock::now();
                     const Image img = renderEdit(r->prepared, radiance);
-                    t.push_back(since(t1));
+                    t.push_back(secondsSince(t1));
                 }
                 std::nth_element(t.begin(), t.begin() + 25, t.end());
                 superpose.push_back(t[25]);
@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
             const auto radiance = editRadiance(rRefine->scene, e, rRefine->prepared.photoRadiance);
             t0 = Clock::now();
             rRefine->solver->setLightRadiances(radiance);
-            const double tGather = since(t0);
+            const double tGather = secondsSince(t0);
             // Vertex irradiance from the re-gathered solution: direct light per vertex and
             // the final gather of its links (the same as the prepared responses, summed).
             t0 = Clock::now();
@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
                                                      rRefine->mesh->insidePoint(v),
                                                      static_cast<uint64_t>(v));
             }
-            const double tVertex = since(t0);
+            const double tVertex = secondsSince(t0);
             // The two paths agree to the solution's convergence tolerance.
             const auto Hsum = vertexIrradiance(rRefine->prepared, radiance);
             double maxH = 0, maxDiff = 0;

@@ -35,11 +35,12 @@
 
 #include "bench/bench_util.h"
 #include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
 #include "tests/support/stress_room.h"
 
 using namespace radiosity;
-using bench::Clock;
-using bench::since;
+using radiosity::Clock;
+using radiosity::secondsSince;
 
 namespace {
 
@@ -81,7 +82,7 @@ SolverStats solve(const Scene& scene, double epsilon, int threads, Report& repor
     const auto t0 = Clock::now();
     HierarchicalSolver solver(scene, o);
     solver.solve();
-    seconds = since(t0);
+    seconds = secondsSince(t0);
     B.clear();
     for (const Node& n : solver.hierarchy().nodes) B.push_back(n.B);
     return solver.stats();

@@ -43,6 +43,7 @@
 #include <unistd.h>
 
 #include "bench/bench_util.h"
+#include "radiosity/stopwatch.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/image.h"
 #include "relight/io/scene_file.h"
@@ -55,9 +56,9 @@
 
 using namespace relight;
 using namespace relight::viewer;
-using bench::Clock;
 using bench::quantile;
-using bench::since;
+using radiosity::Clock;
+using radiosity::secondsSince;
 namespace fs = std::filesystem;
 
 namespace {
@@ -143,9 +144,9 @@ Samples timeFrames(FrameRenderer& frame, Framebuffer fb, int frames, Change chan
     for (int i = 0; i < frames; ++i) {
         const auto t0 = Clock::now();
         change(i);
-        const double update = since(t0);
+        const double update = secondsSince(t0);
         const FrameStats st = frame.render();
-        s.frame.push_back(1e3 * since(t0));
+        s.frame.push_back(1e3 * secondsSince(t0));
         s.update.push_back(1e3 * update);
         s.upload.push_back(1e3 * st.upload);
         s.draw.push_back(1e3 * st.draw);
@@ -211,7 +212,7 @@ int run(const Args& a) {
     RelightOptions o;
     const auto t0 = Clock::now();
     o.progress = [&](const std::string& m) {
-        std::fprintf(stderr, "  [%6.1f s] %s\n", since(t0), m.c_str());
+        std::fprintf(stderr, "  [%6.1f s] %s\n", secondsSince(t0), m.c_str());
     };
     std::fprintf(stderr, "preparing %s at %dx%d\n", dir.c_str(), sf.camera.width, sf.camera.height);
     const std::unique_ptr<Relighting> r = prepareRelighting(std::move(sf), o);
@@ -219,8 +220,8 @@ int run(const Args& a) {
     std::printf(
         "%s at %dx (photo %dx%d): preparation %.1f s (default options, epsilon %g); %d leaves, "
         "%d links, %zu leaf vertices\n",
-        dir.c_str(), a.upscale, p.photo.width, p.photo.height, since(t0), o.epsilon, p.leaves,
-        p.links, p.vertexCount());
+        dir.c_str(), a.upscale, p.photo.width, p.photo.height, secondsSince(t0), o.epsilon,
+        p.leaves, p.links, p.vertexCount());
 
     Session session(*r, EditFile{});
     GpuRatioDisplay display(session.prepared());

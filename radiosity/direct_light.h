@@ -22,13 +22,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "radiosity/defaults.h"
 #include "radiosity/solver.h"
 
 namespace radiosity {
 
 struct DirectLightOptions {
-    int minRays = 4;   ///< shadow rays per light polygon at first, 1..256
-    int maxRays = 16;  ///< in penumbra, >= minRays, <= 256
+    int minRays = kDefaultMinRays;  ///< shadow rays per light polygon at first, 1..256
+    int maxRays = kDefaultMaxRays;  ///< in penumbra, >= minRays, <= 256
 };
 
 class DirectLight {

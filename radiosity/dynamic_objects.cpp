@@ -12,14 +12,12 @@
 // Removal restores a snapshot taken at insertion (links, B, H), so that insertion followed
 // by removal gives back the solution bit for bit; the work of a move (shaft tests, rays,
 // new links) is only that of the old and the new position.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
 #include "radiosity/detail/shaft.h"
+#include "radiosity/parallel.h"
 #include "radiosity/solver.h"
 #include "radiosity/stopwatch.h"
 
@@ -115,11 +113,7 @@ void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, Dynam
     t0 = Clock::now();
     std::erase_if(cut, [&](int a) { return erased[a] != 0; });
     const uint64_t raysBefore = transfer_->counters.rays.load();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, cut.size(), 8),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              transfer_->visibility(links_.mutableAt(cut[i]));
-                      });
+    parallelFor(cut.size(), 8, [&](size_t i) { transfer_->visibility(links_.mutableAt(cut[i])); });
     report.linksCut += static_cast<int>(cut.size());
     for (int a : cut) {
         const Link& l = links_[a];

@@ -1,15 +1,13 @@
 // The energy bound of the clustered solver (solver.h, "Energy bound"): what each leaf
 // sees, measured by ray casting; each lamp's links scaled to deliver its power; each
 // leaf's gather moved into what it can see.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 
 #include "radiosity/detail/rng.h"
+#include "radiosity/parallel.h"
 #include "radiosity/solver.h"
 #include "radiosity/tree_walks.h"
 
@@ -119,51 +117,49 @@ void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {
     const double diag = glm::length(h_.nodes[Hierarchy::kRoot].bounds.diagonal());
     const double tMin = 1e-6 * diag;       // above Embree's float rounding (visibility.h)
     constexpr int kFirst = 8, kMore = 16;  // 64 rays; 256 where they disagree
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 16), [&](const auto& range) {
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            Node& e = h_.nodes[leaves[i]];
-            Rng rng(0xC0FFEEull ^ (static_cast<uint64_t>(leaves[i]) * 0x9E3779B97F4A7C15ull));
-            // An orthonormal frame about the normal.
-            const Vec3 n = e.normal;
-            const Vec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3{1, 0, 0})
-                                                              : glm::cross(n, Vec3{0, 1, 0}));
-            const Vec3 b = glm::cross(n, t);
-            int hits = 0, cast = 0;
-            const auto castRays = [&](int k) {
-                for (int cell = 0; cell < k * k; ++cell) {
-                    const double a = 2 * ((cell % k) + rng.uniform()) / k - 1;
-                    const double c = 2 * ((cell / k) + rng.uniform()) / k - 1;
-                    // Concentric square-to-disc map.
-                    double r, phi;
-                    if (a == 0 && c == 0) {
-                        r = 0;
-                        phi = 0;
-                    } else if (std::abs(a) > std::abs(c)) {
-                        r = a;
-                        phi = (std::numbers::pi / 4) * (c / a);
-                    } else {
-                        r = c;
-                        phi = std::numbers::pi / 2 - (std::numbers::pi / 4) * (a / c);
-                    }
-                    const double x = r * std::cos(phi), y = r * std::sin(phi);
-                    const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
-                    const Vec3 dir = x * t + y * b + z * n;
-                    const Vec3 org = pointOnElement(e, rng.uniform(), rng.uniform());
-                    const Visibility::Hit hit = vis_->intersect(org, dir, tMin);
-                    if (hit.polygon < 0 || hit.polygon == e.polygon) continue;
-                    const Polygon& p = scene_.polygons[hit.polygon];
-                    if (glm::dot(p.normal, dir) < 0) ++hits;  // a front: reflecting or a lamp
+    parallelFor(leaves.size(), 16, [&](size_t i) {
+        Node& e = h_.nodes[leaves[i]];
+        Rng rng(0xC0FFEEull ^ (static_cast<uint64_t>(leaves[i]) * 0x9E3779B97F4A7C15ull));
+        // An orthonormal frame about the normal.
+        const Vec3 n = e.normal;
+        const Vec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3{1, 0, 0})
+                                                          : glm::cross(n, Vec3{0, 1, 0}));
+        const Vec3 b = glm::cross(n, t);
+        int hits = 0, cast = 0;
+        const auto castRays = [&](int k) {
+            for (int cell = 0; cell < k * k; ++cell) {
+                const double a = 2 * ((cell % k) + rng.uniform()) / k - 1;
+                const double c = 2 * ((cell / k) + rng.uniform()) / k - 1;
+                // Concentric square-to-disc map.
+                double r, phi;
+                if (a == 0 && c == 0) {
+                    r = 0;
+                    phi = 0;
+                } else if (std::abs(a) > std::abs(c)) {
+                    r = a;
+                    phi = (std::numbers::pi / 4) * (c / a);
+                } else {
+                    r = c;
+                    phi = std::numbers::pi / 2 - (std::numbers::pi / 4) * (a / c);
                 }
-                cast += k * k;
-            };
-            castRays(kFirst);
-            if (hits > 0 && hits < cast) {  // a partly open leaf: a finer estimate
-                hits = cast = 0;
-                castRays(kMore);
+                const double x = r * std::cos(phi), y = r * std::sin(phi);
+                const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
+                const Vec3 dir = x * t + y * b + z * n;
+                const Vec3 org = pointOnElement(e, rng.uniform(), rng.uniform());
+                const Visibility::Hit hit = vis_->intersect(org, dir, tMin);
+                if (hit.polygon < 0 || hit.polygon == e.polygon) continue;
+                const Polygon& p = scene_.polygons[hit.polygon];
+                if (glm::dot(p.normal, dir) < 0) ++hits;  // a front: reflecting or a lamp
             }
-            e.seen = static_cast<double>(hits) / cast;
-            e.seenError = std::sqrt(e.seen * (1 - e.seen) / cast);
+            cast += k * k;
+        };
+        castRays(kFirst);
+        if (hits > 0 && hits < cast) {  // a partly open leaf: a finer estimate
+            hits = cast = 0;
+            castRays(kMore);
         }
+        e.seen = static_cast<double>(hits) / cast;
+        e.seenError = std::sqrt(e.seen * (1 - e.seen) / cast);
     });
 }
 

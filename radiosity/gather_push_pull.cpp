@@ -8,9 +8,7 @@
 // bytes each, one directional irradiance of 144 bytes read per ancestor to find it empty):
 // that walk was a fifth of a jittered 215 k-triangle room's solve. The sums are the same,
 // in the same order, so the radiosities are bit-identical to the walk over the nodes.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
+#include "radiosity/parallel.h"
 #include "radiosity/solver.h"
 #include "radiosity/stopwatch.h"
 #include "radiosity/tree_walks.h"
@@ -117,25 +115,15 @@ double HierarchicalSolver::sweep() {
         if (n.isCluster()) n.Hv = DirectionalIrradiance{};
     };
     if (sweptGeneration_ != links_.generation()) {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, h_.nodes.size(), 4096),
-                          [&](const tbb::blocked_range<size_t>& range) {
-                              for (size_t i = range.begin(); i != range.end(); ++i)
-                                  clear(h_.nodes[i]);
-                          });
+        parallelFor(h_.nodes.size(), 4096, [&](size_t i) { clear(h_.nodes[i]); });
         sweptGeneration_ = links_.generation();
     } else {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, links_.receiverCount(), 1024),
-                          [&](const tbb::blocked_range<size_t>& range) {
-                              for (size_t i = range.begin(); i != range.end(); ++i)
-                                  clear(h_.nodes[links_.receiver(i)]);
-                          });
+        parallelFor(links_.receiverCount(), 1024,
+                    [&](size_t i) { clear(h_.nodes[links_.receiver(i)]); });
     }
     // Gather (HSA91): each receiver sums F V B over its links, in a fixed order, so the
     // result does not depend on the thread count.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, links_.receiverCount(), 64),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i) gatherRun(i);
-                      });
+    parallelFor(links_.receiverCount(), 64, [&](size_t i) { gatherRun(i); });
     timing_.timeGather += secondsSince(t0);
     t0 = Clock::now();
     pushPullAll();
@@ -183,11 +171,7 @@ void HierarchicalSolver::pushPullAll() {
     // same order, so the result does not depend on the thread count.
     if (!layoutCurrent()) buildPushPullLayout();
     const std::vector<int>&clusters = layout_.clusters, &roots = layout_.roots;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, roots.size(), 256),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              pushPull(roots[i], Rgb{}, Rgb{});
-                      });
+    parallelFor(roots.size(), 256, [&](size_t i) { pushPull(roots[i], Rgb{}, Rgb{}); });
     for (auto it = clusters.rbegin(); it != clusters.rend(); ++it) {
         Node& n = h_.nodes[*it];
         Rgb B, Bsent;

@@ -10,6 +10,7 @@
 
 #include "radiosity/detail/transfer.h"
 #include "radiosity/directional_irradiance.h"
+#include "radiosity/parallel.h"
 
 namespace radiosity {
 
@@ -133,11 +134,8 @@ class ResponseSweeps {
     }
     /// Element means below polygon roots, then clusters.
     void pullAll(PerLight& x) const {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, layout_.roots.size(), 256),
-                          [&](const tbb::blocked_range<size_t>& range) {
-                              for (size_t i = range.begin(); i != range.end(); ++i)
-                                  pullElements(layout_.roots[i], x);
-                          });
+        parallelFor(layout_.roots.size(), 256,
+                    [&](size_t i) { pullElements(layout_.roots[i], x); });
         pullClusters(x);
     }
 
@@ -145,11 +143,7 @@ class ResponseSweeps {
     void gather() {
         const auto& nodes = h_.nodes;
         const size_t runs = layout_.runStart.size() - 1;
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, runs, 64),
-                          [&](const tbb::blocked_range<size_t>& range) {
-                              for (size_t i = range.begin(); i != range.end(); ++i)
-                                  gatherRun(nodes, i);
-                          });
+        parallelFor(runs, 64, [&](size_t i) { gatherRun(nodes, i); });
     }
 
     void gatherRun(const std::vector<Node>& nodes, size_t run) {

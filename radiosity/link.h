@@ -29,4 +29,19 @@ struct Link {
     int parent = -1;
 };
 
+/// Makes `link` VISIBLE without rays: the shaft between its two nodes holds no occluder
+/// (Haines & Wallace 1991).
+inline void setShaftEmpty(Link& link) {
+    link.V = 1;
+    link.type = VisibilityType::visible;
+    link.rays = 0;
+    link.shaftEmpty = true;
+}
+
+/// True while the visibility of `link` is still to be evaluated: no ray was cast for it and
+/// its shaft was not found empty.
+inline bool needsVisibility(const Link& link) {
+    return link.rays == 0 && !link.shaftEmpty;
+}
+
 }  // namespace radiosity

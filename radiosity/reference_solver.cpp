@@ -1,11 +1,10 @@
 #include "radiosity/reference_solver.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
-#include <chrono>
 #include <cmath>
 #include <cstdio>
+
+#include "radiosity/parallel.h"
+#include "radiosity/stopwatch.h"
 
 namespace radiosity {
 
@@ -46,28 +45,27 @@ void ReferenceSolver::solve() {
         options_.progress("reference: " + std::to_string(n) + " elements, " +
                           std::to_string(static_cast<long long>(n) * n) + " pairs");
     }
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     // K_ij = F_ij V_ij, one row per receiver; rows of non-reflecting elements stay empty.
     std::vector<float> K(static_cast<size_t>(n) * n, 0.0f);
-    tbb::parallel_for(tbb::blocked_range<int>(0, n, 8), [&](const tbb::blocked_range<int>& range) {
-        for (int i = range.begin(); i != range.end(); ++i) {
-            const int r = leaves_[i];
-            if (h_.nodes[r].rho.maxComponent() <= 0) continue;
-            for (int j = 0; j < n; ++j) {
-                const int s = leaves_[j];
-                if (i == j || !transfer_->facing(r, s)) continue;
-                Link link;
-                link.receiver = r;
-                link.source = s;
-                link.F = transfer_->formFactor(r, s);
-                if (!(link.F > 0)) continue;
-                transfer_->visibility(link);
-                K[static_cast<size_t>(i) * n + j] =
-                    static_cast<float>(link.F * static_cast<double>(link.V));
-            }
+    parallelFor(static_cast<size_t>(n), 8, [&](size_t row) {
+        const int i = static_cast<int>(row);
+        const int r = leaves_[i];
+        if (h_.nodes[r].rho.maxComponent() <= 0) return;
+        for (int j = 0; j < n; ++j) {
+            const int s = leaves_[j];
+            if (i == j || !transfer_->facing(r, s)) continue;
+            Link link;
+            link.receiver = r;
+            link.source = s;
+            link.F = transfer_->formFactor(r, s);
+            if (!(link.F > 0)) continue;
+            transfer_->visibility(link);
+            K[static_cast<size_t>(i) * n + j] =
+                static_cast<float>(link.F * static_cast<double>(link.V));
         }
     });
-    timeFF_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    timeFF_ = secondsSince(t0);
 
     // Gauss-Seidel, all channels at once.
     std::vector<Rgb> B(n);

@@ -6,14 +6,12 @@
 // receivers' gather scales), with the solver's own rules: a leaf gathers through its own
 // links and its ancestors', and a cluster receiver hands a link's light to each surface
 // by the surface's orientation (directional_irradiance.h).
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
 
+#include "radiosity/parallel.h"
 #include "radiosity/solver.h"
 #include "radiosity/tree_walks.h"
 
@@ -183,22 +181,20 @@ class BalancePasses {
                     bins_[t_.ancestor[k]][bin(t_.ancestorNormal[k], a)] +=
                         x_[t_.roots[i]] * static_cast<double>(std::abs(t_.ancestorNormal[k][a]));
         // P_s: what the links from s deliver per unit of what s sends (m^2).
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, P_.size(), 1024), [&](const auto& r) {
-            for (size_t src = r.begin(); src != r.end(); ++src) {
-                double p = 0;
-                for (int j = L_.sourceStart[src]; j < L_.sourceStart[src + 1]; ++j) {
-                    const int k = L_.bySource[j], rc = L_.receiver[k];
-                    double w = 0;
-                    if (t_.cluster[rc]) {
-                        const Bins& b = bins_[t_.slot[rc]];
-                        for (int a = 0; a < 3; ++a) w += std::abs(L_.w[k][a]) * b[bin(L_.w[k], a)];
-                    } else {
-                        w = x_[rc];
-                    }
-                    p += L_.FV[k] * w;
+        parallelFor(P_.size(), 1024, [&](size_t src) {
+            double p = 0;
+            for (int j = L_.sourceStart[src]; j < L_.sourceStart[src + 1]; ++j) {
+                const int k = L_.bySource[j], rc = L_.receiver[k];
+                double w = 0;
+                if (t_.cluster[rc]) {
+                    const Bins& b = bins_[t_.slot[rc]];
+                    for (int a = 0; a < 3; ++a) w += std::abs(L_.w[k][a]) * b[bin(L_.w[k], a)];
+                } else {
+                    w = x_[rc];
                 }
-                P_[src] = p;
+                p += L_.FV[k] * w;
             }
+            P_[src] = p;
         });
         // C_m: P / A summed down from the root.
         for (int n : t_.pre)
@@ -239,28 +235,25 @@ class BalancePasses {
         const std::vector<double> sourceSend = x_;
         std::fill(x_.begin(), x_.end(), 0.0);
         std::fill(bins_.begin(), bins_.end(), Bins{});
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, L_.receiverStart.size() - 1, 64), [&](const auto& r) {
-                for (size_t i = r.begin(); i != r.end(); ++i)
-                    for (int k = L_.receiverStart[i]; k < L_.receiverStart[i + 1]; ++k) {
-                        const int rc = L_.receiver[k];
-                        const double v = L_.FV[k] * sourceSend[L_.source[k]];
-                        if (!t_.cluster[rc]) {
-                            x_[rc] += v;
-                            continue;
-                        }
-                        for (int a = 0; a < 3; ++a)
-                            bins_[t_.slot[rc]][bin(L_.w[k], a)] += v * std::abs(L_.w[k][a]);
-                    }
-            });
+        parallelFor(L_.receiverStart.size() - 1, 64, [&](size_t i) {
+            for (int k = L_.receiverStart[i]; k < L_.receiverStart[i + 1]; ++k) {
+                const int rc = L_.receiver[k];
+                const double v = L_.FV[k] * sourceSend[L_.source[k]];
+                if (!t_.cluster[rc]) {
+                    x_[rc] += v;
+                    continue;
+                }
+                for (int a = 0; a < 3; ++a)
+                    bins_[t_.slot[rc]][bin(L_.w[k], a)] += v * std::abs(L_.w[k][a]);
+            }
+        });
         // Down: a root element takes what its cluster ancestors gathered, by its normal;
         // every element what its element ancestors gathered.
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, t_.roots.size(), 256), [&](const auto& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i)
-                for (int k = t_.ancestorStart[i]; k < t_.ancestorStart[i + 1]; ++k)
-                    for (int a = 0; a < 3; ++a)
-                        x_[t_.roots[i]] += bins_[t_.ancestor[k]][bin(t_.ancestorNormal[k], a)] *
-                                           static_cast<double>(std::abs(t_.ancestorNormal[k][a]));
+        parallelFor(t_.roots.size(), 256, [&](size_t i) {
+            for (int k = t_.ancestorStart[i]; k < t_.ancestorStart[i + 1]; ++k)
+                for (int a = 0; a < 3; ++a)
+                    x_[t_.roots[i]] += bins_[t_.ancestor[k]][bin(t_.ancestorNormal[k], a)] *
+                                       static_cast<double>(std::abs(t_.ancestorNormal[k][a]));
         });
         for (int n : t_.pre)
             if (!t_.cluster[n] && t_.parent[n] >= 0 && !t_.cluster[t_.parent[n]])

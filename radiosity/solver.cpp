@@ -1,10 +1,8 @@
 #include "radiosity/solver.h"
 #include "radiosity/detail/rng.h"
+#include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
 #include "radiosity/tree_walks.h"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -174,7 +172,7 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
     seeds = {};
     std::vector<size_t> pending;  // accepted links whose visibility is still to be evaluated
     const auto accept = [&](const Link& l) {
-        if (l.rays == 0 && !l.shaftEmpty) pending.push_back(links_.size());
+        if (needsVisibility(l)) pending.push_back(links_.size());
         links_.push_back(l);
     };
     while (!queue.empty()) {
@@ -202,7 +200,7 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
             // to refine it. That verdict must rest on all maxRays rays, not on the first few
             // (4 blocked rays happen 1 time in 10 for a link that is 45 % visible). Cluster
             // links are refined whatever their sampled visibility.
-            const bool evaluated = link.rays > 0 || link.shaftEmpty;
+            const bool evaluated = !needsVisibility(link);
             const bool sure = link.shaftEmpty || link.rays >= transfer_->options().maxRays;
             if (!evaluated || (link.type == VisibilityType::invisible && !sure))
                 transfer_->visibility(link, /*thorough=*/true);
@@ -240,24 +238,17 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
 Link HierarchicalSolver::childLink(const Link& parent, int parentIndex, int r, int s) const {
     Link c = makeLink(r, s);
     c.parent = parentIndex;
-    if (parent.shaftEmpty) {
-        // The shaft of two sub-volumes lies in the convex hull of the parents' volumes,
-        // which held no occluder: the child is visible too.
-        c.shaftEmpty = true;
-        c.type = VisibilityType::visible;
-        c.V = 1;
-    }
+    // The shaft of two sub-volumes lies in the convex hull of the parents' volumes, which
+    // held no occluder: the child is visible too.
+    if (parent.shaftEmpty) setShaftEmpty(c);
     return c;
 }
 
 void HierarchicalSolver::evaluateVisibility(const std::vector<size_t>& pending) {
     // Each link's rays come from a generator seeded by its two nodes: evaluating them in
     // parallel gives the same result as one by one.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, pending.size(), 16),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              transfer_->visibility(links_.mutableAt(pending[i]));
-                      });
+    parallelFor(pending.size(), 16,
+                [&](size_t i) { transfer_->visibility(links_.mutableAt(pending[i])); });
 }
 
 size_t HierarchicalSolver::refineAll() {
@@ -268,18 +259,14 @@ size_t HierarchicalSolver::refineAll() {
     // only those to refine go through the priority queue. Accepted links keep their order
     // (the gather sums each receiver's links in list order).
     std::vector<Decision> decision(old.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, old.size(), 4096),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i)
-                              decision[i] = oracle(old[i]).decision;
-                      });
+    parallelFor(old.size(), 4096, [&](size_t i) { decision[i] = oracle(old[i]).decision; });
     std::vector<Link> seeds;
     std::vector<size_t> pending;
     for (size_t i = 0; i < old.size(); ++i) {
         if (decision[i] == Decision::drop) continue;
         if (decision[i] == Decision::accept) {
             const Link& l = old[i];
-            if (l.rays == 0 && !l.shaftEmpty) pending.push_back(links_.size());
+            if (needsVisibility(l)) pending.push_back(links_.size());
             links_.push_back(l);
         } else {
             seeds.push_back(old[i]);
@@ -306,7 +293,7 @@ void HierarchicalSolver::pushLightLinksToLeaves(size_t from) {
             const Node& S = h_.nodes[link.source];
             const Node& R = h_.nodes[link.receiver];
             if (!(S.emitting && !S.isCluster()) || R.isLeaf()) {
-                if (link.rays == 0 && !link.shaftEmpty) pending.push_back(links_.size());
+                if (needsVisibility(link)) pending.push_back(links_.size());
                 links_.push_back(link);
                 continue;
             }
@@ -331,24 +318,21 @@ std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& v
     const auto& nodes = h_.nodes;
     std::vector<Rgb> H(nodes.size()), Hd(nodes.size());
     std::vector<DirectionalIrradiance> Hv(nodes.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, links_.receiverCount(), 64),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i) {
-                              const int r = links_.receiver(i);
-                              const Node& R = nodes[r];
-                              for (int k = links_.start(i); k < links_.start(i + 1); ++k) {
-                                  const Link& l = links_[k];
-                                  const Node& S = nodes[l.source];
-                                  const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
-                                  if (R.isCluster())
-                                      Hv[r].add(h, toFrame(R, linkDirection(R, S)));
-                                  else if (reflects(S))
-                                      H[r] += h;
-                                  else
-                                      Hd[r] += h;
-                              }
-                          }
-                      });
+    parallelFor(links_.receiverCount(), 64, [&](size_t i) {
+        const int r = links_.receiver(i);
+        const Node& R = nodes[r];
+        for (int k = links_.start(i); k < links_.start(i + 1); ++k) {
+            const Link& l = links_[k];
+            const Node& S = nodes[l.source];
+            const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
+            if (R.isCluster())
+                Hv[r].add(h, toFrame(R, linkDirection(R, S)));
+            else if (reflects(S))
+                H[r] += h;
+            else
+                Hd[r] += h;
+        }
+    });
     std::vector<Rgb> out = pushDown(
         h_, [&](int n) -> const Rgb& { return H[n]; },
         [&](int n) -> const DirectionalIrradiance& { return Hv[n]; });
@@ -667,15 +651,8 @@ bool HierarchicalSolver::splitForLights(int leaf,
         for (int k = 0; k < parent.childCount; ++k) {
             const int rc = parent.firstChild + k;
             if (!transfer_->facing(rc, old.source)) continue;
-            Link c = makeLink(rc, old.source);
-            c.parent = me;
-            if (old.shaftEmpty) {  // no occluder between the parent and the light
-                c.shaftEmpty = true;
-                c.type = VisibilityType::visible;
-                c.V = 1;
-            } else {
-                transfer_->visibility(c);
-            }
+            Link c = childLink(old, me, rc, old.source);
+            if (needsVisibility(c)) transfer_->visibility(c);
             links_.push_back(c);
             if (children) {
                 LightExchange& e = (*children)[k][lightOfNode(old.source)];

@@ -93,6 +93,7 @@
 #include <vector>
 
 #include "radiosity/active_links.h"
+#include "radiosity/defaults.h"
 #include "radiosity/detail/transfer.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/link.h"
@@ -111,9 +112,9 @@ struct SolverError : std::runtime_error {
 size_t defaultMemoryBudget();
 
 struct SolverOptions {
-    double epsilon = 1e-3;
-    size_t maxLinks = 0;   ///< refinement budget in links (0: what fits in maxMemory)
-    size_t maxMemory = 0;  ///< refinement budget in bytes (0: defaultMemoryBudget())
+    double epsilon = kDefaultEpsilon;  ///< radiosity/defaults.h says why relight's is finer
+    size_t maxLinks = 0;               ///< refinement budget in links (0: what fits in maxMemory)
+    size_t maxMemory = 0;              ///< refinement budget in bytes (0: defaultMemoryBudget())
     double minArea = 0;
     double tolerance = 1e-4;
     int maxSweeps = 2000;     ///< gather/push-pull sweeps per solve, a safety bound

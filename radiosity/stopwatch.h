@@ -1,5 +1,6 @@
-// Seconds elapsed on the steady clock, for the phase times the solver and the dynamic
-// updates report.
+// Seconds elapsed on the steady clock: the one clock of every time the project reports
+// (the solver's phases, the dynamic updates, the relighting's steps, the commands'
+// reports, the viewer's frames, the bench programs).
 #pragma once
 
 #include <chrono>

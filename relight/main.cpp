@@ -6,8 +6,9 @@
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
 //                        --max-links N, --max-memory MiB, --display-pixels P
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
-// Errors in the input print one clear line naming the file and line or key, exit code 2;
-// so do errors in the command line's options.
+// Errors print one clear line naming the file (and the line or key); the exit code says
+// which kind (relight/errors.h): 2 the input is wrong (the command line's options too), 3
+// an output cannot be written, 1 anything else.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -43,7 +44,9 @@ CLI::Validator finiteNumber(Sign sign) {
 
 /// The options of the preparation, the same for `prepare` and `render`.
 void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
+    // The default shown is the pipeline's, finer than solve's (radiosity/defaults.h).
     app->add_option("--epsilon", p.epsilon, "BF refinement threshold")
+        ->capture_default_str()
         ->check(finiteNumber(Sign::kPositive));
     app->add_option("--max-links", p.maxLinks,
                     "refinement budget in links (default: what fits in --max-memory)");
@@ -72,6 +75,7 @@ int main(int argc, char** argv) {
         app.add_subcommand("solve", "clustered hierarchical radiosity solution of a scene");
     solve->add_option("scene_dir", sa.scene, "scene folder holding scene.json")->required();
     solve->add_option("--epsilon", sa.epsilon, "BF refinement threshold, fraction of emitted power")
+        ->capture_default_str()
         ->check(finiteNumber(Sign::kPositive));
     solve
         ->add_option("--min-area", sa.minArea,
@@ -84,8 +88,10 @@ int main(int argc, char** argv) {
                      "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
         ->check(finiteNumber(Sign::kNonNegative));
     solve->add_option("--min-rays", sa.minRays, "visibility rays per link, first round")
+        ->capture_default_str()
         ->check(CLI::Range(1, 256));
     solve->add_option("--max-rays", sa.maxRays, "visibility rays per link in penumbra")
+        ->capture_default_str()
         ->check(CLI::Range(1, 256));
     solve->add_option("--spp", sa.spp, "camera samples per pixel for -o")
         ->check(CLI::Range(1, 1024));
@@ -166,12 +172,9 @@ int main(int argc, char** argv) {
         if (*render) return cli::runRender(ra);
         if (*prepare) return cli::runPrepare(pa);
         if (*eval) return cli::runEval(evScene, evEdit, evImage, evErrorMap);
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
+        return exitCode(e);
     }
     return 0;
 }

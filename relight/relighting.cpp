@@ -1,13 +1,13 @@
 #include "relight/relighting.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 
 #include "radiosity/light_reach.h"
+#include "radiosity/stopwatch.h"
 #include "relight/io/json_reader.h"
 #include "relight/pipeline/lighting_buffer.h"
 #include "relight/pipeline/reflectance.h"
@@ -18,10 +18,8 @@ using radiosity::Rgb;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using radiosity::Clock;
+constexpr auto& since = radiosity::secondsSince;  // seconds since t0 (radiosity/stopwatch.h)
 
 }  // namespace
 

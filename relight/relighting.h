@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "radiosity/defaults.h"
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/light_response.h"
 #include "radiosity/solver.h"
@@ -50,7 +51,9 @@
 namespace relight {
 
 struct RelightOptions {
-    double epsilon = 1e-4;  ///< BF refinement threshold (radiosity/solver.h)
+    /// BF refinement threshold (radiosity/solver.h): finer than a solve's on its own, to
+    /// follow the photo's shadows (radiosity/defaults.h).
+    double epsilon = radiosity::kFineEpsilon;
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
     int spp = 16;  ///< item-buffer samples per pixel, at most (sampleBudget)
@@ -59,7 +62,7 @@ struct RelightOptions {
     /// relight/pipeline/item_buffer.h). 0: spp samples in every pixel, every pixel in the
     /// estimates.
     int64_t sampleBudget = kDefaultSampleBudget;
-    int minRays = 4, maxRays = 16;
+    int minRays = radiosity::kDefaultMinRays, maxRays = radiosity::kDefaultMaxRays;
     int reflectanceRounds = 12;
     /// Reflectance per leaf element from its texture after refinement
     /// (relight/pipeline/reflectance.h), for leaves with at least leafReflectanceSamples photo

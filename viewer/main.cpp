@@ -8,8 +8,9 @@
 //   light:U,V          a virtual light on the surface under photo pixel (U, V)
 //   box:U,V            a box standing on the surface under (U, V)
 //   drag:U0,V0:U1,V1   grabs the object under (U0, V0) and drags it to (U1, V1)
-// Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option)
-// print one clear line and exit with 2 for bad input, 1 otherwise.
+// Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option, a
+// screenshot that cannot be written) print one clear line and exit with 2 for bad input, 3
+// for an output that cannot be written, 1 otherwise (relight/errors.h).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "relight/errors.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/scene_file.h"
 #include "relight/relighting.h"
@@ -36,7 +38,7 @@ struct Args {
     std::string scene, edit, screenshot, saveEdit, framebuffer = "float", view = "relit";
     std::vector<std::string> actions;
     std::string windowShot;
-    double exposure = 0, epsilon = 1e-4;
+    double exposure = 0, epsilon = RelightOptions{}.epsilon;
     int spp = 16;
 };
 
@@ -193,14 +195,8 @@ int main(int argc, char** argv) {
     }
     try {
         return run(a);
-    } catch (const InputError& e) {
+    } catch (const std::exception& e) {  // a WindowError too: exit code 1
         std::fprintf(stderr, "relight-viewer: error: %s\n", e.what());
-        return 2;
-    } catch (const WindowError& e) {
-        std::fprintf(stderr, "relight-viewer: error: %s\n", e.what());
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "relight-viewer: error: %s\n", e.what());
-        return 1;
+        return exitCode(e);
     }
 }

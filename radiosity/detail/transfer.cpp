@@ -147,10 +147,7 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     const int r = link.receiver, s = link.source;
     if (options_.useShafts && shaftIsEmpty(r, s)) {
         counters.shaftEmpty.fetch_add(1, std::memory_order_relaxed);
-        link.V = 1;
-        link.type = VisibilityType::visible;
-        link.rays = 0;
-        link.shaftEmpty = true;
+        setShaftEmpty(link);
         return;
     }
     link.shaftEmpty = false;

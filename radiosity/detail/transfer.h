@@ -51,6 +51,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "radiosity/defaults.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/link.h"
 #include "radiosity/visibility.h"
@@ -58,10 +59,10 @@
 namespace radiosity {
 
 struct TransferOptions {
-    int quadratureOrder = 2;  ///< Gauss points per direction on a receiving element (1..16)
-    int minRays = 4;          ///< rays of the first visibility round, 1..256 (typ. 4)
-    int maxRays = 16;         ///< rays in all for a link in penumbra, >= minRays (typ. 16..64)
-    bool useShafts = true;    ///< skip rays when the shaft holds no occluder
+    int quadratureOrder = 2;        ///< Gauss points per direction on a receiving element (1..16)
+    int minRays = kDefaultMinRays;  ///< rays of the first visibility round, 1..256
+    int maxRays = kDefaultMaxRays;  ///< rays in all in penumbra, >= minRays (typ. 16..64)
+    bool useShafts = true;          ///< skip rays when the shaft holds no occluder
 };
 
 /// Counters, reported as "Category/Name".

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "radiosity/defaults.h"
 #include "relight/io/scene_file.h"
 #include "relight/prepared.h"
 #include "relight/relighting.h"
@@ -15,11 +16,11 @@ namespace relight::cli {
 /// `relight solve`: clustered hierarchical radiosity of a scene.
 struct SolveArgs {
     std::string scene;
-    double epsilon = 1e-3;
+    double epsilon = radiosity::kDefaultEpsilon;  ///< radiosity/defaults.h: coarser than prepare's
     double minArea = 0;
     size_t maxLinks = 0;     ///< refinement budget in links (0: from the memory budget)
     double maxMemoryMB = 0;  ///< refinement budget in MiB (0: 40 % of the machine's memory)
-    int minRays = 4, maxRays = 16;
+    int minRays = radiosity::kDefaultMinRays, maxRays = radiosity::kDefaultMaxRays;
     int spp = 16;
     int reflectanceRounds = 12;
     bool photoReflectance = true;
@@ -44,7 +45,7 @@ struct CacheArgs {
 
 /// The preparation options that `prepare` and `render` share (part of the cache's key).
 struct PrepareOptionArgs {
-    double epsilon = 1e-4;
+    double epsilon = RelightOptions{}.epsilon;
     size_t maxLinks = 0;
     double maxMemoryMB = 0;
     int spp = 16;

@@ -58,7 +58,7 @@ PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const 
     if (!c.use) {
         prepare();
         s.cache = "disabled";
-        s.seconds = since(t0);
+        s.seconds = secondsSince(t0);
         return s;
     }
     s.file = c.file.empty() ? defaultCachePath(sf.dir) : fs::path(c.file);
@@ -73,7 +73,7 @@ PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const 
         if (why.empty()) {
             s.image = std::move(*p);
             s.cache = "hit";
-            s.seconds = since(t0);
+            s.seconds = secondsSince(t0);
             std::printf("using cache %s\n", s.file.string().c_str());
             std::fflush(stdout);
             return s;
@@ -90,7 +90,7 @@ PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const 
         if (writeMustSucceed) throw;
         std::fprintf(stderr, "warning: %s; going on without it\n", e.what());
     }
-    s.seconds = since(t0);
+    s.seconds = secondsSince(t0);
     return s;
 }
 

@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <span>
+#include <string>
 
 #include "relight/cli/commands.h"
 #include "relight/cli/util.h"
@@ -20,6 +22,118 @@
 #include "relight/relighting.h"
 
 namespace relight::cli {
+
+namespace {
+
+/// What the insertion of a virtual light or object did: a line on stdout, an entry of the
+/// report's "virtual" list.
+nlohmann::json insertionReport(const DynamicRelighting& dyn, const std::string& kind,
+                               const std::string& name) {
+    const FrameTimes& ft = dyn.times();
+    const radiosity::DynamicUpdate& u = dyn.lastUpdate();
+    std::printf("inserted %s %s: %d links cut, %d new, %d reactivated, %.4f s\n", kind.c_str(),
+                name.c_str(), u.linksCut, u.linksNew, u.linksReactivated, ft.total());
+    return {{"kind", kind},
+            {"name", name},
+            {"links_cut", u.linksCut},
+            {"links_new", u.linksNew},
+            {"links_reactivated", u.linksReactivated},
+            {"shaft_tests", u.shaftTests},
+            {"rays", u.rays},
+            {"time_s",
+             {{"shafts", ft.shafts},
+              {"visibility", ft.visibility},
+              {"links", ft.links},
+              {"radiosity", ft.radiosity},
+              {"vertices", ft.vertices}}}};
+}
+
+/// The relit image of an edit with virtual lights or objects: each is inserted into the
+/// prepared solver state `full` in turn, and reported in `report` (insertionReport).
+Image renderWithVirtualParts(Relighting& full, const EditFile& edit,
+                             std::span<const radiosity::Rgb> radiance, nlohmann::json& report) {
+    DynamicRelighting dyn(full, radiance);
+    for (const VirtualLight& l : edit.addLights) {
+        dyn.addLight(l);
+        report.push_back(insertionReport(dyn, "light", l.name));
+    }
+    for (const VirtualObject& obj : edit.addObjects) {
+        dyn.addObject(obj);
+        report.push_back(insertionReport(dyn, "object", obj.name));
+    }
+    return dyn.render();
+}
+
+/// Seconds spent on each part of a render.
+struct RenderTimes {
+    double prepare = 0;  ///< preparing, or loading the cache
+    double views = 0;    ///< the debug views
+    double edit = 0;     ///< the relit image
+};
+
+void printSummary(const RenderArgs& a, const PreparedState& s, const Image& img,
+                  const RenderTimes& t, size_t viewFiles) {
+    const PreparedImage& p = s.image;
+    std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
+    if (s.cache == "hit")
+        std::printf("time: load cache %.3f s (its preparation took: %s); edit %.4f s\n", t.prepare,
+                    stepTimes(p.times).c_str(), t.edit);
+    else
+        std::printf("time: prepare %.3f s (%s); edit %.4f s\n", t.prepare,
+                    stepTimes(p.times).c_str(), t.edit);
+    std::printf("wrote %s (%dx%d)\n", a.output.c_str(), img.width, img.height);
+    if (s.written) std::printf("wrote cache %s\n", s.file.string().c_str());
+    if (!a.debugViews.empty())
+        std::printf("wrote debug views %s (%zu files, %.3f s)\n", a.debugViews.c_str(), viewFiles,
+                    t.views);
+}
+
+nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const PreparedState& s,
+                            std::span<const radiosity::Rgb> radiance,
+                            const nlohmann::json& virtualParts, const RenderTimes& t,
+                            Clock::time_point tAll) {
+    const PreparedImage& p = s.image;
+    nlohmann::json lights = nlohmann::json::object();
+    for (size_t l = 0; l < radiance.size(); ++l)
+        lights[sf.scene.lights[l].name] = rgbJson(radiance[l]);
+    const nlohmann::json views =
+        a.debugViews.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.debugViews);
+    return {
+        {"scene", a.scene},
+        {"edit", a.edit},
+        {"output", a.output},
+        {"epsilon", a.prep.epsilon},
+        {"shadow_refinement", a.prep.shadowRefinement},
+        {"shadow_removal", a.prep.shadowRemoval},
+        {"cache", s.cache},
+        {"cache_file", s.file.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.file.string())},
+        {"debug_views", views},
+        {"leaves", p.leaves},
+        {"links", p.links},
+        {"budget",
+         {{"reached", p.budgetReached != 0},
+          {"solver_mib", p.solverBytes / 1048576.0},
+          {"max_links", p.maxLinks},
+          {"max_memory_mib", p.maxMemory / 1048576.0}}},
+        {"leaf_vertices", p.vertexCount()},
+        {"lights", lights},
+        {"virtual", virtualParts},
+        {"time_s",
+         {{"item_buffer", p.times.itemBuffer},
+          {"solve", p.times.solve},
+          {"reflectance", p.times.reflectance},
+          {"refinement", p.times.refinement},
+          {"responses", p.times.responses},
+          {"vertex_lighting", p.times.vertexLighting},
+          {"shadow_removal", p.times.shadowRemoval},
+          {"display_map", p.times.displayMap},
+          {"prepare", t.prepare},  // or the cache's loading
+          {"edit", t.edit},
+          {"debug_views", t.views},
+          {"total", secondsSince(tAll)}}}};
+}
+
+}  // namespace
 
 int runRender(const RenderArgs& a) {
     const auto tAll = Clock::now();
@@ -39,112 +153,33 @@ int runRender(const RenderArgs& a) {
     const bool virtualParts = !edit.addLights.empty() || !edit.addObjects.empty();
     const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false,
                                           a.debugViews.empty() && !virtualParts ? nullptr : &full);
-    const PreparedImage& p = s.image;
-    const double tPrepare = s.seconds;
+    RenderTimes t;
+    t.prepare = s.seconds;
     // The PreparedImage's photo radiance holds the estimates of "estimate" lights.
-    const auto radiance = editRadiance(sf, edit, p.photoRadiance);
+    const auto radiance = editRadiance(sf, edit, s.image.photoRadiance);
     // The real lights' part of the edit (all of it without virtual parts), refused when not
     // finite before anything is written, the debug views (which show that part) included.
     auto t0 = Clock::now();
-    Image img = renderEdit(p, radiance);
+    Image img = renderEdit(s.image, radiance);
     requireFiniteImage(img, sf, edit, radiance);
-    double tEdit = since(t0);
-    double tViews = 0;
+    t.edit = secondsSince(t0);
     size_t viewFiles = 0;
     t0 = Clock::now();
     if (full && !a.debugViews.empty()) {
         viewFiles = writeDebugViews(*full, radiance, a.debugViews).size();
-        tViews = since(t0);
+        t.views = secondsSince(t0);
     }
     nlohmann::json virtualJson = nlohmann::json::array();
     if (virtualParts) {
         t0 = Clock::now();
-        DynamicRelighting dyn(*full, radiance);
-        const auto note = [&](const std::string& kind, const std::string& name) {
-            const FrameTimes& ft = dyn.times();
-            const radiosity::DynamicUpdate& u = dyn.lastUpdate();
-            std::printf("inserted %s %s: %d links cut, %d new, %d reactivated, %.4f s\n",
-                        kind.c_str(), name.c_str(), u.linksCut, u.linksNew, u.linksReactivated,
-                        ft.total());
-            virtualJson.push_back({{"kind", kind},
-                                   {"name", name},
-                                   {"links_cut", u.linksCut},
-                                   {"links_new", u.linksNew},
-                                   {"links_reactivated", u.linksReactivated},
-                                   {"shaft_tests", u.shaftTests},
-                                   {"rays", u.rays},
-                                   {"time_s",
-                                    {{"shafts", ft.shafts},
-                                     {"visibility", ft.visibility},
-                                     {"links", ft.links},
-                                     {"radiosity", ft.radiosity},
-                                     {"vertices", ft.vertices}}}});
-        };
-        for (const VirtualLight& l : edit.addLights) {
-            dyn.addLight(l);
-            note("light", l.name);
-        }
-        for (const VirtualObject& obj : edit.addObjects) {
-            dyn.addObject(obj);
-            note("object", obj.name);
-        }
-        img = dyn.render();
+        img = renderWithVirtualParts(*full, edit, radiance, virtualJson);
         requireFiniteImage(img, sf, edit, radiance);
-        tEdit = since(t0);
+        t.edit = secondsSince(t0);
     }
     writeImage(a.output, img, a.exposure);
-    std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
-    if (s.cache == "hit")
-        std::printf("time: load cache %.3f s (its preparation took: %s); edit %.4f s\n", tPrepare,
-                    stepTimes(p.times).c_str(), tEdit);
-    else
-        std::printf("time: prepare %.3f s (%s); edit %.4f s\n", tPrepare,
-                    stepTimes(p.times).c_str(), tEdit);
-    std::printf("wrote %s (%dx%d)\n", a.output.c_str(), img.width, img.height);
-    if (s.written) std::printf("wrote cache %s\n", s.file.string().c_str());
-    if (!a.debugViews.empty())
-        std::printf("wrote debug views %s (%zu files, %.3f s)\n", a.debugViews.c_str(), viewFiles,
-                    tViews);
+    printSummary(a, s, img, t, viewFiles);
     if (!a.report.empty()) {
-        nlohmann::json lights = nlohmann::json::object();
-        for (size_t l = 0; l < radiance.size(); ++l)
-            lights[sf.scene.lights[l].name] = rgbJson(radiance[l]);
-        const nlohmann::json views =
-            a.debugViews.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.debugViews);
-        const nlohmann::json j = {{"scene", a.scene},
-                                  {"edit", a.edit},
-                                  {"output", a.output},
-                                  {"epsilon", a.prep.epsilon},
-                                  {"shadow_refinement", a.prep.shadowRefinement},
-                                  {"shadow_removal", a.prep.shadowRemoval},
-                                  {"cache", s.cache},
-                                  {"cache_file", s.file.empty() ? nlohmann::json(nullptr)
-                                                                : nlohmann::json(s.file.string())},
-                                  {"debug_views", views},
-                                  {"leaves", p.leaves},
-                                  {"links", p.links},
-                                  {"budget",
-                                   {{"reached", p.budgetReached != 0},
-                                    {"solver_mib", p.solverBytes / 1048576.0},
-                                    {"max_links", p.maxLinks},
-                                    {"max_memory_mib", p.maxMemory / 1048576.0}}},
-                                  {"leaf_vertices", p.vertexCount()},
-                                  {"lights", lights},
-                                  {"virtual", virtualJson},
-                                  {"time_s",
-                                   {{"item_buffer", p.times.itemBuffer},
-                                    {"solve", p.times.solve},
-                                    {"reflectance", p.times.reflectance},
-                                    {"refinement", p.times.refinement},
-                                    {"responses", p.times.responses},
-                                    {"vertex_lighting", p.times.vertexLighting},
-                                    {"shadow_removal", p.times.shadowRemoval},
-                                    {"display_map", p.times.displayMap},
-                                    {"prepare", tPrepare},  // or the cache's loading
-                                    {"edit", tEdit},
-                                    {"debug_views", tViews},
-                                    {"total", since(tAll)}}}};
-        writeJsonAtomic(a.report, j);
+        writeJsonAtomic(a.report, renderReport(a, sf, s, radiance, virtualJson, t, tAll));
         std::printf("wrote %s\n", a.report.c_str());
     }
     return 0;

@@ -2,7 +2,6 @@
 #include "relight/cli/commands.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,10 +19,9 @@
 
 namespace relight::cli {
 
-int runSolve(const SolveArgs& a) {
-    const auto tAll = Clock::now();
-    SceneFile sf = loadScene(a.scene);
-    for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+namespace {
+
+radiosity::SolverOptions solverOptions(const SolveArgs& a) {
     radiosity::SolverOptions o;
     o.epsilon = a.epsilon;
     o.minArea = a.minArea;
@@ -32,70 +30,100 @@ int runSolve(const SolveArgs& a) {
     o.transfer.minRays = a.minRays;
     o.transfer.maxRays = a.maxRays;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
-    std::fprintf(stderr, "relight solve %s: %zu polygons, %zu lights, epsilon %g\n",
-                 a.scene.c_str(), sf.scene.polygons.size(), sf.scene.lights.size(), a.epsilon);
-    radiosity::HierarchicalSolver solver(sf.scene, o);
-    for (const auto& w : lightReachWarnings(sf, solver.scene(), solver.visibility()))
-        std::fprintf(stderr, "warning: %s\n", w.c_str());
-    ItemBuffer items;
-    bool haveItems = false;
-    auto needItems = [&] {
-        if (!haveItems)
-            items = castItemBuffer(sf.camera, solver.scene(), solver.visibility(), a.spp);
-        haveItems = true;
-    };
-    // Lights whose radiance is "estimate": estimated from the first photo before anything is
-    // solved, as the preparation does (relight/pipeline/emittance.h).
-    if (std::find(sf.estimateRadiance.begin(), sf.estimateRadiance.end(), true) !=
-        sf.estimateRadiance.end()) {
-        checkEstimableLights(sf);
-        const Image photo = loadFirstPhoto(sf);
-        needItems();
-        const EmittanceReport rep = estimateEmittance(sf, solver.scene(), items, photo);
-        for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-        for (const auto& line : rep.summary()) std::fprintf(stderr, "  %s\n", line.c_str());
-        std::vector<radiosity::Rgb> radiance;
-        for (const LightEmittance& l : rep.lights) radiance.push_back(l.radiance);
-        solver.setLightRadiances(radiance);  // not solved yet: sets the emittance only
+    return o;
+}
+
+/// What the solve reads through the camera, each made the first time it is needed (by the
+/// photo's emittance or reflectance, or by -o): the item buffer, and the per-pixel lighting
+/// of the solution at the time it is first asked for.
+class CameraSamples {
+  public:
+    CameraSamples(const SolveArgs& a, const SceneFile& sf, radiosity::HierarchicalSolver& solver)
+        : a_(a), sf_(sf), solver_(solver) {}
+
+    const ItemBuffer& items() {
+        if (!haveItems_)
+            items_ = castItemBuffer(sf_.camera, solver_.scene(), solver_.visibility(), a_.spp);
+        haveItems_ = true;
+        return items_;
     }
-    LightingBuffer lighting;
-    bool haveLighting = false;
-    double tLighting = 0;
-    auto needLighting = [&] {
-        if (haveLighting) return;
+
+    LightingBuffer& lighting() {
+        if (haveLighting_) return lighting_;
         const auto t0 = Clock::now();
         radiosity::DirectLightOptions dlo;
-        dlo.minRays = a.minRays;
-        dlo.maxRays = a.maxRays;
-        lighting = computeLightingBuffer(items, solver, dlo);
-        tLighting = since(t0);
-        haveLighting = true;
+        dlo.minRays = a_.minRays;
+        dlo.maxRays = a_.maxRays;
+        lighting_ = computeLightingBuffer(items(), solver_, dlo);
+        seconds_ = secondsSince(t0);
+        haveLighting_ = true;
         std::fprintf(stderr, "per-pixel lighting: %llu shadow rays, %zu gather points, %.3f s\n",
-                     static_cast<unsigned long long>(lighting.rays), lighting.gatherPolygon.size(),
-                     tLighting);
-    };
-    double tReflectance = 0;
-    nlohmann::json reflectanceJson = nullptr;
-    if (a.photoReflectance && !sf.photos.empty()) {
-        const auto t0 = Clock::now();
-        const PhotoSpec& ph = sf.photos.front();
-        const Image photo = loadFirstPhoto(sf);
-        needItems();
-        solver.solve();
-        needLighting();
-        std::fprintf(stderr, "estimating reflectance from %s (%d rounds)\n", ph.file.c_str(),
-                     a.reflectanceRounds);
-        auto rep =
-            estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds);
-        tReflectance = since(t0);
-        reflectanceJson = {{"rounds", rep.rounds},
-                           {"polygons_seen", rep.polygonsSeen},
-                           {"polygons_defaulted", rep.polygonsDefaulted},
-                           {"seconds", tReflectance}};
-    } else {
-        solver.solve();
+                     static_cast<unsigned long long>(lighting_.rays),
+                     lighting_.gatherPolygon.size(), seconds_);
+        return lighting_;
     }
-    const radiosity::SolverStats st = solver.stats();
+
+    /// Seconds the per-pixel lighting took (0 when it was not needed).
+    double lightingSeconds() const { return seconds_; }
+
+  private:
+    const SolveArgs& a_;
+    const SceneFile& sf_;
+    radiosity::HierarchicalSolver& solver_;
+    ItemBuffer items_;
+    bool haveItems_ = false;
+    LightingBuffer lighting_;
+    bool haveLighting_ = false;
+    double seconds_ = 0;
+};
+
+/// Lights whose radiance is "estimate": estimated from the first photo before anything is
+/// solved, as the preparation does (relight/pipeline/emittance.h).
+void estimateLightRadiances(const SceneFile& sf, radiosity::HierarchicalSolver& solver,
+                            CameraSamples& camera) {
+    checkEstimableLights(sf);
+    const Image photo = loadFirstPhoto(sf);
+    const EmittanceReport rep = estimateEmittance(sf, solver.scene(), camera.items(), photo);
+    for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const auto& line : rep.summary()) std::fprintf(stderr, "  %s\n", line.c_str());
+    std::vector<radiosity::Rgb> radiance;
+    for (const LightEmittance& l : rep.lights) radiance.push_back(l.radiance);
+    solver.setLightRadiances(radiance);  // not solved yet: sets the emittance only
+}
+
+/// The reflectance estimated from the photo, for the report.
+struct ReflectanceEstimate {
+    double seconds = 0;
+    nlohmann::json report = nullptr;  ///< null when not estimated
+};
+
+/// Solves; with --photo-reflectance (the default) and a photo, then estimates the polygons'
+/// reflectance from it, solving again in rounds.
+ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
+                               radiosity::HierarchicalSolver& solver, CameraSamples& camera) {
+    if (!a.photoReflectance || sf.photos.empty()) {
+        solver.solve();
+        return {};
+    }
+    const auto t0 = Clock::now();
+    const PhotoSpec& ph = sf.photos.front();
+    const Image photo = loadFirstPhoto(sf);
+    const ItemBuffer& items = camera.items();
+    solver.solve();
+    const LightingBuffer& lighting = camera.lighting();
+    std::fprintf(stderr, "estimating reflectance from %s (%d rounds)\n", ph.file.c_str(),
+                 a.reflectanceRounds);
+    auto rep = estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds);
+    ReflectanceEstimate r;
+    r.seconds = secondsSince(t0);
+    r.report = {{"rounds", rep.rounds},
+                {"polygons_seen", rep.polygonsSeen},
+                {"polygons_defaulted", rep.polygonsDefaulted},
+                {"seconds", r.seconds}};
+    return r;
+}
+
+void printStats(const radiosity::SolverStats& st) {
     std::printf("elements %d (leaves %d), clusters %d\n", st.elements, st.leaves, st.clusters);
     std::printf("links %d: visible %d, partial %d, invisible %d; passive %d\n", st.links,
                 st.linksVisible, st.linksPartial, st.linksInvisible, st.passiveLinks);
@@ -118,18 +146,24 @@ int runSolve(const SolveArgs& a) {
     std::printf("budget: %.1f of %.1f MiB, %zu of %zu links%s\n", st.memoryBytes / 1048576.0,
                 st.maxMemory / 1048576.0, static_cast<size_t>(st.links + st.passiveLinks),
                 st.maxLinks, st.budgetReached ? ": REACHED, refinement stopped" : "");
-    if (!a.output.empty()) {
-        needItems();
-        needLighting();
-        updateIndirect(lighting, solver);
-        Image img = renderRadiosity(items, lighting, solver.scene());
-        writeImage(a.output, img, a.exposure);
-        std::printf("wrote %s (%dx%d, %d samples per pixel)\n", a.output.c_str(), img.width,
-                    img.height, items.spp);
-    }
-    if (!a.report.empty()) {
-        nlohmann::json j = {
-            {"scene", a.scene},
+}
+
+/// -o: the radiosity seen from the camera.
+void writeRadiosityImage(const SolveArgs& a, const radiosity::HierarchicalSolver& solver,
+                         CameraSamples& camera) {
+    const ItemBuffer& items = camera.items();
+    LightingBuffer& lighting = camera.lighting();
+    updateIndirect(lighting, solver);
+    Image img = renderRadiosity(items, lighting, solver.scene());
+    writeImage(a.output, img, a.exposure);
+    std::printf("wrote %s (%dx%d, %d samples per pixel)\n", a.output.c_str(), img.width, img.height,
+                items.spp);
+}
+
+nlohmann::json solveReport(const SolveArgs& a, const radiosity::HierarchicalSolver& solver,
+                           const radiosity::SolverStats& st, const ReflectanceEstimate& reflectance,
+                           double lightingSeconds, Clock::time_point tAll) {
+    return {{"scene", a.scene},
             {"epsilon", a.epsilon},
             {"min_area_m2", solver.minArea()},
             {"elements", st.elements},
@@ -149,9 +183,9 @@ int runSolve(const SolveArgs& a) {
               {"refine_visibility", st.timeRefine},
               {"gather", st.timeGather},
               {"push_pull", st.timePushPull},
-              {"reflectance_total", tReflectance},
-              {"per_pixel_lighting", tLighting},
-              {"total", since(tAll)}}},
+              {"reflectance_total", reflectance.seconds},
+              {"per_pixel_lighting", lightingSeconds},
+              {"total", secondsSince(tAll)}}},
             {"sweeps", st.sweeps},
             {"budget",
              {{"reached", st.budgetReached},
@@ -165,9 +199,33 @@ int runSolve(const SolveArgs& a) {
              {{"emitted", rgbJson(st.emittedPower)},
               {"absorbed", rgbJson(st.absorbedPower)},
               {"radiosity_power", rgbJson(st.radiosityPower)}}},
-            {"reflectance", reflectanceJson}};
-        writeJsonAtomic(a.report, j);
-        std::printf("wrote %s\n", a.report.c_str());
+            {"reflectance", reflectance.report}};
+}
+
+}  // namespace
+
+int runSolve(const SolveArgs& a) {
+    const auto tAll = Clock::now();
+    SceneFile sf = loadScene(a.scene);
+    for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::fprintf(stderr, "relight solve %s: %zu polygons, %zu lights, epsilon %g\n",
+                 a.scene.c_str(), sf.scene.polygons.size(), sf.scene.lights.size(), a.epsilon);
+    radiosity::HierarchicalSolver solver(sf.scene, solverOptions(a));
+    for (const auto& w : lightReachWarnings(sf, solver.scene(), solver.visibility()))
+        std::fprintf(stderr, "warning: %s
+", w.c_str());
+    CameraSamples camera(a, sf, solver);
+    if (std::find(sf.estimateRadiance.begin(), sf.estimateRadiance.end(), true) !=
+        sf.estimateRadiance.end())
+        estimateLightRadiances(sf, solver, camera);
+    const ReflectanceEstimate reflectance = solveScene(a, sf, solver, camera);
+    const radiosity::SolverStats st = solver.stats();
+    printStats(st);
+    if (!a.output.empty()) writeRadiosityImage(a, solver, camera);
+    if (!a.report.empty()) {
+            writeJsonAtomic(
+                a.report, solveReport(a, solver, st, reflectance, camera.lightingSeconds(), tAll));
+            std::printf("wrote %s\n", a.report.c_str());
     }
     return 0;
 }

@@ -1,8 +1,5 @@
 #include "relight/display/debug_views.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -11,11 +8,14 @@
 #include <string>
 #include <system_error>
 
+#include "radiosity/parallel.h"
 #include "relight/display/ratio_display.h"
+#include "relight/errors.h"
 #include "relight/io/json_file.h"
 
 namespace relight {
 
+using radiosity::parallelFor;
 using radiosity::Rgb;
 namespace fs = std::filesystem;
 
@@ -80,12 +80,9 @@ PixelLeaves scanPixel(const Relighting& r, int x, int y) {
 std::vector<PixelLeaves> scanLeaves(const Relighting& r) {
     const int w = r.items.width;
     std::vector<PixelLeaves> out(static_cast<size_t>(w) * r.items.height);
-    tbb::parallel_for(tbb::blocked_range<int>(0, r.items.height),
-                      [&](const tbb::blocked_range<int>& rows) {
-                          for (int y = rows.begin(); y != rows.end(); ++y)
-                              for (int x = 0; x < w; ++x)
-                                  out[static_cast<size_t>(y) * w + x] = scanPixel(r, x, y);
-                      });
+    parallelFor(static_cast<size_t>(r.items.height), 1, [&](size_t y) {
+        for (int x = 0; x < w; ++x) out[y * w + x] = scanPixel(r, x, static_cast<int>(y));
+    });
     return out;
 }
 
@@ -204,8 +201,8 @@ void createDebugViewsFolder(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir))
-        throw InputError(dir.string() + ": cannot create the debug-views folder" +
-                         (ec ? ": " + ec.message() : ": a file of that name is in the way"));
+        throw OutputError(dir.string() + ": cannot create the debug-views folder" +
+                          (ec ? ": " + ec.message() : ": a file of that name is in the way"));
 }
 
 std::vector<std::string> writeDebugViews(const Relighting& r, std::span<const Rgb> radianceNow,

@@ -56,7 +56,7 @@ struct DebugViews {
 /// The views for the lights' radiances `radianceNow` (one per light, photo units).
 DebugViews computeDebugViews(const Relighting& r, std::span<const radiosity::Rgb> radianceNow);
 
-/// Creates `dir` (and its parents) when missing. Throws InputError naming it when it cannot
+/// Creates `dir` (and its parents) when missing. Throws OutputError naming it when it cannot
 /// be created or is not a folder.
 void createDebugViewsFolder(const std::filesystem::path& dir);
 
@@ -65,8 +65,8 @@ void createDebugViewsFolder(const std::filesystem::path& dir);
 /// then index.json listing each file, what it shows and its scale, and the views skipped
 /// and why. Every file is written atomically (temporary name, then renamed) and index.json
 /// last, so an index lists only complete files. Returns the file names written, index.json
-/// last. Throws as createDebugViewsFolder, and std::runtime_error naming the file when one
-/// cannot be written.
+/// last. Throws as createDebugViewsFolder, and OutputError naming the file when one cannot
+/// be written.
 std::vector<std::string> writeDebugViews(const Relighting& r,
                                          std::span<const radiosity::Rgb> radianceNow,
                                          const std::filesystem::path& dir);

@@ -1,6 +1,5 @@
 #include "relight/display/ratio_display.h"
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -8,8 +7,11 @@
 #include <limits>
 #include <stdexcept>
 
+#include "radiosity/parallel.h"
+
 namespace relight {
 
+using radiosity::parallelFor;
 using radiosity::Rgb;
 
 SampleHit locateSample(const ItemBuffer& items, const radiosity::Hierarchy& h,
@@ -288,32 +290,30 @@ void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb>
 
     // Rows in fixed blocks: each pixel is computed alone, so the image does not depend on
     // the number of threads.
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, map.height, 4), [&](const tbb::blocked_range<int>& rows) {
-            for (int y = rows.begin(); y != rows.end(); ++y) {
-                if (!packed) {
-                    for (int x = 0; x < map.width; ++x) general(x, y);
-                    continue;
-                }
-                for (int k = map.rowRuns[y]; k < map.rowRuns[y + 1]; ++k) {
-                    const DisplayMap::Run& run = map.runs[k];
-                    if (run.vertex[0] < 0) {
-                        for (int x = run.x0; x < run.x0 + run.length; ++x) general(x, y);
-                        continue;
-                    }
-                    // r = r_0 + sum_i w_i (r_i - r_0): the run's vertex ratios read once.
-                    const float* q0 = r[static_cast<size_t>(run.vertex[0])].data();
-                    float d[3][3];
-                    for (int i = 0; i < 3; ++i) {
-                        const float* qi = r[static_cast<size_t>(run.vertex[i + 1])].data();
-                        for (int c = 0; c < 3; ++c) d[i][c] = qi[c] - q0[c];
-                    }
-                    const size_t first = static_cast<size_t>(y) * map.width + run.x0;
-                    leafRun(photo.rgb.data() + first * 3, map.runWeight.data() + first * 3,
-                            out.rgb.data() + first * 3, run.length, q0, d);
-                }
+    parallelFor(static_cast<size_t>(map.height), 4, [&](size_t row) {
+        const int y = static_cast<int>(row);
+        if (!packed) {
+            for (int x = 0; x < map.width; ++x) general(x, y);
+            return;
+        }
+        for (int k = map.rowRuns[y]; k < map.rowRuns[y + 1]; ++k) {
+            const DisplayMap::Run& run = map.runs[k];
+            if (run.vertex[0] < 0) {
+                for (int x = run.x0; x < run.x0 + run.length; ++x) general(x, y);
+                continue;
             }
-        });
+            // r = r_0 + sum_i w_i (r_i - r_0): the run's vertex ratios read once.
+            const float* q0 = r[static_cast<size_t>(run.vertex[0])].data();
+            float d[3][3];
+            for (int i = 0; i < 3; ++i) {
+                const float* qi = r[static_cast<size_t>(run.vertex[i + 1])].data();
+                for (int c = 0; c < 3; ++c) d[i][c] = qi[c] - q0[c];
+            }
+            const size_t first = static_cast<size_t>(y) * map.width + run.x0;
+            leafRun(photo.rgb.data() + first * 3, map.runWeight.data() + first * 3,
+                    out.rgb.data() + first * 3, run.length, q0, d);
+        }
+    });
 }
 
 }  // namespace relight

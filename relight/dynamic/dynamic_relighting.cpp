@@ -11,6 +11,7 @@
 
 #include "radiosity/direct_light.h"
 #include "radiosity/final_gather.h"
+#include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
 
 namespace relight {
@@ -19,6 +20,7 @@ using radiosity::Node;
 using radiosity::Vec3;
 
 using radiosity::Clock;
+using radiosity::parallelFor;
 using radiosity::secondsSince;
 
 namespace {
@@ -176,15 +178,12 @@ std::vector<Rgb> DynamicRelighting::gatherAtVertices() const {
     const auto& mesh = *r_.mesh;
     const auto& scene = solver_.scene();
     std::vector<Rgb> out(mesh.vertices().size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 16),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t v = range.begin(); v != range.end(); ++v) {
-                              const int p = mesh.vertices()[v].polygon;
-                              if (scene.polygons[p].light >= 0) continue;
-                              out[v] = radiosity::finalGatherIndirect(
-                                  solver_, p, mesh.insidePoint(static_cast<int>(v)), 4, v);
-                          }
-                      });
+    parallelFor(out.size(), 16, [&](size_t v) {
+        const int p = mesh.vertices()[v].polygon;
+        if (scene.polygons[p].light >= 0) return;
+        out[v] =
+            radiosity::finalGatherIndirect(solver_, p, mesh.insidePoint(static_cast<int>(v)), 4, v);
+    });
     return out;
 }
 
@@ -304,42 +303,41 @@ VirtualOverlay DynamicRelighting::overlay() {
     const Vec3 eye = camera.position();
     const auto& h = solver_.hierarchy();
     const auto& vis = solver_.visibility();
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, o.height), [&](const tbb::blocked_range<int>& rows) {
-            for (int by = rows.begin(); by != rows.end(); ++by)
-                for (int bx = 0; bx < o.width; ++bx) {
-                    const int x = o.x0 + bx, y = o.y0 + by;
-                    double realShare = 0;
-                    Rgb added;
-                    for (int s = 0; s < k * k; ++s) {
-                        const double u = x - 0.5 + ((s % k) + 0.5) / k;
-                        const double v = y - 0.5 + ((s / k) + 0.5) / k;
-                        const Vec3 dir = camera.rayDirection(u, v);
-                        const auto hit = vis.intersect(eye, dir);
-                        if (hit.polygon < static_cast<int>(realPolygons_)) {
-                            realShare += 1;  // the photo's sample, as the ratio display shows
-                            continue;
-                        }
-                        const auto& poly = scene.polygons[hit.polygon];
-                        if (glm::dot(poly.normal, dir) >= 0) continue;  // back: black
-                        if (poly.light >= 0) {
-                            added += radiance_[poly.light];
-                            continue;
-                        }
-                        if (!objectMesh_) continue;
-                        const Vec3 point = eye + hit.t * dir;
-                        const int leaf = h.locateLeaf(hit.polygon, point);
-                        const auto w = objectMesh_->weights(leaf, point);
-                        const auto& corners = objectMesh_->corners(leaf);
-                        for (int i = 0; i < h.nodes[leaf].vertexCount; ++i)
-                            added += objectRadiance_[corners[i]] * w[i];
-                    }
-                    const double n = static_cast<double>(k * k);
-                    float* a = &o.rgba[(static_cast<size_t>(by) * o.width + bx) * 4];
-                    for (int c = 0; c < 3; ++c) a[c] = static_cast<float>(added[c] / n);
-                    a[3] = static_cast<float>(realShare / n);
+    parallelFor(static_cast<size_t>(o.height), 1, [&](size_t row) {
+        const int by = static_cast<int>(row);
+        for (int bx = 0; bx < o.width; ++bx) {
+            const int x = o.x0 + bx, y = o.y0 + by;
+            double realShare = 0;
+            Rgb added;
+            for (int s = 0; s < k * k; ++s) {
+                const double u = x - 0.5 + ((s % k) + 0.5) / k;
+                const double v = y - 0.5 + ((s / k) + 0.5) / k;
+                const Vec3 dir = camera.rayDirection(u, v);
+                const auto hit = vis.intersect(eye, dir);
+                if (hit.polygon < static_cast<int>(realPolygons_)) {
+                    realShare += 1;  // the photo's sample, as the ratio display shows
+                    continue;
                 }
-        });
+                const auto& poly = scene.polygons[hit.polygon];
+                if (glm::dot(poly.normal, dir) >= 0) continue;  // back: black
+                if (poly.light >= 0) {
+                    added += radiance_[poly.light];
+                    continue;
+                }
+                if (!objectMesh_) continue;
+                const Vec3 point = eye + hit.t * dir;
+                const int leaf = h.locateLeaf(hit.polygon, point);
+                const auto w = objectMesh_->weights(leaf, point);
+                const auto& corners = objectMesh_->corners(leaf);
+                for (int i = 0; i < h.nodes[leaf].vertexCount; ++i)
+                    added += objectRadiance_[corners[i]] * w[i];
+            }
+            const double n = static_cast<double>(k * k);
+            float* a = &o.rgba[(static_cast<size_t>(by) * o.width + bx) * 4];
+            for (int c = 0; c < 3; ++c) a[c] = static_cast<float>(added[c] / n);
+            a[3] = static_cast<float>(realShare / n);
+        }
+    });
     times_.display = secondsSince(t0);
     return o;
 }

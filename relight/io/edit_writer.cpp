@@ -7,6 +7,7 @@
 #include <string>
 #include <system_error>
 
+#include "relight/io/atomic_write.h"
 #include "relight/io/json_file.h"
 #include "relight/io/json_reader.h"
 

@@ -23,7 +23,7 @@ namespace relight {
 nlohmann::json editJson(const EditFile& edit, const std::filesystem::path& editFolder);
 
 /// Writes editJson(edit, file.parent_path()) atomically (writeJsonAtomic). Throws
-/// std::runtime_error naming the file when it cannot be written (e.g. a missing folder), and
+/// OutputError naming the file when it cannot be written (e.g. a missing folder), and
 /// editJson's std::invalid_argument before touching it; nothing is left half-written.
 void writeEdit(const std::filesystem::path& file, const EditFile& edit);
 

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <system_error>
 
 #include "relight/errors.h"
+#include "relight/io/atomic_write.h"
 
 namespace relight {
 
@@ -66,42 +66,32 @@ void writeImage(const std::filesystem::path& path, const Image& image, double ex
     const bool isFloat =
         ext == ".exr" || ext == ".hdr" || ext == ".pfm" || ext == ".tif" || ext == ".tiff";
     const double scale = std::exp2(exposureStops);
-    // Temporary name in the same folder keeps the final rename atomic; OIIO picks the
-    // format from the extension, so the temporary keeps it.
-    const std::filesystem::path tmp =
-        path.parent_path() / (".tmp-" + path.stem().string() + path.extension().string());
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) throw std::runtime_error(path.string() + ": no image writer for '" + ext + "'");
-    bool ok = false;
-    if (isFloat) {
-        OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
-        if (ext == ".exr") spec.attribute("compression", "zip");
-        std::vector<float> px(image.rgb);
-        for (float& v : px) v = static_cast<float>(static_cast<double>(v) * scale);
-        ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, px.data()) &&
-             out->close();
-    } else {
-        OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-        std::vector<uint8_t> px(image.rgb.size());
-        for (size_t i = 0; i < px.size(); ++i) {
-            const double v =
-                std::isfinite(image.rgb[i]) ? static_cast<double>(image.rgb[i]) * scale : 0.0;
-            px[i] = static_cast<uint8_t>(std::lround(255.0 * srgbEncode(v)));
+    writeAtomic(path, "cannot write image", [&](const std::filesystem::path& tmp) -> std::string {
+        bool ok = false;
+        if (isFloat) {
+            OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
+            if (ext == ".exr") spec.attribute("compression", "zip");
+            std::vector<float> px(image.rgb);
+            for (float& v : px) v = static_cast<float>(static_cast<double>(v) * scale);
+            ok = out->open(tmp.string(), spec) &&
+                 out->write_image(OIIO::TypeDesc::FLOAT, px.data()) && out->close();
+        } else {
+            OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+            std::vector<uint8_t> px(image.rgb.size());
+            for (size_t i = 0; i < px.size(); ++i) {
+                const double v =
+                    std::isfinite(image.rgb[i]) ? static_cast<double>(image.rgb[i]) * scale : 0.0;
+                px[i] = static_cast<uint8_t>(std::lround(255.0 * srgbEncode(v)));
+            }
+            ok = out->open(tmp.string(), spec) &&
+                 out->write_image(OIIO::TypeDesc::UINT8, px.data()) && out->close();
         }
-        ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data()) &&
-             out->close();
-    }
-    if (!ok) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error(path.string() + ": cannot write image: " + out->geterror());
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error(path.string() + ": cannot write image: " + ec.message());
-    }
+        if (ok) return {};
+        const std::string why = out->geterror();
+        return why.empty() ? "the image writer failed" : why;
+    });
 }
 
 }  // namespace relight

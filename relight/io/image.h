@@ -38,8 +38,9 @@ Image readImage(const std::filesystem::path& path, bool srgb = false);
 /// Reads an 8-bit mask (first channel), values 0..255.
 std::vector<uint8_t> readMask(const std::filesystem::path& path, int& width, int& height);
 
-/// Writes atomically (see above); the format follows the extension (.exr, .png, ...).
-/// Throws std::runtime_error naming the file on failure.
+/// Writes atomically (relight/io/atomic_write.h); the format follows the extension (.exr,
+/// .png, ...). Throws OutputError naming the file when it cannot be written, and
+/// std::runtime_error for an extension no image writer knows.
 void writeImage(const std::filesystem::path& path, const Image& image, double exposureStops = 0);
 
 }  // namespace relight

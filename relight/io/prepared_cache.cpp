@@ -16,8 +16,10 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <type_traits>
+
+#include "relight/errors.h"
+#include "relight/io/atomic_write.h"
 
 namespace relight {
 
@@ -281,13 +283,6 @@ uint64_t checksum(const char* data, size_t n) {
     return h.h;
 }
 
-/// A name for the temporary file that no other writer picks.
-std::string uniqueSuffix() {
-    static std::random_device rd;
-    std::mt19937_64 g((static_cast<uint64_t>(rd()) << 32) ^ rd());
-    return std::to_string(g());
-}
-
 /// Checks that each range array starts at 0, never decreases and ends at `total`.
 std::string checkRanges(const std::vector<int>& start, size_t total, const char* name) {
     if (start.front() != 0) return std::string(name) + " does not start at 0";
@@ -410,26 +405,13 @@ void writePreparedCache(const fs::path& file, const PreparedImage& p, uint64_t k
     if (!dir.empty()) {
         fs::create_directories(dir, ec);
         if (ec)
-            throw InputError(file.string() + ": cannot write the cache: cannot create the folder " +
-                             dir.string() + ": " + ec.message());
+            throw OutputError(file.string() +
+                              ": cannot write the cache: cannot create the folder " + dir.string() +
+                              ": " + ec.message());
     }
-    // A temporary file in the same folder keeps the rename atomic: readers see the old
-    // cache or the new one, never part of one.
-    const fs::path tmp = dir / (".tmp-" + file.filename().string() + "-" + uniqueSuffix());
-    auto fail = [&](const std::string& what) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw InputError(file.string() + ": cannot write the cache: " + what);
-    };
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) fail("cannot create " + tmp.string() + ": " + std::strerror(errno));
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) fail("writing " + tmp.string() + " failed (disk full?)");
-    }
-    fs::rename(tmp, file, ec);
-    if (ec) fail(ec.message());
+    // Readers see the old cache or the new one, never part of one; two preparations of one
+    // scene at once each write their own temporary file.
+    writeBytesAtomic(file, "cannot write the cache", bytes, /*uniqueTemporary=*/true);
 }
 
 std::optional<PreparedImage> readPreparedCache(const fs::path& file, uint64_t key,

@@ -54,7 +54,7 @@ std::filesystem::path defaultCachePath(const std::filesystem::path& sceneDir);
 
 /// Writes `p` with `key` atomically: to a temporary file in the same folder, renamed over
 /// `file` (a failed write leaves any previous cache as it was, and no temporary file).
-/// Creates the parent folders. Throws InputError naming the file or folder on failure.
+/// Creates the parent folders. Throws OutputError naming the file or folder on failure.
 void writePreparedCache(const std::filesystem::path& file, const PreparedImage& p, uint64_t key);
 
 /// Reads a cache written with `key`. Returns nullopt, with the reason in *why (when not

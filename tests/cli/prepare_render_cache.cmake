@@ -60,7 +60,8 @@ expect("${out}" "cache (truncated|corrupt)" "render with a corrupt cache")
 relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 -o "${WORK}/d.png")
 expect("${out}" "using cache" "render after the corrupt cache was rebuilt")
 
-# A cache that cannot be written: render warns and goes on; prepare fails naming it.
+# A cache that cannot be written: render warns and goes on; prepare fails naming it, with
+# the exit code of any output that cannot be written (tests/cli/write_failures.cmake).
 file(WRITE "${WORK}/blocker" "a file where a folder should be")
 set(unwritable "${WORK}/blocker/prepared.bin")
 relight(out 0 render "${room}" --epsilon 1e-3 --spp 2 --cache "${unwritable}" -o "${WORK}/e.png")
@@ -68,7 +69,7 @@ expect("${out}" "warning: [^\n]*blocker/prepared\\.bin: cannot write the cache" 
 if(NOT EXISTS "${WORK}/e.png")
   message(FATAL_ERROR "render wrote no image when the cache could not be written")
 endif()
-relight(out 2 prepare "${room}" --epsilon 1e-3 --spp 2 --cache "${unwritable}")
+relight(out 3 prepare "${room}" --epsilon 1e-3 --spp 2 --cache "${unwritable}")
 expect("${out}" "error: [^\n]*blocker/prepared\\.bin: cannot write the cache" "prepare, unwritable")
 
 # --no-cache: neither read nor written.

@@ -71,7 +71,7 @@ expect("${out}" "wrote debug views" "--no-cache --debug-views")
 
 # A folder that cannot be made: fails at once, before any preparation, naming it.
 file(WRITE "${WORK}/blocker" "a file where a folder should be")
-relight(out 2 render "${room}" ${cheap} -o "${WORK}/x.png" --debug-views "${WORK}/blocker/views")
+relight(out 3 render "${room}" ${cheap} -o "${WORK}/x.png" --debug-views "${WORK}/blocker/views")
 expect("${out}" "error: [^\n]*blocker/views: cannot create the debug-views folder" "bad folder")
 expect_not("${out}" "preparing|using cache" "bad folder")
 

@@ -291,7 +291,7 @@ TEST(DebugViews, AFolderThatCannotBeMadeIsAnErrorNamingIt) {
         try {
             writeDebugViews(room(), backOff(), bad);
             ADD_FAILURE() << "no error for " << bad;
-        } catch (const InputError& e) {
+        } catch (const OutputError& e) {
             EXPECT_NE(std::string(e.what()).find(bad.string() + ": cannot create"),
                       std::string::npos)
                 << e.what();

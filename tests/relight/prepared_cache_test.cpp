@@ -386,7 +386,7 @@ TEST(PreparedCache, FailedWriteIsAClearErrorAndLeavesNoTemporaryFile) {
     try {
         writePreparedCache(f, p, 1);
         ADD_FAILURE() << "no error";
-    } catch (const InputError& e) {
+    } catch (const OutputError& e) {
         EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("cannot create the folder"), std::string::npos)
             << e.what();
@@ -396,7 +396,7 @@ TEST(PreparedCache, FailedWriteIsAClearErrorAndLeavesNoTemporaryFile) {
     try {
         writePreparedCache(dir.path() / "cache.bin", p, 1);
         ADD_FAILURE() << "no error";
-    } catch (const InputError& e) {
+    } catch (const OutputError& e) {
         EXPECT_NE(std::string(e.what()).find((dir.path() / "cache.bin").string()),
                   std::string::npos)
             << e.what();
