@@ -212,8 +212,7 @@ int runSolve(const SolveArgs& a) {
                  a.scene.c_str(), sf.scene.polygons.size(), sf.scene.lights.size(), a.epsilon);
     radiosity::HierarchicalSolver solver(sf.scene, solverOptions(a));
     for (const auto& w : lightReachWarnings(sf, solver.scene(), solver.visibility()))
-        std::fprintf(stderr, "warning: %s
-", w.c_str());
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
     CameraSamples camera(a, sf, solver);
     if (std::find(sf.estimateRadiance.begin(), sf.estimateRadiance.end(), true) !=
         sf.estimateRadiance.end())
@@ -223,9 +222,9 @@ int runSolve(const SolveArgs& a) {
     printStats(st);
     if (!a.output.empty()) writeRadiosityImage(a, solver, camera);
     if (!a.report.empty()) {
-            writeJsonAtomic(
-                a.report, solveReport(a, solver, st, reflectance, camera.lightingSeconds(), tAll));
-            std::printf("wrote %s\n", a.report.c_str());
+        writeJsonAtomic(a.report,
+                        solveReport(a, solver, st, reflectance, camera.lightingSeconds(), tAll));
+        std::printf("wrote %s\n", a.report.c_str());
     }
     return 0;
 }
