@@ -148,7 +148,7 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     r->mesh = std::make_unique<radiosity::LeafMesh>(
         r->solver->hierarchy(), displaySplits(*r->texture, r->sampling, o.displayPiecePixels));
     say("lighting at " + std::to_string(r->mesh->vertices().size()) + " leaf vertices");
-    P.lighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, &r->direct);
+    P.lighting = measureVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, r->direct);
     P.times.vertexLighting = since(t0);
 
     if (o.leafReflectance) {
@@ -162,8 +162,7 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
         say("reflectance of " + std::to_string(set) + " leaf elements from their texture");
         r->solver->gatherPushPull();
         r->responses = std::make_unique<radiosity::LightResponses>(*r->solver, r->responses.get());
-        P.lighting =
-            computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, nullptr, &r->direct);
+        P.lighting = regatherVertexLighting(*r->solver, *r->mesh, *r->responses, r->direct);
         P.times.reflectance += since(t0);
     }
 
@@ -171,7 +170,7 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     if (o.shadowRemoval) {
         say("real-shadow removal");
         r->removal = removeRealShadows(*r->solver, *r->mesh, *r->texture, P.photoRadiance,
-                                       P.lighting, r->direct, r->responses, dlo, o.removal);
+                                       P.lighting, r->direct, r->responses, o.removal);
         say("  " + std::to_string(r->removal.occluded) + " occluded leaves, " +
             std::to_string(r->removal.frontier) + " on the frontier, " +
             std::to_string(r->removal.referenced) + " with a reference; " +

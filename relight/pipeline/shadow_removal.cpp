@@ -30,7 +30,6 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
                                 std::span<const Rgb> L, const VertexLighting& photoLighting,
                                 const VertexDirect& direct,
                                 std::unique_ptr<radiosity::LightResponses>& responses,
-                                const radiosity::DirectLightOptions& dlo,
                                 const ShadowRemovalOptions& o) {
     ShadowRemoval out;
     const radiosity::Hierarchy& h = solver.hierarchy();
@@ -163,8 +162,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
                           (H[v][c] + out.blocked[v][c] + deltaH[c]);
         setLeafReflectance(f);
     }
-    VertexLighting lighting =
-        computeVertexLighting(solver, mesh, *responses, dlo, nullptr, &direct, nullptr);
+    VertexLighting lighting = regatherVertexLighting(solver, mesh, *responses, direct);
     std::vector<Rgb> Iinter(nv), Hinter(nv);
     for (int v = 0; v < nv; ++v) {
         Hinter[v] = lighting.irradiance(v, L);
@@ -198,8 +196,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
     }
     solver.gatherPushPull();
     responses = std::make_unique<radiosity::LightResponses>(solver, responses.get());
-    lighting =
-        computeVertexLighting(solver, mesh, *responses, dlo, nullptr, &direct, &out.linkCorrection);
+    lighting = regatherVertexLighting(solver, mesh, *responses, direct, out.linkCorrection);
 
     // ---- umbra correction (Eq. 16) and T_final
     out.umbraCorrection.assign(nv, Rgb::gray(1.0));
@@ -214,8 +211,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
         }
     }
     setLeafReflectance(out.umbraCorrection);  // reflectance of T_final, radiosity step
-    out.lighting =
-        computeVertexLighting(solver, mesh, *responses, dlo, nullptr, &direct, &out.linkCorrection);
+    out.lighting = regatherVertexLighting(solver, mesh, *responses, direct, out.linkCorrection);
     out.D.resize(nv);
     std::vector<Rgb> Hfinal(nv);
     for (int v = 0; v < nv; ++v) {

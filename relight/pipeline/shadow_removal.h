@@ -74,14 +74,13 @@ struct ShadowRemoval {
 
 /// Runs §4.3-4.4 on a solved, refined solver (light links at the leaves, receiver index
 /// built). `photoRadiance` is each light's radiance in the photo; `lighting` and `direct`
-/// the per-vertex lighting of computeVertexLighting on that solution. Changes the solver (element
-/// reflectances, light links' V) and replaces `responses` by the final solution's.
+/// the per-vertex lighting of measureVertexLighting on that solution. Changes the solver
+/// (element reflectances, light links' V) and replaces `responses` by the final solution's.
 ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
                                 const radiosity::LeafMesh& mesh, const LeafTexture& texture,
                                 std::span<const radiosity::Rgb> photoRadiance,
                                 const VertexLighting& lighting, const VertexDirect& direct,
                                 std::unique_ptr<radiosity::LightResponses>& responses,
-                                const radiosity::DirectLightOptions& dlo,
                                 const ShadowRemovalOptions& options = {});
 
 }  // namespace relight

@@ -25,16 +25,9 @@ std::unique_ptr<Relighting> prepareBare() {
     return prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
 }
 
-radiosity::DirectLightOptions directOptions() {
-    radiosity::DirectLightOptions dlo;  // as prepareRelighting's defaults
-    dlo.minRays = RelightOptions{}.minRays;
-    dlo.maxRays = RelightOptions{}.maxRays;
-    return dlo;
-}
-
 ShadowRemoval removeWith(Relighting& r, const LeafTexture& texture) {
     return removeRealShadows(*r.solver, *r.mesh, texture, r.prepared.photoRadiance,
-                             r.prepared.lighting, r.direct, r.responses, directOptions());
+                             r.prepared.lighting, r.direct, r.responses);
 }
 
 }  // namespace
