@@ -169,8 +169,9 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     t0 = Clock::now();
     if (o.shadowRemoval) {
         say("real-shadow removal");
-        r->removal = removeRealShadows(*r->solver, *r->mesh, *r->texture, P.photoRadiance,
-                                       P.lighting, r->direct, r->responses, o.removal);
+        r->removal = removeRealShadows(
+            *r->solver, r->responses,
+            {*r->mesh, *r->texture, P.photoRadiance, P.lighting, r->direct}, o.removal);
         say("  " + std::to_string(r->removal.occluded) + " occluded leaves, " +
             std::to_string(r->removal.frontier) + " on the frontier, " +
             std::to_string(r->removal.referenced) + " with a reference; " +
