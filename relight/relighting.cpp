@@ -74,16 +74,23 @@ radiosity::LeafMesh::SplitRule displaySplits(const LeafTexture& texture, const S
     };
 }
 
-std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& o) {
-    auto say = [&](const std::string& m) {
-        if (o.progress) o.progress(m);
-    };
-    auto r = std::make_unique<Relighting>();
-    r->scene = std::move(scene);
-    PreparedImage& P = r->prepared;
-    checkEstimableLights(r->scene);  // before the long work: an "estimate" light off in the photo
-    P.photo = loadFirstPhoto(r->scene);
+namespace {
 
+void say(const RelightOptions& o, const std::string& message) {
+    if (o.progress) o.progress(message);
+}
+
+radiosity::DirectLightOptions directLightOptions(const RelightOptions& o) {
+    radiosity::DirectLightOptions dlo;
+    dlo.minRays = o.minRays;
+    dlo.maxRays = o.maxRays;
+    return dlo;
+}
+
+/// Step 1: the first photo, the solver's scene, and the item buffer the camera casts on it.
+void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
+    PreparedImage& P = r.prepared;
+    P.photo = loadFirstPhoto(r.scene);
     radiosity::SolverOptions so;
     so.epsilon = o.epsilon;
     so.maxLinks = o.maxLinks;
@@ -92,142 +99,178 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     so.transfer.maxRays = o.maxRays;
     so.progress = o.progress;
     auto t0 = Clock::now();
-    r->solver = std::make_unique<radiosity::HierarchicalSolver>(r->scene.scene, so);
+    r.solver = std::make_unique<radiosity::HierarchicalSolver>(r.scene.scene, so);
     for (const std::string& w :
-         lightReachWarnings(r->scene, r->solver->scene(), r->solver->visibility()))
-        say("warning: " + w);
-    say("item buffer");
-    r->sampling =
-        planSampling(r->scene.camera.width, r->scene.camera.height, o.spp, o.sampleBudget);
-    r->items = castItemBuffer(r->scene.camera, r->solver->scene(), r->solver->visibility(),
-                              r->sampling.spp);
+         lightReachWarnings(r.scene, r.solver->scene(), r.solver->visibility()))
+        say(o, "warning: " + w);
+    say(o, "item buffer");
+    r.sampling = planSampling(r.scene.camera.width, r.scene.camera.height, o.spp, o.sampleBudget);
+    r.items =
+        castItemBuffer(r.scene.camera, r.solver->scene(), r.solver->visibility(), r.sampling.spp);
     P.times.itemBuffer = since(t0);
+}
 
-    // Lights whose radiance is "estimate": estimated before the solve, which needs their
-    // emittance; from here on they are lights of known radiance (nominal = estimate).
-    if (std::find(r->scene.estimateRadiance.begin(), r->scene.estimateRadiance.end(), true) !=
-        r->scene.estimateRadiance.end()) {
-        say("emittance of the \"estimate\" lights");
-        r->emittance = estimateEmittance(r->scene, r->solver->scene(), r->items, P.photo);
-        for (const std::string& w : r->emittance.warnings) say("  warning: " + w);
-        for (const std::string& line : r->emittance.summary()) say("  " + line);
-        std::vector<Rgb> radiance(r->scene.scene.lights.size());
+/// Step 2: the lights whose radiance is "estimate", estimated before the solve, which needs
+/// their emittance; from here on they are lights of known radiance (nominal = estimate).
+/// Then the lights' radiances in the photo.
+void estimateLightsFromPhoto(Relighting& r, const RelightOptions& o) {
+    PreparedImage& P = r.prepared;
+    if (std::find(r.scene.estimateRadiance.begin(), r.scene.estimateRadiance.end(), true) !=
+        r.scene.estimateRadiance.end()) {
+        say(o, "emittance of the \"estimate\" lights");
+        r.emittance = estimateEmittance(r.scene, r.solver->scene(), r.items, P.photo);
+        for (const std::string& w : r.emittance.warnings) say(o, "  warning: " + w);
+        for (const std::string& line : r.emittance.summary()) say(o, "  " + line);
+        std::vector<Rgb> radiance(r.scene.scene.lights.size());
         for (size_t l = 0; l < radiance.size(); ++l) {
-            if (r->scene.estimateRadiance[l]) {
+            if (r.scene.estimateRadiance[l]) {
                 // On in the photo (checkEstimableLights), so the photo's state is the estimate.
-                r->scene.nominalRadiance[l] = r->emittance.lights[l].radiance;
-                r->scene.scene.lights[l].radiance = r->emittance.lights[l].radiance;
+                r.scene.nominalRadiance[l] = r.emittance.lights[l].radiance;
+                r.scene.scene.lights[l].radiance = r.emittance.lights[l].radiance;
             }
-            radiance[l] = r->scene.scene.lights[l].radiance;
+            radiance[l] = r.scene.scene.lights[l].radiance;
         }
-        r->solver->setLightRadiances(radiance);  // not solved yet: sets the emittance only
+        r.solver->setLightRadiances(radiance);  // not solved yet: sets the emittance only
     }
-    P.photoRadiance.resize(r->scene.scene.lights.size());
+    P.photoRadiance.resize(r.scene.scene.lights.size());
     for (size_t l = 0; l < P.photoRadiance.size(); ++l)
-        P.photoRadiance[l] = r->scene.scene.lights[l].radiance;  // the photo's state
+        P.photoRadiance[l] = r.scene.scene.lights[l].radiance;  // the photo's state
+}
 
-    t0 = Clock::now();
-    say("radiosity solution of the photo's lights");
-    r->solver->solve();
+/// Step 3, first part: the radiosity solution of the photo's lights, then the reflectance of
+/// each polygon from the photo.
+void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
+    PreparedImage& P = r.prepared;
+    auto t0 = Clock::now();
+    say(o, "radiosity solution of the photo's lights");
+    r.solver->solve();
     P.times.solve = since(t0);
-    if (const auto st = r->solver->stats(); st.budgetReached)
-        say("warning: the refinement budget was reached (" + std::to_string(st.links) + " links, " +
-            std::to_string(st.memoryBytes >> 20) +
-            " MiB): the solution is coarser where the oracle's error was smallest");
+    if (const auto st = r.solver->stats(); st.budgetReached)
+        say(o, "warning: the refinement budget was reached (" + std::to_string(st.links) +
+                   " links, " + std::to_string(st.memoryBytes >> 20) +
+                   " MiB): the solution is coarser where the oracle's error was smallest");
 
     t0 = Clock::now();
-    say("reflectance from the photo");
-    radiosity::DirectLightOptions dlo;
-    dlo.minRays = o.minRays;
-    dlo.maxRays = o.maxRays;
+    say(o, "reflectance from the photo");
     const LightingBuffer lighting =
-        computeLightingBuffer(r->items, *r->solver, dlo, r->sampling.stride);
-    estimatePolygonReflectance(*r->solver, r->scene, r->items, lighting, P.photo,
-                               o.reflectanceRounds);
+        computeLightingBuffer(r.items, *r.solver, directLightOptions(o), r.sampling.stride);
+    estimatePolygonReflectance(*r.solver, r.scene, r.items, lighting, P.photo, o.reflectanceRounds);
     P.times.reflectance = since(t0);
+}
 
-    t0 = Clock::now();
-    r->texture = std::make_unique<LeafTexture>(
-        r->solver->hierarchy(), r->solver->scene(), r->items, P.photo,
-        usablePixels(r->items, r->solver->scene(), P.photo, r->sampling.stride));
+/// Step 3, second part: the photo per leaf, and the texture-based refinement of shadow
+/// boundaries (§4.2) when it is on.
+void refineAlongPhotoShadows(Relighting& r, const RelightOptions& o) {
+    PreparedImage& P = r.prepared;
+    auto t0 = Clock::now();
+    r.texture = std::make_unique<LeafTexture>(
+        r.solver->hierarchy(), r.solver->scene(), r.items, P.photo,
+        usablePixels(r.items, r.solver->scene(), P.photo, r.sampling.stride));
     if (o.shadowRefinement) {
-        say("texture-based refinement of shadow boundaries");
+        say(o, "texture-based refinement of shadow boundaries");
         ShadowRefinementOptions ro = o.refinement;
         ro.progress = o.progress;
-        r->refinement = refineShadowBoundaries(*r->solver, *r->texture, ro);
-        say("  " + std::to_string(r->refinement.splitSameColour) + " + " +
-            std::to_string(r->refinement.splitDifferentColour) + " splits kept, " +
-            std::to_string(r->refinement.undone) + " undone; " +
-            std::to_string(r->refinement.leavesAfter) + " leaves");
+        r.refinement = refineShadowBoundaries(*r.solver, *r.texture, ro);
+        say(o, "  " + std::to_string(r.refinement.splitSameColour) + " + " +
+                   std::to_string(r.refinement.splitDifferentColour) + " splits kept, " +
+                   std::to_string(r.refinement.undone) + " undone; " +
+                   std::to_string(r.refinement.leavesAfter) + " leaves");
     }
     P.times.refinement = since(t0);
+}
 
-    t0 = Clock::now();
-    say("per-light responses");
-    r->responses = std::make_unique<radiosity::LightResponses>(*r->solver);
+/// Step 4: the per-light responses, the display's leaf mesh and the lighting per light at
+/// its vertices; then, when it is on, each leaf's reflectance from its texture against the
+/// irradiance at its corners, a radiosity step, and the lighting again (its indirect part
+/// changed; the direct part, and its rays, are kept).
+void lightLeafVertices(Relighting& r, const RelightOptions& o) {
+    PreparedImage& P = r.prepared;
+    auto t0 = Clock::now();
+    say(o, "per-light responses");
+    r.responses = std::make_unique<radiosity::LightResponses>(*r.solver);
     P.times.responses = since(t0);
 
     t0 = Clock::now();
-    r->mesh = std::make_unique<radiosity::LeafMesh>(
-        r->solver->hierarchy(), displaySplits(*r->texture, r->sampling, o.displayPiecePixels));
-    say("lighting at " + std::to_string(r->mesh->vertices().size()) + " leaf vertices");
-    P.lighting = computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, &r->direct);
+    r.mesh = std::make_unique<radiosity::LeafMesh>(
+        r.solver->hierarchy(), displaySplits(*r.texture, r.sampling, o.displayPiecePixels));
+    say(o, "lighting at " + std::to_string(r.mesh->vertices().size()) + " leaf vertices");
+    P.lighting =
+        measureVertexLighting(*r.solver, *r.mesh, *r.responses, directLightOptions(o), r.direct);
     P.times.vertexLighting = since(t0);
 
-    if (o.leafReflectance) {
-        // The reflectance of each element from its texture, against the irradiance at its
-        // corners; then a radiosity step, and the lighting again (its indirect part changed;
-        // the direct part, and its rays, are kept).
-        t0 = Clock::now();
-        const std::vector<Rgb> H = vertexIrradiance(P, P.photoRadiance);
-        const int set =
-            estimateLeafReflectance(*r->solver, *r->mesh, *r->texture, H, o.leafReflectanceSamples);
-        say("reflectance of " + std::to_string(set) + " leaf elements from their texture");
-        r->solver->gatherPushPull();
-        r->responses = std::make_unique<radiosity::LightResponses>(*r->solver, r->responses.get());
-        P.lighting =
-            computeVertexLighting(*r->solver, *r->mesh, *r->responses, dlo, nullptr, &r->direct);
-        P.times.reflectance += since(t0);
-    }
-
+    if (!o.leafReflectance) return;
     t0 = Clock::now();
+    const std::vector<Rgb> H = vertexIrradiance(P, P.photoRadiance);
+    const int set =
+        estimateLeafReflectance(*r.solver, *r.mesh, *r.texture, H, o.leafReflectanceSamples);
+    say(o, "reflectance of " + std::to_string(set) + " leaf elements from their texture");
+    r.solver->gatherPushPull();
+    r.responses = std::make_unique<radiosity::LightResponses>(*r.solver, r.responses.get());
+    P.lighting = regatherVertexLighting(*r.solver, *r.mesh, *r.responses, r.direct);
+    P.times.reflectance += since(t0);
+}
+
+/// Step 5: real-shadow removal (§4.3-4.4) gives D and the texture factor; without it, the
+/// 1997 method: D is the photo's own lighting, so the unedited display is the photo (B/D = 1).
+void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
+    PreparedImage& P = r.prepared;
+    auto t0 = Clock::now();
     if (o.shadowRemoval) {
-        say("real-shadow removal");
-        r->removal = removeRealShadows(*r->solver, *r->mesh, *r->texture, P.photoRadiance,
-                                       P.lighting, r->direct, r->responses, dlo, o.removal);
-        say("  " + std::to_string(r->removal.occluded) + " occluded leaves, " +
-            std::to_string(r->removal.frontier) + " on the frontier, " +
-            std::to_string(r->removal.referenced) + " with a reference; " +
-            std::to_string(r->removal.partialVertices) + " vertices with C_link, " +
-            std::to_string(r->removal.umbraVertices) + " with C_umbra");
-        P.lighting = r->removal.lighting;
-        P.D = r->removal.D;
-        P.textureFactor = r->removal.kFinal;
+        say(o, "real-shadow removal");
+        r.removal = removeRealShadows(*r.solver, r.responses,
+                                      {*r.mesh, *r.texture, P.photoRadiance, P.lighting, r.direct},
+                                      o.removal);
+        say(o, "  " + std::to_string(r.removal.occluded) + " occluded leaves, " +
+                   std::to_string(r.removal.frontier) + " on the frontier, " +
+                   std::to_string(r.removal.referenced) + " with a reference; " +
+                   std::to_string(r.removal.partialVertices) + " vertices with C_link, " +
+                   std::to_string(r.removal.umbraVertices) + " with C_umbra");
+        P.lighting = r.removal.lighting;
+        P.D = r.removal.D;
+        P.textureFactor = r.removal.kFinal;
     } else {
-        // The 1997 method: D is the photo's own lighting, so the unedited display is the
-        // photo (B/D = 1).
         P.D = vertexIrradiance(P, P.photoRadiance);
         P.textureFactor.assign(P.D.size(), Rgb::gray(1.0));
     }
     P.times.shadowRemoval = since(t0);
     // The vertices' gather terms served the lightings above; edits gather afresh.
-    r->direct.termStart = {};
-    r->direct.terms = {};
+    r.direct.termStart = {};
+    r.direct.terms = {};
+}
 
-    t0 = Clock::now();
-    P.display = buildDisplayMap(r->items, *r->mesh, r->solver->scene());
+/// Step 6: the display map, and the solver's figures for the report.
+void mapDisplay(Relighting& r, const RelightOptions& o) {
+    PreparedImage& P = r.prepared;
+    auto t0 = Clock::now();
+    P.display = buildDisplayMap(r.items, *r.mesh, r.solver->scene());
     if (const int n = trustPhotoAtEmitters(P.display, P.photo, P.photoRadiance); n > 0)
-        say("warning: " + std::to_string(n) +
-            " pixels on a lamp's emitting face do not show the lamp in the photo (is the lamp "
-            "where scene.json says?); they are kept as in the photo");
+        say(o, "warning: " + std::to_string(n) +
+                   " pixels on a lamp's emitting face do not show the lamp in the photo (is the "
+                   "lamp where scene.json says?); they are kept as in the photo");
     P.times.displayMap = since(t0);
-    const auto st = r->solver->stats();
+    const auto st = r.solver->stats();
     P.leaves = st.leaves;
     P.links = st.links;
     P.budgetReached = st.budgetReached ? 1 : 0;
     P.solverBytes = st.memoryBytes;
     P.maxLinks = st.maxLinks;
     P.maxMemory = st.maxMemory;
+}
+
+}  // namespace
+
+std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& o) {
+    auto r = std::make_unique<Relighting>();
+    r->scene = std::move(scene);
+    checkEstimableLights(r->scene);  // before the long work: an "estimate" light off in the photo
+    // The steps of the header's list.
+    readPhotoAndCastItems(*r, o);        // 1
+    estimateLightsFromPhoto(*r, o);      // 2
+    solveAndEstimateReflectance(*r, o);  // 3
+    refineAlongPhotoShadows(*r, o);      // 3, §4.2
+    lightLeafVertices(*r, o);            // 4
+    removeShadowsForDisplay(*r, o);      // 5, §4.3-4.4
+    mapDisplay(*r, o);                   // 6
     return r;
 }
 

@@ -26,81 +26,88 @@ SampleHit locateSample(const ItemBuffer& items, const radiosity::Hierarchy& h,
     return hit;
 }
 
-DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
-                           const radiosity::Scene& scene) {
-    DisplayMap m;
-    m.width = items.width;
-    m.height = items.height;
-    const int pixels = items.width * items.height;
-    m.unshaded.assign(pixels, 0.0f);
+namespace {
+
+/// Rows of the display map built in parallel: each band into its own arrays (offsets from
+/// the band's start), then joined in order, so that the map does not depend on the number
+/// of threads.
+constexpr int kBandRows = 8;
+struct DisplayBand {
+    std::vector<int> start, vertex, emitterStart, emitterLight;
+    std::vector<float> weight, emitterFraction;
+};
+
+/// What one pixel's samples see, each sample weighing 1/spp: the leaf vertices that
+/// interpolate at its points (with their weights), the lights whose faces it sees (with the
+/// fraction of samples), and the fraction on nothing to shade (background, no leaf).
+struct PixelCover {
+    std::vector<std::pair<int, double>> verts, emitters;  // small: searched linearly
+    double unshaded = 0;
+};
+
+void coverPixel(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
+                const radiosity::Scene& scene, int x, int y, PixelCover& cover) {
     const double perSample = 1.0 / items.spp;
-    // Bands of rows built in parallel, each into its own arrays (offsets from the band's
-    // start), then joined in order: the map does not depend on the number of threads.
-    constexpr int kBandRows = 8;
-    struct Band {
-        std::vector<int> start, vertex, emitterStart, emitterLight;
-        std::vector<float> weight, emitterFraction;
+    cover.verts.clear();
+    cover.emitters.clear();
+    cover.unshaded = 0;
+    auto add = [](std::vector<std::pair<int, double>>& list, int key, double w) {
+        auto it =
+            std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == key; });
+        if (it == list.end())
+            list.push_back({key, w});
+        else
+            it->second += w;
     };
-    std::vector<Band> bands(static_cast<size_t>((items.height + kBandRows - 1) / kBandRows));
-    tbb::parallel_for(0, static_cast<int>(bands.size()), [&](int b) {
-        Band& band = bands[b];
-        const int y0 = b * kBandRows, y1 = std::min(items.height, y0 + kBandRows);
-        const size_t bandPixels = static_cast<size_t>(y1 - y0) * items.width;
-        band.start.reserve(bandPixels);
-        band.emitterStart.reserve(bandPixels);
-        band.vertex.reserve(bandPixels * 4);  // a pixel inside a quad leaf: its 4 corners
-        band.weight.reserve(bandPixels * 4);
-        // Per-pixel accumulators: small, searched linearly (a pixel touches few vertices).
-        std::vector<std::pair<int, double>> verts, emitters;
-        for (int y = y0; y < y1; ++y) {
-            for (int x = 0; x < items.width; ++x) {
-                verts.clear();
-                emitters.clear();
-                double unshaded = 0;
-                for (int s = 0; s < items.spp; ++s) {
-                    const int idx = items.sampleIndex(x, y, s);
-                    const SampleHit hit = locateSample(items, mesh.hierarchy(), scene, idx);
-                    if (hit.light >= 0) {
-                        auto it = std::find_if(emitters.begin(), emitters.end(),
-                                               [&](const auto& e) { return e.first == hit.light; });
-                        if (it == emitters.end())
-                            emitters.push_back({hit.light, perSample});
-                        else
-                            it->second += perSample;
-                        continue;
-                    }
-                    if (!hit.surface()) {
-                        unshaded += perSample;
-                        continue;
-                    }
-                    const int leaf = hit.leaf;
-                    const auto st = mesh.stencil(leaf, items.point[idx]);
-                    for (int i = 0; i < st.count; ++i) {
-                        if (!(st.weight[i] > 0)) continue;
-                        const int v = st.vertex[i];
-                        auto it = std::find_if(verts.begin(), verts.end(),
-                                               [&](const auto& e) { return e.first == v; });
-                        if (it == verts.end())
-                            verts.push_back({v, st.weight[i] * perSample});
-                        else
-                            it->second += st.weight[i] * perSample;
-                    }
-                }
-                band.start.push_back(static_cast<int>(band.vertex.size()));
-                for (const auto& [v, w] : verts) {
-                    band.vertex.push_back(v);
-                    band.weight.push_back(static_cast<float>(w));
-                }
-                band.emitterStart.push_back(static_cast<int>(band.emitterLight.size()));
-                for (const auto& [l, f] : emitters) {
-                    band.emitterLight.push_back(l);
-                    band.emitterFraction.push_back(static_cast<float>(f));
-                }
-                m.unshaded[static_cast<size_t>(y) * items.width + x] = static_cast<float>(unshaded);
-            }
+    for (int s = 0; s < items.spp; ++s) {
+        const int idx = items.sampleIndex(x, y, s);
+        const SampleHit hit = locateSample(items, mesh.hierarchy(), scene, idx);
+        if (hit.light >= 0) {
+            add(cover.emitters, hit.light, perSample);
+            continue;
         }
-    });
-    // Join: each band's entries go after those of the bands above it.
+        if (!hit.surface()) {
+            cover.unshaded += perSample;
+            continue;
+        }
+        const auto st = mesh.stencil(hit.leaf, items.point[idx]);
+        for (int i = 0; i < st.count; ++i)
+            if (st.weight[i] > 0) add(cover.verts, st.vertex[i], st.weight[i] * perSample);
+    }
+}
+
+/// Band `b` of the map: its pixels' entries, and their unshaded fractions into `unshaded`.
+void buildBand(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
+               const radiosity::Scene& scene, int b, DisplayBand& band,
+               std::vector<float>& unshaded) {
+    const int y0 = b * kBandRows, y1 = std::min(items.height, y0 + kBandRows);
+    const size_t bandPixels = static_cast<size_t>(y1 - y0) * items.width;
+    band.start.reserve(bandPixels);
+    band.emitterStart.reserve(bandPixels);
+    band.vertex.reserve(bandPixels * 4);  // a pixel inside a quad leaf: its 4 corners
+    band.weight.reserve(bandPixels * 4);
+    PixelCover cover;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = 0; x < items.width; ++x) {
+            coverPixel(items, mesh, scene, x, y, cover);
+            band.start.push_back(static_cast<int>(band.vertex.size()));
+            for (const auto& [v, w] : cover.verts) {
+                band.vertex.push_back(v);
+                band.weight.push_back(static_cast<float>(w));
+            }
+            band.emitterStart.push_back(static_cast<int>(band.emitterLight.size()));
+            for (const auto& [l, f] : cover.emitters) {
+                band.emitterLight.push_back(l);
+                band.emitterFraction.push_back(static_cast<float>(f));
+            }
+            unshaded[static_cast<size_t>(y) * items.width + x] = static_cast<float>(cover.unshaded);
+        }
+    }
+}
+
+/// The bands joined: each band's entries go after those of the bands above it.
+void joinBands(std::vector<DisplayBand>& bands, DisplayMap& m) {
+    const int pixels = m.width * m.height;
     std::vector<size_t> vFirst(bands.size() + 1, 0), eFirst(bands.size() + 1, 0);
     for (size_t b = 0; b < bands.size(); ++b) {
         vFirst[b + 1] = vFirst[b] + bands[b].vertex.size();
@@ -115,8 +122,8 @@ DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& m
     m.emitterLight.resize(eFirst.back());
     m.emitterFraction.resize(eFirst.back());
     tbb::parallel_for(0, static_cast<int>(bands.size()), [&](int b) {
-        Band& band = bands[b];
-        const size_t p0 = static_cast<size_t>(b) * kBandRows * items.width;
+        DisplayBand& band = bands[b];
+        const size_t p0 = static_cast<size_t>(b) * kBandRows * m.width;
         for (size_t i = 0; i < band.start.size(); ++i) {
             m.start[p0 + i] = band.start[i] + static_cast<int>(vFirst[b]);
             m.emitterStart[p0 + i] = band.emitterStart[i] + static_cast<int>(eFirst[b]);
@@ -127,10 +134,24 @@ DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& m
                   m.emitterLight.begin() + eFirst[b]);
         std::copy(band.emitterFraction.begin(), band.emitterFraction.end(),
                   m.emitterFraction.begin() + eFirst[b]);
-        band = Band();  // freed as we go: the map is the peak of memory
+        band = DisplayBand();  // freed as we go: the map is the peak of memory
     });
     m.start[pixels] = static_cast<int>(vFirst.back());
     m.emitterStart[pixels] = static_cast<int>(eFirst.back());
+}
+
+}  // namespace
+
+DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
+                           const radiosity::Scene& scene) {
+    DisplayMap m;
+    m.width = items.width;
+    m.height = items.height;
+    m.unshaded.assign(static_cast<size_t>(items.width) * items.height, 0.0f);
+    std::vector<DisplayBand> bands(static_cast<size_t>((items.height + kBandRows - 1) / kBandRows));
+    tbb::parallel_for(0, static_cast<int>(bands.size()),
+                      [&](int b) { buildBand(items, mesh, scene, b, bands[b], m.unshaded); });
+    joinBands(bands, m);
     packDisplayMap(m);
     return m;
 }

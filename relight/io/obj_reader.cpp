@@ -114,6 +114,72 @@ std::string ObjFile::whereFace(const ObjFace& face) const {
            ": ";
 }
 
+namespace {
+
+/// "v x y z [w]": three finite coordinates (a fourth, the weight, is checked and ignored).
+void readVertex(const Statement& st, ObjFile& obj) {
+    if (st.tokens.size() < 4)
+        throw InputError(obj.where(st.line) + "vertex needs 3 coordinates, got " +
+                         std::to_string(st.tokens.size() - 1));
+    double xyz[3] = {0, 0, 0};
+    for (size_t i = 1; i < st.tokens.size(); ++i) {
+        double value = 0;
+        bool outOfRange = false;
+        if (!parseDouble(st.tokens[i], value, outOfRange))
+            throw InputError(obj.where(st.line) + "bad number \"" + st.tokens[i] + "\"" +
+                             (outOfRange ? " (out of range)" : ""));
+        if (!std::isfinite(value))
+            throw InputError(obj.where(st.line) + "vertex coordinate \"" + st.tokens[i] +
+                             "\" is not finite");
+        if (i <= 3) xyz[i - 1] = value;
+    }
+    obj.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
+    obj.positionLines.push_back(st.line);
+}
+
+/// A positive index that points past the vertices read so far (some exporters write faces
+/// first): checked once the whole file is read.
+struct ForwardIndex {
+    size_t face;
+    long long index;  ///< 1-based
+};
+
+/// "f v1 v2 v3 ...", each item v, v/vt, v//vn or v/vt/vn: a face of object `object`.
+void readFace(const Statement& st, int object, ObjFile& obj, std::vector<ForwardIndex>& forward) {
+    if (st.tokens.size() < 4)
+        throw InputError(obj.where(st.line) + "face needs at least 3 vertices, got " +
+                         std::to_string(st.tokens.size() - 1));
+    ObjFace face;
+    face.object = object;
+    face.line = st.line;
+    for (size_t i = 1; i < st.tokens.size(); ++i) {
+        const std::string& item = st.tokens[i];
+        // The position index is before the first slash.
+        const std::string_view vpart = std::string_view(item).substr(0, item.find('/'));
+        long long index = 0;
+        if (!parseInteger(vpart, index))
+            throw InputError(obj.where(st.line) + "bad vertex index \"" + item + "\"");
+        const long long count = static_cast<long long>(obj.positions.size());
+        if (index == 0)
+            throw InputError(obj.where(st.line) + "vertex index 0 (OBJ indices start at 1)");
+        if (index < 0) {
+            // Relative: -1 is the last vertex read so far.
+            if (-index > count)
+                throw InputError(obj.where(st.line) + "face references vertex " +
+                                 std::to_string(index) + ", but only " + std::to_string(count) +
+                                 " are defined so far");
+            face.vertices.push_back(static_cast<int>(count + index));
+        } else {
+            if (index > count) forward.push_back({obj.faces.size(), index});
+            // Clamp so that an unchecked value never fits in an int by accident.
+            face.vertices.push_back(static_cast<int>(std::min<long long>(index - 1, 0x7fffffff)));
+        }
+    }
+    obj.faces.push_back(std::move(face));
+}
+
+}  // namespace
+
 ObjFile parseObj(std::istream& in, const std::string& name) {
     ObjFile obj;
     obj.name = name;
@@ -134,70 +200,15 @@ ObjFile parseObj(std::istream& in, const std::string& name) {
         return it->second;
     };
     int current = -1;  // created lazily: the default object exists only if it has faces
-
-    // Positive indices may point forward (some exporters write faces first); they are
-    // checked once the whole file is read. Records (face, 1-based index).
-    struct Forward {
-        size_t face;
-        long long index;
-    };
-    std::vector<Forward> forward;
+    std::vector<ForwardIndex> forward;
     std::set<std::string> warnedKeywords;
-
     for (const Statement& st : statements) {
         const std::string& key = st.tokens[0];
         if (key == "v") {
-            if (st.tokens.size() < 4)
-                throw InputError(obj.where(st.line) + "vertex needs 3 coordinates, got " +
-                                 std::to_string(st.tokens.size() - 1));
-            double xyz[3] = {0, 0, 0};
-            for (size_t i = 1; i < st.tokens.size(); ++i) {
-                double value = 0;
-                bool outOfRange = false;
-                if (!parseDouble(st.tokens[i], value, outOfRange))
-                    throw InputError(obj.where(st.line) + "bad number \"" + st.tokens[i] + "\"" +
-                                     (outOfRange ? " (out of range)" : ""));
-                if (!std::isfinite(value))
-                    throw InputError(obj.where(st.line) + "vertex coordinate \"" + st.tokens[i] +
-                                     "\" is not finite");
-                if (i <= 3) xyz[i - 1] = value;
-            }
-            obj.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
-            obj.positionLines.push_back(st.line);
+            readVertex(st, obj);
         } else if (key == "f") {
-            if (st.tokens.size() < 4)
-                throw InputError(obj.where(st.line) + "face needs at least 3 vertices, got " +
-                                 std::to_string(st.tokens.size() - 1));
             if (current < 0) current = objectNamed(defaultName);
-            ObjFace face;
-            face.object = current;
-            face.line = st.line;
-            for (size_t i = 1; i < st.tokens.size(); ++i) {
-                const std::string& item = st.tokens[i];
-                // v, v/vt, v//vn, v/vt/vn: the position index is before the first slash.
-                const std::string_view vpart = std::string_view(item).substr(0, item.find('/'));
-                long long index = 0;
-                if (!parseInteger(vpart, index))
-                    throw InputError(obj.where(st.line) + "bad vertex index \"" + item + "\"");
-                const long long count = static_cast<long long>(obj.positions.size());
-                if (index == 0)
-                    throw InputError(obj.where(st.line) +
-                                     "vertex index 0 (OBJ indices start at 1)");
-                if (index < 0) {
-                    // Relative: -1 is the last vertex read so far.
-                    if (-index > count)
-                        throw InputError(obj.where(st.line) + "face references vertex " +
-                                         std::to_string(index) + ", but only " +
-                                         std::to_string(count) + " are defined so far");
-                    face.vertices.push_back(static_cast<int>(count + index));
-                } else {
-                    if (index > count) forward.push_back({obj.faces.size(), index});
-                    // Clamp so that an unchecked value never fits in an int by accident.
-                    face.vertices.push_back(
-                        static_cast<int>(std::min<long long>(index - 1, 0x7fffffff)));
-                }
-            }
-            obj.faces.push_back(std::move(face));
+            readFace(st, current, obj, forward);
         } else if (key == "o" || key == "g") {
             if (key != blockKeyword) continue;  // `g` inside `o` blocks: sub-groups
             const std::string objectName = joinFrom(st.tokens, 1);
@@ -211,7 +222,7 @@ ObjFile parseObj(std::istream& in, const std::string& name) {
     }
 
     const long long count = static_cast<long long>(obj.positions.size());
-    for (const Forward& f : forward) {
+    for (const ForwardIndex& f : forward) {
         if (f.index > count)
             throw InputError(obj.where(obj.faces[f.face].line) + "face references vertex " +
                              std::to_string(f.index) + ", but only " + std::to_string(count) +

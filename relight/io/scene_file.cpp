@@ -97,97 +97,86 @@ PhotoSpec::Encoding encodingFromExtension(const fs::path& file, bool& known) {
     return PhotoSpec::Encoding::linear;
 }
 
-}  // namespace
+// ---- the readers of loadScene, in the order it calls them -------------------------------
 
-void SceneFile::setPhotoLightState() {
-    // Spec, "Edit": a light that is not in the first photo's lights_on is off in that photo.
-    // Without a photo there is nothing to match: every light is on.
-    for (size_t i = 0; i < scene.lights.size() && i < nominalRadiance.size(); ++i)
-        scene.lights[i].radiance = lightOnInPhoto(i) ? nominalRadiance[i] : Rgb{};
-}
-
-bool SceneFile::lightOnInPhoto(size_t i) const {
-    if (photos.empty()) return true;
-    const auto& names = photos.front().lightsOn;
-    return std::find(names.begin(), names.end(), scene.lights.at(i).name) != names.end();
-}
-
-SceneFile loadScene(const fs::path& dir) {
-    SceneFile sf;
-    sf.dir = dir;
-    const fs::path jsonPath = dir / "scene.json";
-    const std::string file = jsonPath.string();
-    const json root = parseJsonFile(jsonPath);
-    const JsonReader r(file);
+/// The format first: a file of another kind (an edit, a newer version) is then named as
+/// such rather than reported as a list of unknown keys.
+void checkFormatAndKeys(const JsonReader& r, const json& root) {
     if (!root.is_object()) r.fail("", "the top level must be a JSON object");
-
-    // The format first: a file of another kind (an edit, a newer version) is then named as
-    // such rather than reported as a list of unknown keys.
     const json& format = r.require(root, "", "format");
     if (!format.is_string() || format.get<std::string>() != "relight-scene/1")
         r.fail("format", "expected \"relight-scene/1\", got " + format.dump());
     r.checkKeys(
         root, "",
         {"format", "geometry", "objects", "camera", "photos", "lights", "average_reflectance"});
+}
 
-    sf.camera = readCamera(r, r.require(root, "", "camera"));
+std::optional<double> readAverageReflectance(const JsonReader& r, const json& root) {
+    const auto it = root.find("average_reflectance");
+    if (it == root.end()) return std::nullopt;
+    const double a = r.number(*it, "average_reflectance");
+    // Below 1: a closed room of reflectance 1 never loses energy (no converged solution).
+    if (!(a >= 0 && a < 1)) r.fail("average_reflectance", "must be in [0, 1)");
+    return a;
+}
 
-    if (auto it = root.find("average_reflectance"); it != root.end()) {
-        const double a = r.number(*it, "average_reflectance");
-        // Below 1: a closed room of reflectance 1 never loses energy (no converged solution).
-        if (!(a >= 0 && a < 1)) r.fail("average_reflectance", "must be in [0, 1)");
-        sf.averageReflectance = a;
-    }
-
-    // Object settings, read before the geometry because they set its reflectance; their
-    // names are checked against the geometry afterwards.
-    if (auto it = root.find("objects"); it != root.end()) {
-        if (!it->is_object()) r.fail("objects", "expected an object of object names");
-        for (auto o = it->begin(); o != it->end(); ++o) {
-            const std::string path = child("objects", o.key());
-            r.checkKeys(o.value(), path, {"reflectance", "removable"});
-            ObjectSettings s;
-            if (auto refl = o->find("reflectance"); refl != o->end()) {
-                const std::string rPath = child(path, "reflectance");
-                Rgb rho = r.rgb(*refl, rPath);
-                bool clamped = false;
-                for (int k = 0; k < 3; ++k) {
-                    if (!(rho[k] >= 0 && rho[k] <= 1))
-                        r.fail(element(rPath, static_cast<size_t>(k)), "must be in [0, 1]");
-                    // The spec allows 1, but a surface that reflects everything makes a
-                    // closed scene's radiosity iteration diverge; 0.99 keeps it convergent.
-                    if (rho[k] >= 1) {
-                        rho[k] = 0.99;
-                        clamped = true;
-                    }
-                }
-                if (clamped)
-                    sf.warnings.push_back(
-                        r.message(rPath,
-                                  "reflectance 1 clamped to 0.99 (the radiosity solution would "
-                                  "not converge)"));
-                s.reflectance = rho;
+/// One entry of "objects".
+ObjectSettings readObjectSettings(const JsonReader& r, const json& o, const std::string& path,
+                                  std::vector<std::string>& warnings) {
+    r.checkKeys(o, path, {"reflectance", "removable"});
+    ObjectSettings s;
+    if (auto refl = o.find("reflectance"); refl != o.end()) {
+        const std::string rPath = child(path, "reflectance");
+        Rgb rho = r.rgb(*refl, rPath);
+        bool clamped = false;
+        for (int k = 0; k < 3; ++k) {
+            if (!(rho[k] >= 0 && rho[k] <= 1))
+                r.fail(element(rPath, static_cast<size_t>(k)), "must be in [0, 1]");
+            // The spec allows 1, but a surface that reflects everything makes a closed
+            // scene's radiosity iteration diverge; 0.99 keeps it convergent.
+            if (rho[k] >= 1) {
+                rho[k] = 0.99;
+                clamped = true;
             }
-            if (auto rem = o->find("removable"); rem != o->end())
-                s.removable = r.boolean(*rem, child(path, "removable"));
-            sf.objectSettings[o.key()] = s;
         }
+        if (clamped)
+            warnings.push_back(r.message(
+                rPath,
+                "reflectance 1 clamped to 0.99 (the radiosity solution would not converge)"));
+        s.reflectance = rho;
     }
+    if (auto rem = o.find("removable"); rem != o.end())
+        s.removable = r.boolean(*rem, child(path, "removable"));
+    return s;
+}
+
+/// "objects", read before the geometry because they set its reflectance; their names are
+/// checked against the geometry afterwards (readGeometry).
+void readObjects(const JsonReader& r, const json& root, SceneFile& sf) {
+    const auto it = root.find("objects");
+    if (it == root.end()) return;
+    if (!it->is_object()) r.fail("objects", "expected an object of object names");
+    for (auto o = it->begin(); o != it->end(); ++o)
+        sf.objectSettings[o.key()] =
+            readObjectSettings(r, o.value(), child("objects", o.key()), sf.warnings);
+}
+
+/// "geometry": OBJ, PLY or glTF files relative to the scene folder (mesh_reader.h). Objects
+/// of the same name in several files are one object. Reflectance: the object's from
+/// "objects", else average_reflectance (grey), else 0.5.
+void readGeometry(const JsonReader& r, const json& root, SceneFile& sf) {
     auto reflectanceOf = [&](const std::string& object) {
         if (auto it = sf.objectSettings.find(object);
             it != sf.objectSettings.end() && it->second.reflectance)
             return *it->second.reflectance;
         return Rgb::gray(sf.averageReflectance.value_or(0.5));
     };
-
-    // Geometry: OBJ, PLY or glTF files relative to the scene folder (mesh_reader.h).
-    // Objects of the same name in several files are one object.
     const json& geometry = r.array(r.require(root, "", "geometry"), "geometry", 0);
     for (size_t g = 0; g < geometry.size(); ++g) {
         const std::string gPath = element("geometry", g);
         const std::string name = r.string(geometry[g], gPath);
         if (name.empty()) r.fail(gPath, "empty file name");
-        const fs::path objPath = dir / name;
+        const fs::path objPath = sf.dir / name;
         std::error_code ec;
         if (!fs::exists(objPath, ec))
             r.fail(gPath, "geometry file \"" + objPath.string() + "\" not found");
@@ -218,23 +207,20 @@ SceneFile loadScene(const fs::path& dir) {
     for (const auto& [name, settings] : sf.objectSettings)
         if (sf.scene.findObject(name) < 0)
             r.fail(child("objects", name), "no object of this name in the geometry");
+}
 
-    // Lights: emitting faces appended after the geometry, reflectance 0 (spec: "A light's
-    // emitting face reflects nothing"), each light its own object "light:NAME".
+/// "lights": emitting faces appended after the geometry, reflectance 0 (spec: "A light's
+/// emitting face reflects nothing"), each light its own object "light:NAME".
+void readLights(const JsonReader& r, const json& root, SceneFile& sf) {
     const json& lights = r.array(r.require(root, "", "lights"), "lights", 0);
     for (size_t i = 0; i < lights.size(); ++i) {
         const std::string path = element("lights", i);
-        const json& lj = lights[i];
         const LightJson lightJson =
-            readLightJson(r, lj, path, /*typeRequired=*/true, /*estimateAllowed=*/true);
+            readLightJson(r, lights[i], path, /*typeRequired=*/true, /*estimateAllowed=*/true);
         radiosity::Light light;
         light.name = lightJson.name;
         if (sf.scene.findLight(light.name) >= 0)
             r.fail(child(path, "name"), "duplicate light name \"" + light.name + "\"");
-        const std::vector<Vec3>& corners = lightJson.corners;
-        const Rgb radiance = lightJson.radiance;
-        const bool estimate = lightJson.estimate;
-
         const std::string objectName = "light:" + light.name;
         if (sf.scene.findObject(objectName) >= 0)
             r.fail(child(path, "name"),
@@ -242,56 +228,89 @@ SceneFile loadScene(const fs::path& dir) {
         const int object = static_cast<int>(sf.scene.objects.size());
         sf.scene.objects.push_back(objectName);
         const int lightIndex = static_cast<int>(sf.scene.lights.size());
-        light.polygons = addLightFaces(corners, object, lightIndex, sf.scene);
+        light.polygons = addLightFaces(lightJson.corners, object, lightIndex, sf.scene);
         sf.scene.lights.push_back(std::move(light));
-        sf.nominalRadiance.push_back(radiance);
-        sf.estimateRadiance.push_back(estimate);
+        sf.nominalRadiance.push_back(lightJson.radiance);
+        sf.estimateRadiance.push_back(lightJson.estimate);
     }
+}
 
-    // Photos: files are only named here; the photo pipeline opens them.
-    if (auto it = root.find("photos"); it != root.end()) {
-        const json& photos = r.array(*it, "photos", 0);
-        for (size_t i = 0; i < photos.size(); ++i) {
-            const std::string path = element("photos", i);
-            const json& pj = photos[i];
-            r.checkKeys(pj, path, {"file", "encoding", "lights_on"});
-            PhotoSpec photo;
-            const std::string name = r.string(r.require(pj, path, "file"), child(path, "file"));
-            if (name.empty()) r.fail(child(path, "file"), "empty file name");
-            photo.file = dir / name;
-            if (auto e = pj.find("encoding"); e != pj.end()) {
-                const std::string enc = r.string(*e, child(path, "encoding"));
-                if (enc == "linear")
-                    photo.encoding = PhotoSpec::Encoding::linear;
-                else if (enc == "srgb")
-                    photo.encoding = PhotoSpec::Encoding::srgb;
-                else
-                    r.fail(child(path, "encoding"),
-                           "expected \"linear\" or \"srgb\", got \"" + enc + "\"");
-            } else {
-                // Not in the spec's example only by omission: infer it where the file type
-                // leaves no doubt.
-                bool known = false;
-                photo.encoding = encodingFromExtension(photo.file, known);
-                if (!known)
-                    r.fail(child(path, "encoding"),
-                           "missing required key (cannot tell from the file's extension)");
-            }
-            const std::string onPath = child(path, "lights_on");
-            const json& on = r.array(r.require(pj, path, "lights_on"), onPath, 0);
-            for (size_t k = 0; k < on.size(); ++k) {
-                const std::string lightName = r.string(on[k], element(onPath, k));
-                if (sf.scene.findLight(lightName) < 0)
-                    r.fail(element(onPath, k), "no light named \"" + lightName + "\"");
-                if (std::find(photo.lightsOn.begin(), photo.lightsOn.end(), lightName) !=
-                    photo.lightsOn.end())
-                    r.fail(element(onPath, k), "light \"" + lightName + "\" listed twice");
-                photo.lightsOn.push_back(lightName);
-            }
-            sf.photos.push_back(std::move(photo));
-        }
+/// One entry of "photos": the file is only named here; the photo pipeline opens it.
+PhotoSpec readPhoto(const JsonReader& r, const json& pj, const std::string& path,
+                    const fs::path& dir, const radiosity::Scene& scene) {
+    r.checkKeys(pj, path, {"file", "encoding", "lights_on"});
+    PhotoSpec photo;
+    const std::string name = r.string(r.require(pj, path, "file"), child(path, "file"));
+    if (name.empty()) r.fail(child(path, "file"), "empty file name");
+    photo.file = dir / name;
+    if (auto e = pj.find("encoding"); e != pj.end()) {
+        const std::string enc = r.string(*e, child(path, "encoding"));
+        if (enc == "linear")
+            photo.encoding = PhotoSpec::Encoding::linear;
+        else if (enc == "srgb")
+            photo.encoding = PhotoSpec::Encoding::srgb;
+        else
+            r.fail(child(path, "encoding"), "expected \"linear\" or \"srgb\", got \"" + enc + "\"");
+    } else {
+        // Not in the spec's example only by omission: infer it where the file type leaves
+        // no doubt.
+        bool known = false;
+        photo.encoding = encodingFromExtension(photo.file, known);
+        if (!known)
+            r.fail(child(path, "encoding"),
+                   "missing required key (cannot tell from the file's extension)");
     }
+    const std::string onPath = child(path, "lights_on");
+    const json& on = r.array(r.require(pj, path, "lights_on"), onPath, 0);
+    for (size_t k = 0; k < on.size(); ++k) {
+        const std::string lightName = r.string(on[k], element(onPath, k));
+        if (scene.findLight(lightName) < 0)
+            r.fail(element(onPath, k), "no light named \"" + lightName + "\"");
+        if (std::find(photo.lightsOn.begin(), photo.lightsOn.end(), lightName) !=
+            photo.lightsOn.end())
+            r.fail(element(onPath, k), "light \"" + lightName + "\" listed twice");
+        photo.lightsOn.push_back(lightName);
+    }
+    return photo;
+}
 
+/// "photos", after the lights, whose names lights_on refers to.
+void readPhotos(const JsonReader& r, const json& root, SceneFile& sf) {
+    const auto it = root.find("photos");
+    if (it == root.end()) return;
+    const json& photos = r.array(*it, "photos", 0);
+    for (size_t i = 0; i < photos.size(); ++i)
+        sf.photos.push_back(readPhoto(r, photos[i], element("photos", i), sf.dir, sf.scene));
+}
+
+}  // namespace
+
+void SceneFile::setPhotoLightState() {
+    // Spec, "Edit": a light that is not in the first photo's lights_on is off in that photo.
+    // Without a photo there is nothing to match: every light is on.
+    for (size_t i = 0; i < scene.lights.size() && i < nominalRadiance.size(); ++i)
+        scene.lights[i].radiance = lightOnInPhoto(i) ? nominalRadiance[i] : Rgb{};
+}
+
+bool SceneFile::lightOnInPhoto(size_t i) const {
+    if (photos.empty()) return true;
+    const auto& names = photos.front().lightsOn;
+    return std::find(names.begin(), names.end(), scene.lights.at(i).name) != names.end();
+}
+
+SceneFile loadScene(const fs::path& dir) {
+    SceneFile sf;
+    sf.dir = dir;
+    const fs::path jsonPath = dir / "scene.json";
+    const json root = parseJsonFile(jsonPath);
+    const JsonReader r(jsonPath.string());
+    checkFormatAndKeys(r, root);
+    sf.camera = readCamera(r, r.require(root, "", "camera"));
+    sf.averageReflectance = readAverageReflectance(r, root);
+    readObjects(r, root, sf);
+    readGeometry(r, root, sf);
+    readLights(r, root, sf);
+    readPhotos(r, root, sf);
     sf.setPhotoLightState();
     return sf;
 }

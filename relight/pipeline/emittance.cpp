@@ -94,28 +94,13 @@ Rgb ambientRadiance(const Rgb& meanSurfaceRadiance, double rho, double areaRefle
     return out;
 }
 
-EmittanceReport estimateEmittance(const SceneFile& sf, const radiosity::Scene& scene,
-                                  const ItemBuffer& items, const Image& photo,
-                                  const EmittanceOptions& o) {
-    checkEstimableLights(sf);
-    EmittanceReport rep;
-    const size_t nLights = scene.lights.size();
-    rep.lights.resize(nLights);
-    for (size_t l = 0; l < nLights; ++l) {
-        rep.lights[l].name = scene.lights[l].name;
-        rep.lights[l].radiance = scene.lights[l].radiance;  // the photo's state
-    }
-    const bool anyEstimate = std::any_of(sf.estimateRadiance.begin(), sf.estimateRadiance.end(),
-                                         [](bool b) { return b; });
-    if (!anyEstimate) return rep;
-
-    const int w = items.width, h = items.height;
-    const bool srgb = !sf.photos.empty() && sf.photos.front().encoding == PhotoSpec::Encoding::srgb;
-
-    // Way 1: per pixel, the light whose face covers all its samples (-1: none).
-    std::vector<int> faceOf(static_cast<size_t>(w) * h, -1);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
+LightFaceMap lightFaceMap(const ItemBuffer& items, const radiosity::Scene& scene) {
+    LightFaceMap m;
+    m.width = items.width;
+    m.height = items.height;
+    m.light.assign(static_cast<size_t>(m.width) * m.height, -1);
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x) {
             int light = -1;
             for (int s = 0; s < items.spp; ++s) {
                 const int p = items.polygon[items.sampleIndex(x, y, s)];
@@ -126,74 +111,116 @@ EmittanceReport estimateEmittance(const SceneFile& sf, const radiosity::Scene& s
                 }
                 light = lp;
             }
-            faceOf[static_cast<size_t>(y) * w + x] = light;
+            m.light[static_cast<size_t>(y) * m.width + x] = light;
         }
-    auto clean = [&](int x, int y, int light) {
+    return m;
+}
+
+FaceReading readLightFromPhoto(const LightFaceMap& faces, const Image& photo, bool srgb, int light,
+                               int minPixels) {
+    const int w = faces.width, h = faces.height;
+    auto clean = [&](int x, int y) {
         if (x < 0 || y < 0 || x >= w || y >= h) return false;
-        if (faceOf[static_cast<size_t>(y) * w + x] != light) return false;
+        if (faces.at(x, y) != light) return false;
         const float* px = photo.at(x, y);
         for (int c = 0; c < 3; ++c)
             if (!std::isfinite(px[c]) || (srgb && static_cast<double>(px[c]) >= kSrgbClip))
                 return false;
         return true;
     };
+    FaceReading out;
+    std::vector<std::pair<int, int>> all, interior;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (faces.at(x, y) != light) continue;
+            ++out.covered;
+            if (!clean(x, y)) continue;
+            all.emplace_back(x, y);
+            if (clean(x - 1, y) && clean(x + 1, y) && clean(x, y - 1) && clean(x, y + 1))
+                interior.emplace_back(x, y);
+        }
+    out.clean = static_cast<int>(all.size());
+    const auto& use = static_cast<int>(interior.size()) >= minPixels ? interior : all;
+    if (static_cast<int>(use.size()) < minPixels) return out;
+    std::vector<double> v(use.size());
+    for (int c = 0; c < 3; ++c) {
+        for (size_t i = 0; i < use.size(); ++i) v[i] = photo.at(use[i].first, use[i].second)[c];
+        out.radiance[c] = median(v);
+    }
+    out.used = static_cast<int>(use.size());
+    return out;
+}
 
-    std::vector<bool> known(nLights, false);
-    for (size_t l = 0; l < nLights; ++l) {
+SurfaceRadiance measureSurfaceRadiance(const ItemBuffer& items, const radiosity::Scene& scene,
+                                       const Image& photo) {
+    // Each polygon's mean over its clean pixels, then their area-weighted mean.
+    const std::vector<uint8_t> usable = usablePixels(items, scene, photo);
+    std::vector<Rgb> sum(scene.polygons.size());
+    std::vector<int> count(scene.polygons.size(), 0);
+    for (int y = 0; y < items.height; ++y)
+        for (int x = 0; x < items.width; ++x) {
+            if (!usable[static_cast<size_t>(y) * items.width + x]) continue;
+            const int p = items.polygon[items.sampleIndex(x, y, 0)];
+            if (scene.polygons[p].light >= 0) continue;
+            const float* px = photo.at(x, y);
+            sum[p] += Rgb(px[0], px[1], px[2]);
+            ++count[p];
+        }
+    SurfaceRadiance out;
+    Rgb weighted;
+    for (size_t p = 0; p < scene.polygons.size(); ++p) {
+        if (scene.polygons[p].light >= 0) continue;
+        out.reflectingArea += scene.polygons[p].area;
+        if (count[p] == 0) continue;
+        weighted += sum[p] * (scene.polygons[p].area / count[p]);
+        out.seenArea += scene.polygons[p].area;
+    }
+    if (out.seenArea > 0) out.mean = weighted * (1.0 / out.seenArea);
+    return out;
+}
+
+namespace {
+
+/// Way 1 for every "estimate" light; returns which lights are known after it (given in
+/// scene.json, or read from the photo). The others are marked `ambient` for way 2.
+std::vector<bool> estimateFromPhoto(const SceneFile& sf, const radiosity::Scene& scene,
+                                    const ItemBuffer& items, const Image& photo,
+                                    const EmittanceOptions& o, EmittanceReport& rep) {
+    const bool srgb = !sf.photos.empty() && sf.photos.front().encoding == PhotoSpec::Encoding::srgb;
+    const LightFaceMap faces = lightFaceMap(items, scene);
+    std::vector<bool> known(scene.lights.size(), false);
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
         if (!sf.estimateRadiance[l]) {
             known[l] = true;
             continue;
         }
-        const int light = static_cast<int>(l);
-        std::vector<std::pair<int, int>> all, interior;
-        int covered = 0;
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                if (faceOf[static_cast<size_t>(y) * w + x] != light) continue;
-                ++covered;
-                if (!clean(x, y, light)) continue;
-                all.emplace_back(x, y);
-                if (clean(x - 1, y, light) && clean(x + 1, y, light) && clean(x, y - 1, light) &&
-                    clean(x, y + 1, light))
-                    interior.emplace_back(x, y);
-            }
-        const auto& use = static_cast<int>(interior.size()) >= o.minPixels ? interior : all;
-        if (static_cast<int>(use.size()) >= o.minPixels) {
-            Rgb value;
-            std::vector<double> v(use.size());
-            for (int c = 0; c < 3; ++c) {
-                for (size_t i = 0; i < use.size(); ++i)
-                    v[i] = photo.at(use[i].first, use[i].second)[c];
-                value[c] = median(v);
-            }
+        const FaceReading reading =
+            readLightFromPhoto(faces, photo, srgb, static_cast<int>(l), o.minPixels);
+        if (reading.used > 0) {
             rep.lights[l].method = LightEmittance::Method::photo;
-            rep.lights[l].radiance = value;
-            rep.lights[l].pixels = static_cast<int>(use.size());
+            rep.lights[l].radiance = reading.radiance;
+            rep.lights[l].pixels = reading.used;
             known[l] = true;
             continue;
         }
         rep.lights[l].method = LightEmittance::Method::ambient;
-        rep.lights[l].pixels = static_cast<int>(all.size());
-        if (covered >= o.minPixels)
+        rep.lights[l].pixels = reading.clean;
+        if (reading.covered >= o.minPixels)
             rep.warnings.push_back(
                 keyOf(sf, l) + ": light \"" + scene.lights[l].name +
-                "\": the photo sees its face on " + std::to_string(covered) + " pixels but only " +
-                std::to_string(all.size()) +
+                "\": the photo sees its face on " + std::to_string(reading.covered) +
+                " pixels but only " + std::to_string(reading.clean) +
                 " are usable (clipped or not finite); estimated from the power balance instead");
     }
+    return known;
+}
 
-    // Way 2 for the lights left.
-    double areaEstimated = 0;
-    for (size_t l = 0; l < nLights; ++l)
-        if (!known[l])
-            for (int p : scene.lights[l].polygons) areaEstimated += scene.polygons[p].area;
-    if (areaEstimated <= 0) return rep;
-
-    rep.ambientUsed = true;
+/// rho^ of Eq. (2'): scene.json's, or the default with a warning. Throws for 0.
+double averageReflectanceOf(const SceneFile& sf, EmittanceReport& rep) {
+    double rho = kDefaultAverageReflectance;
     if (sf.averageReflectance) {
-        rep.averageReflectance = *sf.averageReflectance;
+        rho = *sf.averageReflectance;
     } else {
-        rep.averageReflectance = kDefaultAverageReflectance;
         char s[64];
         std::snprintf(s, sizeof s, "%.2g", kDefaultAverageReflectance);
         rep.warnings.push_back((sf.dir / "scene.json").string() +
@@ -201,38 +228,34 @@ EmittanceReport estimateEmittance(const SceneFile& sf, const radiosity::Scene& s
                                "(Eq. (2')) assumes " +
                                s);
     }
-    if (!(rep.averageReflectance > 0))
+    if (!(rho > 0))
         throw InputError((sf.dir / "scene.json").string() +
                          ": key \"average_reflectance\": 0 (black surfaces) leaves the photo "
                          "nothing to estimate the \"estimate\" lights' power from");
-    // L^_A: area-weighted mean over the polygons the photo sees of each polygon's mean
-    // over its clean pixels.
-    const std::vector<uint8_t> usable = usablePixels(items, scene, photo);
-    std::vector<Rgb> sum(scene.polygons.size());
-    std::vector<int> count(scene.polygons.size(), 0);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            if (!usable[static_cast<size_t>(y) * w + x]) continue;
-            const int p = items.polygon[items.sampleIndex(x, y, 0)];
-            if (scene.polygons[p].light >= 0) continue;
-            const float* px = photo.at(x, y);
-            sum[p] += Rgb(px[0], px[1], px[2]);
-            ++count[p];
-        }
-    Rgb weighted;
-    for (size_t p = 0; p < scene.polygons.size(); ++p) {
-        if (scene.polygons[p].light >= 0) continue;
-        rep.reflectingArea += scene.polygons[p].area;
-        if (count[p] == 0) continue;
-        weighted += sum[p] * (scene.polygons[p].area / count[p]);
-        rep.seenArea += scene.polygons[p].area;
-    }
+    return rho;
+}
+
+/// Way 2 for the lights way 1 left unknown: one common radiance from Eq. (2').
+void estimateFromPowerBalance(const SceneFile& sf, const radiosity::Scene& scene,
+                              const ItemBuffer& items, const Image& photo,
+                              const std::vector<bool>& known, EmittanceReport& rep) {
+    double areaEstimated = 0;  // summed face by face over the lights to estimate
+    for (size_t l = 0; l < scene.lights.size(); ++l)
+        if (!known[l])
+            for (int p : scene.lights[l].polygons) areaEstimated += scene.polygons[p].area;
+    if (areaEstimated <= 0) return;
+
+    rep.ambientUsed = true;
+    rep.averageReflectance = averageReflectanceOf(sf, rep);
+    const SurfaceRadiance seen = measureSurfaceRadiance(items, scene, photo);
+    rep.reflectingArea = seen.reflectingArea;
+    rep.seenArea = seen.seenArea;
     if (!(rep.seenArea > 0))
         throw InputError(sf.photos.front().file.string() +
                          ": the photo shows no reflecting surface on a clean pixel, so the "
                          "radiance of the \"estimate\" lights cannot be estimated");
-    rep.meanSurfaceRadiance = weighted * (1.0 / rep.seenArea);
-    for (size_t l = 0; l < nLights; ++l) {
+    rep.meanSurfaceRadiance = seen.mean;
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
         if (!known[l]) continue;
         double area = 0;
         for (int p : scene.lights[l].polygons) area += scene.polygons[p].area;
@@ -249,8 +272,29 @@ EmittanceReport estimateEmittance(const SceneFile& sf, const radiosity::Scene& s
             rgbText(rep.meanSurfaceRadiance * ((1.0 - rep.averageReflectance) /
                                                rep.averageReflectance * rep.reflectingArea)) +
             " in photo units x m^2); the estimated radiance is clamped to 0 where negative");
-    for (size_t l = 0; l < nLights; ++l)
+    for (size_t l = 0; l < scene.lights.size(); ++l)
         if (!known[l]) rep.lights[l].radiance = value;
+}
+
+}  // namespace
+
+EmittanceReport estimateEmittance(const SceneFile& sf, const radiosity::Scene& scene,
+                                  const ItemBuffer& items, const Image& photo,
+                                  const EmittanceOptions& o) {
+    checkEstimableLights(sf);
+    EmittanceReport rep;
+    rep.lights.resize(scene.lights.size());
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+        rep.lights[l].name = scene.lights[l].name;
+        rep.lights[l].radiance = scene.lights[l].radiance;  // the photo's state
+    }
+    if (std::none_of(sf.estimateRadiance.begin(), sf.estimateRadiance.end(),
+                     [](bool b) { return b; }))
+        return rep;
+    // Way 1 first: a light the photo shows is read there, and its power is then known to
+    // the balance of way 2.
+    const std::vector<bool> known = estimateFromPhoto(sf, scene, items, photo, o, rep);
+    estimateFromPowerBalance(sf, scene, items, photo, known, rep);
     return rep;
 }
 

@@ -134,4 +134,37 @@ EmittanceReport estimateEmittance(const SceneFile& sf, const radiosity::Scene& s
                                   const ItemBuffer& items, const Image& photo,
                                   const EmittanceOptions& options = {});
 
+// ---- The two ways on their own -----------------------------------------------------------
+
+/// Per pixel of an item buffer, the light whose emitting face covers all the pixel's samples
+/// (-1: none, or a pixel partly on something else).
+struct LightFaceMap {
+    int width = 0, height = 0;
+    std::vector<int> light;  ///< row-major
+    int at(int x, int y) const { return light[static_cast<size_t>(y) * width + x]; }
+};
+LightFaceMap lightFaceMap(const ItemBuffer& items, const radiosity::Scene& scene);
+
+/// Way 1 for light `light`: the per-channel median of its clean face pixels in `photo`
+/// (finite, and below the clip of an sRGB photo when `srgb`), of the interior ones (all four
+/// neighbours clean too) when there are at least `minPixels` of them.
+struct FaceReading {
+    radiosity::Rgb radiance;  ///< the median, photo units (when used > 0)
+    int covered = 0;          ///< pixels on the face
+    int clean = 0;            ///< of those, clean
+    int used = 0;             ///< pixels the median is taken over; 0: fewer than minPixels
+};
+FaceReading readLightFromPhoto(const LightFaceMap& faces, const Image& photo, bool srgb, int light,
+                               int minPixels);
+
+/// Way 2's reading of the photo: L^_A, the area-weighted mean over the reflecting polygons
+/// the photo sees of each one's mean over its clean pixels (usablePixels), and the areas.
+struct SurfaceRadiance {
+    radiosity::Rgb mean;        ///< L^_A, photo units (0 when the photo sees none)
+    double reflectingArea = 0;  ///< sum_j A_j over the reflecting polygons, m^2
+    double seenArea = 0;        ///< of which the photo sees, m^2
+};
+SurfaceRadiance measureSurfaceRadiance(const ItemBuffer& items, const radiosity::Scene& scene,
+                                       const Image& photo);
+
 }  // namespace relight

@@ -50,47 +50,53 @@ std::vector<int> surfaceOf(const radiosity::Scene& scene) {
     return parent;
 }
 
-}  // namespace
+/// Per polygon, what does not change between rounds: sums over its usable photo samples
+/// (the photo's values, the direct light, which depends on the lights only), and the gather
+/// points that stand for them, each with the number of samples it stands for.
+struct PhotoSums {
+    std::vector<Rgb> L, direct;
+    std::vector<int> count;
+    std::vector<std::vector<std::pair<int, int>>> points;  // (gather point, samples)
+};
 
-ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
-                                             const SceneFile& sceneFile, const ItemBuffer& items,
-                                             const LightingBuffer& lighting, const Image& photo,
-                                             int rounds, int minSamples, double tolerance) {
-    ReflectanceReport report;
-    const radiosity::Scene& scene = solver.scene();
+PhotoSums sumPhotoSamples(const radiosity::Scene& scene, const ItemBuffer& items,
+                          const LightingBuffer& lighting, const Image& photo) {
     const int np = static_cast<int>(scene.polygons.size());
-    const int w = items.width, hgt = items.height;
     // The lighting buffer's sub-grid (its stride) decides which pixels the sums take.
     const std::vector<uint8_t> usable = usablePixels(items, scene, photo, lighting.stride);
-    // What does not change between rounds: per polygon, the photo's sum and the direct
-    // light's sum over the usable samples (direct light depends on the lights only).
-    std::vector<Rgb> sumL(np), sumDirect(np);
-    std::vector<int> count(np, 0);
-    // Indirect light varies slowly: its mean over a polygon's usable samples is taken from
-    // at most kIndirectPoints of their gather points, evenly spread in scan order, each
-    // weighted by the number of usable samples it stands for.
-    constexpr int kIndirectPoints = 256;
-    std::vector<std::vector<std::pair<int, int>>> points(np);  // (gather point, samples)
-    for (int y = 0; y < hgt; ++y) {
-        for (int x = 0; x < w; ++x) {
-            if (!usable[static_cast<size_t>(y) * w + x]) continue;
+    PhotoSums sums;
+    sums.L.resize(np);
+    sums.direct.resize(np);
+    sums.count.assign(np, 0);
+    sums.points.resize(np);
+    for (int y = 0; y < items.height; ++y) {
+        for (int x = 0; x < items.width; ++x) {
+            if (!usable[static_cast<size_t>(y) * items.width + x]) continue;
             const float* px = photo.at(x, y);
             const int idx0 = items.sampleIndex(x, y, 0);
             const int p = items.polygon[idx0];
             for (int s = 0; s < items.spp; ++s) {
                 const int idx = items.sampleIndex(x, y, s);
-                sumL[p] += Rgb{px[0], px[1], px[2]};
+                sums.L[p] += Rgb{px[0], px[1], px[2]};
                 const float* G = lighting.direct(idx);
                 for (int l = 0; l < lighting.lights; ++l)
-                    sumDirect[p] += scene.lights[l].emittance() * static_cast<double>(G[l]);
-                ++count[p];
+                    sums.direct[p] += scene.lights[l].emittance() * static_cast<double>(G[l]);
+                ++sums.count[p];
             }
-            points[p].push_back({lighting.gatherPointOf(idx0), items.spp});  // a pure pixel: one
+            // A pure pixel: one gather point for all its samples.
+            sums.points[p].push_back({lighting.gatherPointOf(idx0), items.spp});
         }
     }
-    // And at most kGatherBudget points in all per round: a mesh of 22 k small triangles
-    // would otherwise gather at every usable pixel, 12 times (30 s); each polygon keeps its
-    // share, at least one point.
+    return sums;
+}
+
+/// Indirect light varies slowly: its mean over a polygon's usable samples is taken from at
+/// most kIndirectPoints of their gather points, evenly spread in scan order; and at most
+/// kGatherBudget points in all per round (a mesh of 22 k small triangles would otherwise
+/// gather at every usable pixel, 12 times: 30 s), each polygon keeping its share, at least
+/// one point.
+void thinGatherPoints(std::vector<std::vector<std::pair<int, int>>>& points) {
+    constexpr int kIndirectPoints = 256;
     constexpr double kGatherBudget = 16384;
     double total = 0;
     for (const auto& list : points) total += std::min<double>(list.size(), kIndirectPoints);
@@ -104,85 +110,133 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         for (int i = 0; i < cap; ++i) kept.push_back(list[static_cast<size_t>(i * step)]);
         list.swap(kept);
     }
+}
+
+using GatherTerms = std::vector<std::vector<std::vector<radiosity::GatherWeight>>>;
+
+/// Per polygon, the irradiance summed over its usable samples with the solver's radiosities
+/// now: the direct light's sum, plus the indirect light's mean over the gather points (each
+/// weighted by the samples it stands for) times the samples.
+std::vector<Rgb> sumIrradiance(const radiosity::HierarchicalSolver& solver, const PhotoSums& sums,
+                               const GatherTerms& terms) {
+    const int np = static_cast<int>(sums.L.size());
+    const auto& nodes = solver.hierarchy().nodes;
+    std::vector<Rgb> sumH(np);
+    tbb::parallel_for(0, np, [&](int p) {
+        Rgb sumI;
+        double weight = 0;
+        for (size_t i = 0; i < sums.points[p].size(); ++i) {
+            Rgb H;
+            for (const radiosity::GatherWeight& t : terms[p][i]) {
+                const radiosity::Node& S = nodes[t.node];
+                H += (S.emitting ? S.B - S.E : S.B) * t.w;
+            }
+            const int n = sums.points[p][i].second;
+            sumI += H * static_cast<double>(n);
+            weight += n;
+        }
+        sumH[p] = sums.direct[p] + (weight > 0 ? sumI * (sums.count[p] / weight) : Rgb{});
+    });
+    return sumH;
+}
+
+/// One round's estimates, rho = pi sum(L) / sum(H) per polygon seen (on its own samples, or
+/// pooled over its surface when it has too few), clamped; and their area-weighted mean.
+struct RoundEstimates {
+    std::vector<Rgb> rho;
+    std::vector<bool> seen;
+    Rgb meanRho;
+    double meanArea = 0;
+    int seenCount = 0;
+};
+
+RoundEstimates estimateFromSums(const radiosity::Scene& scene, const std::vector<int>& surface,
+                                const PhotoSums& sums, const std::vector<Rgb>& sumH,
+                                int minSamples) {
+    const int np = static_cast<int>(scene.polygons.size());
+    // A polygon with too few samples of its own (a small triangle of a reconstructed wall)
+    // takes its surface's: the sums pooled over the surface's polygons.
+    std::vector<Rgb> poolL(np), poolH(np);
+    std::vector<int> poolCount(np, 0);
+    for (int p = 0; p < np; ++p) {
+        poolL[surface[p]] += sums.L[p];
+        poolH[surface[p]] += sumH[p];
+        poolCount[surface[p]] += sums.count[p];
+    }
+    RoundEstimates e;
+    e.rho.resize(np);
+    e.seen.assign(np, false);
+    for (int p = 0; p < np; ++p) {
+        if (scene.polygons[p].light >= 0) continue;
+        const bool own = sums.count[p] >= minSamples;
+        if (!own && poolCount[surface[p]] < minSamples) continue;
+        const Rgb& L = own ? sums.L[p] : poolL[surface[p]];
+        const Rgb& H = own ? sumH[p] : poolH[surface[p]];
+        for (int c = 0; c < 3; ++c)  // guard: a polygon in darkness (H = 0) says nothing
+            e.rho[p][c] = H[c] > 0 ? std::numbers::pi * L[c] / H[c] : scene.polygons[p].rho[c];
+        e.rho[p] = clampReflectance(e.rho[p]);
+        e.seen[p] = true;
+        ++e.seenCount;
+        e.meanRho += e.rho[p] * scene.polygons[p].area;
+        e.meanArea += scene.polygons[p].area;
+    }
+    if (e.meanArea > 0) e.meanRho = e.meanRho * (1.0 / e.meanArea);
+    return e;
+}
+
+/// Sets every reflecting polygon's reflectance one damped step (see the header) towards the
+/// round's estimate: a full step from the first guess, half steps after. Polygons the photo
+/// does not see take the object's scene.json reflectance, else the estimates' mean.
+void stepReflectances(radiosity::HierarchicalSolver& solver, const SceneFile& sceneFile,
+                      RoundEstimates& e, int round, ReflectanceReport& report) {
+    const radiosity::Scene& scene = solver.scene();
+    report.polygonsSeen = e.seenCount;
+    report.polygonsDefaulted = 0;
+    report.lastChange = 0;
+    for (int p = 0; p < static_cast<int>(scene.polygons.size()); ++p) {
+        const radiosity::Polygon& poly = scene.polygons[p];
+        if (poly.light >= 0) continue;
+        if (!e.seen[p]) {
+            ++report.polygonsDefaulted;
+            const std::string& name = scene.objects[poly.object];
+            auto it = sceneFile.objectSettings.find(name);
+            e.rho[p] = it != sceneFile.objectSettings.end() && it->second.reflectance
+                           ? *it->second.reflectance
+                           : (e.meanArea > 0 ? e.meanRho : poly.rho);
+        }
+        const Rgb previous = poly.rho;
+        const double alpha = round == 0 ? 1.0 : 0.5;
+        const Rgb next = previous * (1.0 - alpha) + e.rho[p] * alpha;
+        for (int c = 0; c < 3; ++c)
+            report.lastChange = std::max(report.lastChange, std::abs(next[c] - previous[c]));
+        solver.setReflectance(p, next);
+    }
+}
+
+}  // namespace
+
+ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
+                                             const SceneFile& sceneFile, const ItemBuffer& items,
+                                             const LightingBuffer& lighting, const Image& photo,
+                                             int rounds, int minSamples, double tolerance) {
+    ReflectanceReport report;
+    const radiosity::Scene& scene = solver.scene();
+    const int np = static_cast<int>(scene.polygons.size());
+    PhotoSums sums = sumPhotoSamples(scene, items, lighting, photo);
+    thinGatherPoints(sums.points);
     const std::vector<int> surface = surfaceOf(scene);
     // The gather points' terms, once: between rounds only the radiosities change.
-    std::vector<std::vector<std::vector<radiosity::GatherWeight>>> terms(np);
+    GatherTerms terms(np);
     tbb::parallel_for(0, np, [&](int p) {
-        terms[p].reserve(points[p].size());
-        for (auto [g, n] : points[p])
+        terms[p].reserve(sums.points[p].size());
+        for (auto [g, n] : sums.points[p])
             terms[p].push_back(radiosity::finalGatherWeights(solver, p, lighting.gatherPosition[g],
                                                              4, static_cast<uint64_t>(g)));
     });
-    const auto& nodes = solver.hierarchy().nodes;
     for (int round = 0; round < rounds; ++round) {
-        std::vector<Rgb> sumH(np);
-        tbb::parallel_for(0, np, [&](int p) {
-            Rgb sumI;
-            double weight = 0;
-            for (size_t i = 0; i < points[p].size(); ++i) {
-                Rgb H;
-                for (const radiosity::GatherWeight& t : terms[p][i]) {
-                    const radiosity::Node& S = nodes[t.node];
-                    H += (S.emitting ? S.B - S.E : S.B) * t.w;
-                }
-                const int n = points[p][i].second;
-                sumI += H * static_cast<double>(n);
-                weight += n;
-            }
-            sumH[p] = sumDirect[p] + (weight > 0 ? sumI * (count[p] / weight) : Rgb{});
-        });
-        // A polygon with too few samples of its own (a small triangle of a reconstructed
-        // wall) takes its surface's: the sums pooled over the surface's polygons.
-        std::vector<Rgb> poolL(np), poolH(np);
-        std::vector<int> poolCount(np, 0);
-        for (int p = 0; p < np; ++p) {
-            poolL[surface[p]] += sumL[p];
-            poolH[surface[p]] += sumH[p];
-            poolCount[surface[p]] += count[p];
-        }
-        // Estimates, and their area-weighted mean for the polygons the photo misses.
-        std::vector<Rgb> rho(np);
-        std::vector<bool> seen(np, false);
-        Rgb meanRho;
-        double meanArea = 0;
-        report.polygonsSeen = 0;
-        for (int p = 0; p < np; ++p) {
-            if (scene.polygons[p].light >= 0) continue;
-            const bool own = count[p] >= minSamples;
-            if (!own && poolCount[surface[p]] < minSamples) continue;
-            const Rgb& L = own ? sumL[p] : poolL[surface[p]];
-            const Rgb& H = own ? sumH[p] : poolH[surface[p]];
-            for (int c = 0; c < 3; ++c)  // guard: a polygon in darkness (H = 0) says nothing
-                rho[p][c] = H[c] > 0 ? std::numbers::pi * L[c] / H[c] : scene.polygons[p].rho[c];
-            rho[p] = clampReflectance(rho[p]);
-            seen[p] = true;
-            ++report.polygonsSeen;
-            meanRho += rho[p] * scene.polygons[p].area;
-            meanArea += scene.polygons[p].area;
-        }
-        if (meanArea > 0) meanRho = meanRho * (1.0 / meanArea);
-        report.polygonsDefaulted = 0;
-        report.lastChange = 0;
-        for (int p = 0; p < np; ++p) {
-            const radiosity::Polygon& poly = scene.polygons[p];
-            if (poly.light >= 0) continue;
-            if (!seen[p]) {
-                ++report.polygonsDefaulted;
-                const std::string& name = scene.objects[poly.object];
-                auto it = sceneFile.objectSettings.find(name);
-                rho[p] = it != sceneFile.objectSettings.end() && it->second.reflectance
-                             ? *it->second.reflectance
-                             : (meanArea > 0 ? meanRho : poly.rho);
-            }
-            // Damped update (see the header): a full step from the first guess, half
-            // steps after.
-            const Rgb previous = poly.rho;
-            const double alpha = round == 0 ? 1.0 : 0.5;
-            const Rgb next = previous * (1.0 - alpha) + rho[p] * alpha;
-            for (int c = 0; c < 3; ++c)
-                report.lastChange = std::max(report.lastChange, std::abs(next[c] - previous[c]));
-            solver.setReflectance(p, next);
-        }
+        RoundEstimates e =
+            estimateFromSums(scene, surface, sums, sumIrradiance(solver, sums, terms), minSamples);
+        stepReflectances(solver, sceneFile, e, round, report);
         solver.pullReflectance();
         // Between rounds only the radiosity changes: the links stay (re-refining 700 k
         // links each round made a 22 k-triangle room's reflectance take a minute). The

@@ -52,18 +52,27 @@ struct VertexDirect {
     std::vector<radiosity::GatherWeight> terms;
 };
 
-/// Evaluates h_l at every vertex of `mesh` (built on `solver`'s hierarchy), in parallel,
-/// deterministically (each vertex draws its rays from its own index). With `directOut`,
-/// also the direct light alone; with `direct` given, the direct light is taken from it
-/// (scaled per vertex by `directScale`, one per vertex and channel, when not empty: the
-/// link correction C_link of shadow removal) and only the indirect part is gathered, by its
-/// terms when it has them (the links must be those it was made with).
-VertexLighting computeVertexLighting(const radiosity::HierarchicalSolver& solver,
+/// The first lighting of `mesh`'s vertices (built on `solver`'s hierarchy): h_l measured
+/// afresh, the direct light by per-point form factors and shadow rays, the indirect light by
+/// a final gather of `responses`. `direct` receives the direct light alone, with and
+/// without blockers, and the gather's terms, so that the lightings that follow on the same
+/// mesh and links (regatherVertexLighting) cast no ray. In parallel, deterministically
+/// (each vertex draws its rays from its own index).
+VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver,
                                      const radiosity::LeafMesh& mesh,
                                      const radiosity::LightResponses& responses,
-                                     radiosity::DirectLightOptions options = {},
-                                     VertexDirect* directOut = nullptr,
-                                     const VertexDirect* direct = nullptr,
-                                     const std::vector<radiosity::Rgb>* directScale = nullptr);
+                                     radiosity::DirectLightOptions options, VertexDirect& direct);
+
+/// The lighting again after the radiosities changed but not the geometry (new reflectances,
+/// scaled light links): the direct light is `direct`'s, as measureVertexLighting measured
+/// it, scaled per vertex and channel by `directScale` when it is not empty (the link
+/// correction C_link of shadow removal, one per vertex); only the indirect part is gathered
+/// again, by `direct`'s terms when it still has them (the links must be those they were
+/// made with), else afresh.
+VertexLighting regatherVertexLighting(const radiosity::HierarchicalSolver& solver,
+                                      const radiosity::LeafMesh& mesh,
+                                      const radiosity::LightResponses& responses,
+                                      const VertexDirect& direct,
+                                      std::span<const radiosity::Rgb> directScale = {});
 
 }  // namespace relight

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -266,6 +267,81 @@ TEST(Emittance, ClippedFaceInAnSrgbPhotoFallsBackToThePowerBalance) {
     const Rgb want = Rgb{0.6, 0.4, 0.4} * (1 / (kAreaH + kAreaS));
     expectRgbNear(r.lights[0].radiance, want, 1e-6, "L_H");
     expectRgbNear(r.lights[1].radiance, want, 1e-6, "L_S");
+}
+
+// ---- Each way on its own ------------------------------------------------------------------
+
+namespace {
+
+/// A 6 x 6 photo whose pixels (1..4, 1..4) see light 0's face: `rim` on the face's 12 rim
+/// pixels, `inner` (4 values, row by row) on its 2 x 2 interior, 0 elsewhere.
+struct FaceShot {
+    LightFaceMap faces;
+    Image photo{6, 6};
+};
+FaceShot faceShot(float rim, const std::array<float, 4>& inner) {
+    FaceShot s;
+    s.faces.width = s.faces.height = 6;
+    s.faces.light.assign(36, -1);
+    for (int y = 1; y <= 4; ++y)
+        for (int x = 1; x <= 4; ++x) {
+            s.faces.light[static_cast<size_t>(y) * 6 + x] = 0;
+            const bool interior = x >= 2 && x <= 3 && y >= 2 && y <= 3;
+            const float v = interior ? inner[static_cast<size_t>((y - 2) * 2 + (x - 2))] : rim;
+            for (int c = 0; c < 3; ++c) s.photo.at(x, y)[c] = v;
+        }
+    return s;
+}
+
+}  // namespace
+
+TEST(Emittance, WayOneTakesTheMedianOfTheFaceInterior) {
+    // The interior's median, (1.1 + 1.2) / 2: neither the dark rim nor the hot spot (5)
+    // moves it; a mean of the whole face would read 0.86.
+    const FaceShot s = faceShot(0.5f, {1.0f, 1.1f, 1.2f, 5.0f});
+    const FaceReading r = readLightFromPhoto(s.faces, s.photo, /*srgb=*/false, 0, 4);
+    EXPECT_EQ(r.covered, 16);
+    EXPECT_EQ(r.clean, 16);
+    EXPECT_EQ(r.used, 4);
+    expectRgbNear(r.radiance,
+                  Rgb::gray(0.5 * (static_cast<double>(1.1f) + static_cast<double>(1.2f))), 1e-12,
+                  "interior median");
+    // Another light's face, or more pixels than the face has: nothing read.
+    EXPECT_EQ(readLightFromPhoto(s.faces, s.photo, false, 1, 4).covered, 0);
+    const FaceReading few = readLightFromPhoto(s.faces, s.photo, false, 0, 17);
+    EXPECT_EQ(few.used, 0);
+    EXPECT_EQ(few.clean, 16);
+}
+
+TEST(Emittance, WayOneLeavesClippedSrgbPixelsOut) {
+    // An sRGB photo clips at 1: pixel (2, 2) says nothing, and its two interior neighbours
+    // are interior no more. One interior pixel is too few, so the median is over the 15
+    // clean pixels, 12 of them rim: 0.05. The same values in a linear photo are not clipped.
+    const FaceShot s = faceShot(0.05f, {1.0f, 0.11f, 0.12f, 0.13f});
+    const FaceReading r = readLightFromPhoto(s.faces, s.photo, /*srgb=*/true, 0, 4);
+    EXPECT_EQ(r.covered, 16);
+    EXPECT_EQ(r.clean, 15);
+    EXPECT_EQ(r.used, 15);
+    expectRgbNear(r.radiance, Rgb::gray(static_cast<double>(0.05f)), 1e-12,
+                  "median of the clean pixels");
+    const FaceReading linear = readLightFromPhoto(s.faces, s.photo, /*srgb=*/false, 0, 4);
+    EXPECT_EQ(linear.used, 4);
+    expectRgbNear(linear.radiance,
+                  Rgb::gray(0.5 * (static_cast<double>(0.12f) + static_cast<double>(0.13f))), 1e-12,
+                  "linear");
+}
+
+TEST(Emittance, WayTwoMeansThePhotoPerPolygonThenByArea) {
+    // L^_A of Eq. (2'): (2 m^2 kFloor + 1 m^2 kTable) / 3 m^2, though the camera sees the
+    // table (nearer) on more pixels per m^2 than the floor; the hidden quad counts in the
+    // reflecting area only, the lights' faces in neither.
+    relight::test::TempDir dir("relight_emittance_test");
+    const SceneFile sf = smallScene(dir, {1, 1, 1}, {1, 1, 1}, 0.5);
+    const Shot shot = shoot(sf, Rgb::gray(1));
+    const SurfaceRadiance seen = measureSurfaceRadiance(shot.items, sf.scene, shot.photo);
+    EXPECT_NEAR(seen.reflectingArea, 4.0, 1e-12);
+    EXPECT_NEAR(seen.seenArea, 3.0, 1e-12);
+    expectRgbNear(seen.mean, (kFloor * 2.0 + kTable) * (1.0 / 3), 1e-6, "L_A");
 }
 
 TEST(Emittance, EstimateWithoutAPhotoIsAnErrorNamingTheKey) {
