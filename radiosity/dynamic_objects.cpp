@@ -23,95 +23,65 @@
 
 namespace radiosity {
 
-void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report) {
-    auto t0 = Clock::now();
-    const int P = static_cast<int>(passive_.size());
-    const int A = static_cast<int>(links_.size());
-    // Children of each passive link, encoded p >= 0 (passive) and ~a < 0 (active).
-    std::vector<int> start(static_cast<size_t>(P) + 2, 0);
-    std::vector<int> roots;
-    for (int p = 0; p < P; ++p) {
-        if (passive_[p].parent >= 0)
-            ++start[passive_[p].parent + 2];
-        else
-            roots.push_back(p);
-    }
-    for (int a = 0; a < A; ++a) {
-        if (links_[a].parent >= 0)
-            ++start[links_[a].parent + 2];
-        else
-            roots.push_back(~a);
-    }
-    for (int p = 0; p < P; ++p) start[p + 2] += start[p + 1];
-    std::vector<int> child(static_cast<size_t>(start[P + 1]));
-    for (int p = 0; p < P; ++p)
-        if (passive_[p].parent >= 0) child[start[passive_[p].parent + 1]++] = p;
-    for (int a = 0; a < A; ++a)
-        if (links_[a].parent >= 0) child[start[links_[a].parent + 1]++] = ~a;
-    // start[p] .. start[p + 1] are now the children of p.
+namespace {
 
-    std::vector<char> erased(static_cast<size_t>(A), 0);
-    std::vector<int> cut;
-    std::vector<Link> revived;
-    const auto eraseSubtree = [&](int p) {
+/// The links' refinement tree (Link::parent): the children of each passive link, encoded
+/// p >= 0 (passive) and ~a < 0 (active), in [start[p], start[p + 1]), and the roots.
+struct LinkTree {
+    std::vector<int> start, child, roots;
+
+    LinkTree(const std::vector<Link>& passive, const ActiveLinks& active) {
+        const int P = static_cast<int>(passive.size());
+        const int A = static_cast<int>(active.size());
+        start.assign(static_cast<size_t>(P) + 2, 0);
+        for (int p = 0; p < P; ++p) {
+            if (passive[p].parent >= 0)
+                ++start[passive[p].parent + 2];
+            else
+                roots.push_back(p);
+        }
+        for (int a = 0; a < A; ++a) {
+            if (active[a].parent >= 0)
+                ++start[active[a].parent + 2];
+            else
+                roots.push_back(~a);
+        }
+        for (int p = 0; p < P; ++p) start[p + 2] += start[p + 1];
+        child.resize(static_cast<size_t>(start[P + 1]));
+        for (int p = 0; p < P; ++p)
+            if (passive[p].parent >= 0) child[start[passive[p].parent + 1]++] = p;
+        for (int a = 0; a < A; ++a)
+            if (active[a].parent >= 0) child[start[active[a].parent + 1]++] = ~a;
+        // start[p] .. start[p + 1] are now the children of p.
+    }
+
+    /// Marks the active links below passive link p.
+    void markActiveBelow(int p, std::vector<char>& marked) const {
         std::vector<int> stack{p};
         while (!stack.empty()) {
             const int id = stack.back();
             stack.pop_back();
             if (id < 0) {
-                erased[~id] = 1;
+                marked[~id] = 1;
                 continue;
             }
             for (int k = start[id]; k < start[id + 1]; ++k) stack.push_back(child[k]);
         }
-    };
-    const auto isObjectNode = [&](int node) {
-        const Node& n = h_.nodes[node];
-        return n.isCluster() ? false : n.polygon >= objectPolyBegin;
-    };
-    std::vector<int> stack(roots.rbegin(), roots.rend());
-    double timeVisibility = 0;
-    while (!stack.empty()) {
-        const int id = stack.back();
-        stack.pop_back();
-        const Link& L = id >= 0 ? passive_[id] : links_[~id];
-        if (id >= 0 && L.retired) continue;
-        if (isObjectNode(L.receiver) || isObjectNode(L.source)) continue;
-        ++report.shaftTests;
-        const Shaft shaft(h_.nodes[L.receiver].bounds, h_.nodes[L.source].bounds);
-        if (!shaft.mayIntersect(box)) continue;
-        if (id < 0) {
-            cut.push_back(~id);
-            continue;
-        }
-        // A passive link between two elements (not from a light: those stay at the leaves)
-        // that the object now blocks entirely carries nothing: as refineLinks() would keep it
-        // unrefined, it becomes active again in place of its subtree (Drettakis & Sillion
-        // 1997: passive links are reactivated at no cost, F is kept).
-        const Node& R = h_.nodes[L.receiver];
-        const Node& S = h_.nodes[L.source];
-        if (!R.isCluster() && !S.isCluster() && L.receiver != L.source && !S.emitting) {
-            const auto tv = Clock::now();
-            Link c = L;
-            transfer_->visibility(c, /*thorough=*/true);
-            timeVisibility += secondsSince(tv);
-            if (c.type == VisibilityType::invisible) {
-                passive_[id].retired = true;
-                inserted_.back().retired.push_back(id);
-                eraseSubtree(id);
-                revived.push_back(c);
-                ++report.linksReactivated;
-                continue;
-            }
-        }
-        for (int k = start[id + 1] - 1; k >= start[id]; --k) stack.push_back(child[k]);
     }
-    report.timeShafts += secondsSince(t0) - timeVisibility;
+};
+
+}  // namespace
+
+void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report) {
+    auto t0 = Clock::now();
+    CutLinks found = findCutLinks(box, objectPolyBegin, report);
+    report.timeShafts += secondsSince(t0) - found.timeVisibility;
 
     // Visibility of the cut links again, in parallel (each link's rays are seeded by its
     // nodes, so the order does not matter).
     t0 = Clock::now();
-    std::erase_if(cut, [&](int a) { return erased[a] != 0; });
+    std::vector<int>& cut = found.cut;
+    std::erase_if(cut, [&](int a) { return found.erased[a] != 0; });
     const uint64_t raysBefore = transfer_->counters.rays.load();
     parallelFor(cut.size(), 8, [&](size_t i) { transfer_->visibility(links_.mutableAt(cut[i])); });
     report.linksCut += static_cast<int>(cut.size());
@@ -125,13 +95,65 @@ void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, Dynam
     if (report.linksReactivated > 0) {
         std::vector<Link> kept;
         kept.reserve(links_.size());
-        for (int a = 0; a < A; ++a)
-            if (!erased[a]) kept.push_back(links_[a]);
+        for (size_t a = 0; a < found.erased.size(); ++a)
+            if (!found.erased[a]) kept.push_back(links_[a]);
         links_.replace(std::move(kept));
     }
-    for (const Link& c : revived) links_.push_back(c);
+    for (const Link& c : found.revived) links_.push_back(c);
     report.rays += transfer_->counters.rays.load() - raysBefore;
-    report.timeVisibility += secondsSince(t0) + timeVisibility;
+    report.timeVisibility += secondsSince(t0) + found.timeVisibility;
+}
+
+HierarchicalSolver::CutLinks HierarchicalSolver::findCutLinks(const Bounds3& box,
+                                                              int objectPolyBegin,
+                                                              DynamicUpdate& report) {
+    // The link tree walked from its roots: a link whose shaft misses the object's box
+    // keeps its whole subtree as it is (Drettakis & Sillion 1997).
+    const LinkTree tree(passive_, links_);
+    CutLinks out;
+    out.erased.assign(links_.size(), 0);
+    const auto isObjectNode = [&](int node) {
+        const Node& n = h_.nodes[node];
+        return n.isCluster() ? false : n.polygon >= objectPolyBegin;
+    };
+    std::vector<int> stack(tree.roots.rbegin(), tree.roots.rend());
+    while (!stack.empty()) {
+        const int id = stack.back();
+        stack.pop_back();
+        const Link& L = id >= 0 ? passive_[id] : links_[~id];
+        if (id >= 0 && L.retired) continue;
+        if (isObjectNode(L.receiver) || isObjectNode(L.source)) continue;
+        ++report.shaftTests;
+        const Shaft shaft(h_.nodes[L.receiver].bounds, h_.nodes[L.source].bounds);
+        if (!shaft.mayIntersect(box)) continue;
+        if (id < 0) {
+            out.cut.push_back(~id);
+            continue;
+        }
+        // A passive link between two elements (not from a light: those stay at the leaves)
+        // that the object now blocks entirely carries nothing: as refineLinks() would keep it
+        // unrefined, it becomes active again in place of its subtree (Drettakis & Sillion
+        // 1997: passive links are reactivated at no cost, F is kept).
+        const Node& R = h_.nodes[L.receiver];
+        const Node& S = h_.nodes[L.source];
+        if (!R.isCluster() && !S.isCluster() && L.receiver != L.source && !S.emitting) {
+            const auto tv = Clock::now();
+            Link c = L;
+            transfer_->visibility(c, /*thorough=*/true);
+            out.timeVisibility += secondsSince(tv);
+            if (c.type == VisibilityType::invisible) {
+                passive_[id].retired = true;
+                inserted_.back().retired.push_back(id);
+                tree.markActiveBelow(id, out.erased);
+                out.revived.push_back(c);
+                ++report.linksReactivated;
+                continue;
+            }
+        }
+        for (int k = tree.start[id + 1] - 1; k >= tree.start[id]; --k)
+            stack.push_back(tree.child[k]);
+    }
+    return out;
 }
 
 void HierarchicalSolver::linkObject(int cluster, int oldRoot, DynamicUpdate& report) {

@@ -355,6 +355,16 @@ class HierarchicalSolver {
     size_t refineAll();
     void pushLightLinksToLeaves(size_t from = 0);
     void cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report);
+    /// What an object in `box` changes in the link tree: the active links whose shafts it
+    /// cuts, the passive links it blocks entirely (revived in place of their subtrees, whose
+    /// active links are marked erased), and the time spent on their visibility.
+    struct CutLinks {
+        std::vector<int> cut;
+        std::vector<Link> revived;
+        std::vector<char> erased;  ///< per active link
+        double timeVisibility = 0;
+    };
+    CutLinks findCutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report);
     void linkObject(int cluster, int oldRoot, DynamicUpdate& report);
     int lightOfNode(int node) const;
     void addLinksFromSource(int node);
