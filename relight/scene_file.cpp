@@ -112,13 +112,13 @@ bool SceneFile::lightOnInPhoto(size_t i) const {
     return std::find(names.begin(), names.end(), scene.lights.at(i).name) != names.end();
 }
 
-SceneFile loadScene(const fs::path& dir) {
+namespace {
+
+/// loadScene() after parsing: `root` is <dir>/scene.json's document.
+SceneFile readScene(const json& root, const fs::path& dir) {
     SceneFile sf;
     sf.dir = dir;
-    const fs::path jsonPath = dir / "scene.json";
-    const std::string file = jsonPath.string();
-    const json root = parseJsonFile(jsonPath);
-    const JsonReader r(file);
+    const JsonReader r((dir / "scene.json").string());
     if (!root.is_object()) r.fail("", "the top level must be a JSON object");
 
     // The format first: a file of another kind (an edit, a newer version) is then named as
@@ -294,6 +294,16 @@ SceneFile loadScene(const fs::path& dir) {
 
     sf.setPhotoLightState();
     return sf;
+}
+
+}  // namespace
+
+SceneFile loadScene(const fs::path& dir) {
+    return readScene(parseJsonFile(dir / "scene.json"), dir);
+}
+
+SceneFile parseScene(std::istream& sceneJson, const fs::path& dir) {
+    return readScene(jsonio::parseJson(sceneJson, (dir / "scene.json").string()), dir);
 }
 
 }  // namespace relight

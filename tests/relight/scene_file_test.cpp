@@ -160,6 +160,33 @@ TEST(LoadScene, RoomCountsAreasAndSettings) {
     EXPECT_EQ(sf.photos[0].lightsOn.size(), 4u);
 }
 
+TEST(LoadScene, ParseSceneReadsTheTextAsLoadSceneReadsTheFile) {
+    const fs::path dir = fs::path(RELIGHT_DATA_DIR) / "room";
+    std::ifstream file(dir / "scene.json");
+    const SceneFile fromText = relight::parseScene(file, dir);
+    const SceneFile fromFile = loadScene(dir);
+    EXPECT_EQ(fromText.dir, fromFile.dir);
+    EXPECT_EQ(fromText.scene.objects, fromFile.scene.objects);
+    ASSERT_EQ(fromText.scene.polygons.size(), fromFile.scene.polygons.size());
+    for (size_t i = 0; i < fromText.scene.polygons.size(); ++i)
+        EXPECT_EQ(fromText.scene.polygons[i].v, fromFile.scene.polygons[i].v);
+    EXPECT_EQ(fromText.nominalRadiance, fromFile.nominalRadiance);
+    EXPECT_EQ(fromText.camera.fx, fromFile.camera.fx);
+    EXPECT_EQ(fromText.geometryFiles, fromFile.geometryFiles);
+    ASSERT_EQ(fromText.photos.size(), 1u);
+    EXPECT_EQ(fromText.photos[0].file, fromFile.photos[0].file);
+
+    // Messages name <dir>/scene.json, as loadScene()'s do.
+    std::istringstream bad("{\n \"format\": 1\n}\n");
+    try {
+        relight::parseScene(bad, dir);
+        ADD_FAILURE() << "accepted a bad format";
+    } catch (const InputError& e) {
+        EXPECT_TRUE(contains(e.what(), (dir / "scene.json").string() + ": key \"format\""))
+            << e.what();
+    }
+}
+
 TEST(LoadScene, RoomCameraMatchesRowMajorWorldToCamera) {
     const fs::path dir = fs::path(RELIGHT_DATA_DIR) / "room";
     const SceneFile sf = loadScene(dir);
