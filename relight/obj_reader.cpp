@@ -184,8 +184,9 @@ ObjFile parseObj(std::istream& in, const std::string& name) {
                     throw InputError(obj.where(st.line) +
                                      "vertex index 0 (OBJ indices start at 1)");
                 if (index < 0) {
-                    // Relative: -1 is the last vertex read so far.
-                    if (-index > count)
+                    // Relative: -1 is the last vertex read so far. Compared as
+                    // index < -count: -index overflows for the most negative long long.
+                    if (index < -count)
                         throw InputError(obj.where(st.line) + "face references vertex " +
                                          std::to_string(index) + ", but only " +
                                          std::to_string(count) + " are defined so far");

@@ -476,6 +476,21 @@ TEST(ObjReader, MalformedInputNeverCrashes) {
     }
 }
 
+// Found while writing the OBJ fuzz target (the input is kept in its corpus as
+// fuzz/corpus/obj/most_negative_vertex_index.obj): the range check negated the index,
+// which overflows for -2^63 (UBSan stopped the reader there).
+TEST(ObjReader, MostNegativeVertexIndexIsAnError) {
+    try {
+        parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n");
+        ADD_FAILURE() << "accepted vertex index -2^63";
+    } catch (const InputError& e) {
+        EXPECT_TRUE(contains(e.what(),
+                             "dir/thing.obj:4: face references vertex "
+                             "-9223372036854775808, but only 3 are defined so far"))
+            << e.what();
+    }
+}
+
 // ---- one bad input per error class ----------------------------------------------------------
 
 TEST_F(SceneFixture, UnknownJsonKeysAreErrorsNamingThePath) {
