@@ -14,6 +14,9 @@ target_compile_options(relight_warnings INTERFACE
 add_library(relight_sanitize INTERFACE)
 add_library(relight::sanitize ALIAS relight_sanitize)
 if(RELIGHT_SANITIZE)
-  target_compile_options(relight_sanitize INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer)
+  # Undefined behaviour stops the program (UBSan's default is to report and go on), so
+  # that a finding fails the test that met it.
+  target_compile_options(relight_sanitize INTERFACE -fsanitize=address,undefined
+    -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
   target_link_options(relight_sanitize INTERFACE -fsanitize=address,undefined)
 endif()

@@ -145,10 +145,12 @@ void placeObject(VirtualObject& v, ObjFile obj, std::vector<std::string>& warnin
     v.polygons = std::move(faces.polygons);
 }
 
-EditFile loadEdit(const fs::path& file, const SceneFile& sf) {
+namespace {
+
+/// loadEdit() after parsing: `root` is the edit file's document.
+EditFile readEdit(const json& root, const fs::path& file, const SceneFile& sf) {
     EditFile edit;
     edit.file = file;
-    const json root = jsonio::parseJsonFile(file);
     const JsonReader r(file.string());
     if (!root.is_object()) r.fail("", "the top level must be a JSON object");
 
@@ -218,6 +220,16 @@ EditFile loadEdit(const fs::path& file, const SceneFile& sf) {
     // of an "estimate" light (nominal 0 until estimated) when editRadiance() applies it.
     editedRadiance(sf, edit, sf.nominalRadiance);
     return edit;
+}
+
+}  // namespace
+
+EditFile loadEdit(const fs::path& file, const SceneFile& sf) {
+    return readEdit(jsonio::parseJsonFile(file), file, sf);
+}
+
+EditFile parseEdit(std::istream& editJson, const fs::path& file, const SceneFile& sf) {
+    return readEdit(jsonio::parseJson(editJson, file.string()), file, sf);
 }
 
 std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <filesystem>
+#include <iosfwd>
 #include <map>
 #include <optional>
 #include <string>
@@ -63,6 +64,11 @@ struct EditFile {
 /// naming an object the scene lacks or does not mark removable; a scale that overflows the
 /// light's scene.json radiance, as editedRadiance() does).
 EditFile loadEdit(const std::filesystem::path& file, const SceneFile& sf);
+
+/// loadEdit() with the edit's text read from `editJson` rather than from `file`, which
+/// still names it in messages and is where virtual objects' files are resolved from. Lets
+/// the JSON reading be driven from memory (fuzz/).
+EditFile parseEdit(std::istream& editJson, const std::filesystem::path& file, const SceneFile& sf);
 
 /// Radiance of every real light after the edit (same index as sf.scene.lights), given the
 /// lights' nominal radiance (scene.json's, or the estimated one where scene.json says

@@ -29,7 +29,10 @@ json parseJsonFile(const fs::path& path) {
     if (fs::is_directory(path, ec)) throw InputError(file + ": is a directory");
     std::ifstream in(path);
     if (!in) throw InputError(file + ": cannot open: " + std::strerror(errno));
+    return parseJson(in, file);
+}
 
+json parseJson(std::istream& in, const std::string& file) {
     // The parser callback sees keys and values in order; a stack of open objects and
     // arrays gives each key its path, and each object remembers the keys it has seen.
     struct Frame {

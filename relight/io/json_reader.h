@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <initializer_list>
+#include <iosfwd>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <utility>
@@ -34,6 +35,10 @@ std::string element(const std::string& path, size_t i);
 /// first duplicate is an error naming its key path. Throws InputError (file not found, a
 /// directory, unreadable, invalid JSON with line and column, duplicate key).
 json parseJsonFile(const std::filesystem::path& path);
+
+/// parseJsonFile() of text read from `in`; messages name it as `file`. Throws InputError
+/// (invalid JSON with line and column, duplicate key).
+json parseJson(std::istream& in, const std::string& file);
 
 /// Typed access to JSON values; every error is an InputError naming the file and key path.
 class JsonReader {

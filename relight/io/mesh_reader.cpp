@@ -51,8 +51,6 @@ class RecordingIOSystem : public Assimp::DefaultIOSystem {
 /// that a deep node tree does not add float rounding to every vertex.
 using Mat4 = std::array<double, 16>;
 
-constexpr Mat4 kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-
 Mat4 toMat4(const aiMatrix4x4& m) {
     return {m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4,
             m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4};

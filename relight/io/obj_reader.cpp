@@ -164,7 +164,8 @@ void readFace(const Statement& st, int object, ObjFile& obj, std::vector<Forward
             throw InputError(obj.where(st.line) + "vertex index 0 (OBJ indices start at 1)");
         if (index < 0) {
             // Relative: -1 is the last vertex read so far.
-            if (-index > count)
+            // Compared as index < -count: -index overflows for the most negative long long.
+            if (index < -count)
                 throw InputError(obj.where(st.line) + "face references vertex " +
                                  std::to_string(index) + ", but only " + std::to_string(count) +
                                  " are defined so far");

@@ -298,12 +298,13 @@ bool SceneFile::lightOnInPhoto(size_t i) const {
     return std::find(names.begin(), names.end(), scene.lights.at(i).name) != names.end();
 }
 
-SceneFile loadScene(const fs::path& dir) {
+namespace {
+
+/// loadScene() after parsing: `root` is <dir>/scene.json's document.
+SceneFile readScene(const json& root, const fs::path& dir) {
     SceneFile sf;
     sf.dir = dir;
-    const fs::path jsonPath = dir / "scene.json";
-    const json root = parseJsonFile(jsonPath);
-    const JsonReader r(jsonPath.string());
+    const JsonReader r((dir / "scene.json").string());
     checkFormatAndKeys(r, root);
     sf.camera = readCamera(r, r.require(root, "", "camera"));
     sf.averageReflectance = readAverageReflectance(r, root);
@@ -313,6 +314,16 @@ SceneFile loadScene(const fs::path& dir) {
     readPhotos(r, root, sf);
     sf.setPhotoLightState();
     return sf;
+}
+
+}  // namespace
+
+SceneFile loadScene(const fs::path& dir) {
+    return readScene(parseJsonFile(dir / "scene.json"), dir);
+}
+
+SceneFile parseScene(std::istream& sceneJson, const fs::path& dir) {
+    return readScene(jsonio::parseJson(sceneJson, (dir / "scene.json").string()), dir);
 }
 
 }  // namespace relight

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <filesystem>
+#include <iosfwd>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -72,5 +73,10 @@ struct SceneFile {
 /// object's "reflectance" when given, else average_reflectance (grey), else 0.5; emitting
 /// faces have reflectance 0. Throws InputError.
 SceneFile loadScene(const std::filesystem::path& dir);
+
+/// loadScene() with scene.json's text read from `sceneJson` rather than from
+/// <dir>/scene.json (messages still name that file); the files it names are looked up in
+/// `dir` as loadScene() does. Lets the JSON reading be driven from memory (fuzz/).
+SceneFile parseScene(std::istream& sceneJson, const std::filesystem::path& dir);
 
 }  // namespace relight

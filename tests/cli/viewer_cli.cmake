@@ -8,12 +8,17 @@
 #  - clear messages and no output for a missing display, an OpenGL older than 3.3, a scene
 #    or edit that does not load, an edit whose display is not finite, a bad option or --do.
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=data/room -DWORK=... -P this
+# (and -DVIEWER_PRELOAD=... under the sanitizers: tests/CMakeLists.txt says why).
 include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
 foreach(var VIEWER XVFB_RUN)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "define ${var}")
   endif()
 endforeach()
+set(viewer_cmd "${VIEWER}")
+if(VIEWER_PRELOAD)
+  set(viewer_cmd env "LD_PRELOAD=${VIEWER_PRELOAD}" "${VIEWER}")
+endif()
 find_program(IDIFF idiff REQUIRED)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -21,7 +26,7 @@ set(cache "${WORK}/prepared.bin")
 
 # Runs the viewer under xvfb-run (run_checked).
 function(viewer out expected_rc)
-  run_checked(o ${expected_rc} "${XVFB_RUN}" -a -s "-screen 0 1280x1024x24" "${VIEWER}" ${ARGN})
+  run_checked(o ${expected_rc} "${XVFB_RUN}" -a -s "-screen 0 1280x1024x24" ${viewer_cmd} ${ARGN})
   set(${out} "${o}" PARENT_SCOPE)
 endfunction()
 
@@ -71,13 +76,13 @@ expect("${o}" "wrote .*window.png \\([0-9]+x[0-9]+\\)" "window screenshot")
 # Failures: a message, a non-zero exit code, and an existing output left as it was.
 file(WRITE "${WORK}/keep.png" "not an image, and it must stay so")
 execute_process(COMMAND "${CMAKE_COMMAND}" -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY
-                        "${VIEWER}" "${SCENE}" --screenshot "${WORK}/keep.png"
+                        ${viewer_cmd} "${SCENE}" --screenshot "${WORK}/keep.png"
                 ERROR_VARIABLE e RESULT_VARIABLE rc)
 if(rc EQUAL 0 OR NOT e MATCHES "no display: DISPLAY is not set")
   message(FATAL_ERROR "without a display: exit code ${rc}, message:\n${e}")
 endif()
 execute_process(COMMAND "${CMAKE_COMMAND}" -E env MESA_GL_VERSION_OVERRIDE=3.0
-                        "${XVFB_RUN}" -a "${VIEWER}" "${SCENE}" --screenshot "${WORK}/keep.png"
+                        "${XVFB_RUN}" -a ${viewer_cmd} "${SCENE}" --screenshot "${WORK}/keep.png"
                 ERROR_VARIABLE e RESULT_VARIABLE rc)
 if(rc EQUAL 0 OR NOT e MATCHES "no OpenGL 3.3 core context")
   message(FATAL_ERROR "with OpenGL 3.0 only: exit code ${rc}, message:\n${e}")

@@ -14,6 +14,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -238,6 +239,24 @@ TEST_F(LoadEdit, EditLoadedAgainstAnotherSceneIsAProgrammingError) {
     SceneFile other = sf;
     other.scene.lights[0].name = "X";
     EXPECT_THROW(editedRadiance(other, edit, other.nominalRadiance), std::invalid_argument);
+}
+
+TEST(RoomEdits, ParseEditReadsTheTextAsLoadEditReadsTheFile) {
+    const fs::path file = kRoom / "edits" / "virtual_light_and_box.json";
+    std::ifstream in(file);
+    const EditFile fromText = relight::parseEdit(in, file, room());
+    const EditFile fromFile = loadEdit(file, room());
+    EXPECT_EQ(fromText.file, fromFile.file);
+    ASSERT_EQ(fromText.addLights.size(), 1u);
+    EXPECT_EQ(fromText.addLights[0].corners, fromFile.addLights[0].corners);
+    ASSERT_EQ(fromText.addObjects.size(), 1u);
+    // The object's file is resolved against the named edit file's folder.
+    EXPECT_EQ(fromText.addObjects[0].file, fromFile.addObjects[0].file);
+    EXPECT_EQ(fromText.addObjects[0].polygons.size(), fromFile.addObjects[0].polygons.size());
+
+    std::istringstream bad(R"({"format": "relight-edit/1", "lights": {"Q": {"scale": 1}}})");
+    const std::string msg = errorOf([&] { relight::parseEdit(bad, file, room()); });
+    EXPECT_TRUE(contains(msg, file.string() + ": key \"lights.Q\": unknown light")) << msg;
 }
 
 // ---- one bad input per error class -----------------------------------------------------

@@ -161,6 +161,33 @@ TEST_F(LoadScene, RoomCountsAreasAndSettings) {
     EXPECT_EQ(sf.photos[0].lightsOn.size(), 4u);
 }
 
+TEST_F(LoadScene, ParseSceneReadsTheTextAsLoadSceneReadsTheFile) {
+    const fs::path roomDir = fs::path(RELIGHT_DATA_DIR) / "room";
+    std::ifstream file(roomDir / "scene.json");
+    const SceneFile fromText = relight::parseScene(file, roomDir);
+    const SceneFile fromFile = loadScene(roomDir);
+    EXPECT_EQ(fromText.dir, fromFile.dir);
+    EXPECT_EQ(fromText.scene.objects, fromFile.scene.objects);
+    ASSERT_EQ(fromText.scene.polygons.size(), fromFile.scene.polygons.size());
+    for (size_t i = 0; i < fromText.scene.polygons.size(); ++i)
+        EXPECT_EQ(fromText.scene.polygons[i].v, fromFile.scene.polygons[i].v);
+    EXPECT_EQ(fromText.nominalRadiance, fromFile.nominalRadiance);
+    EXPECT_EQ(fromText.camera.fx, fromFile.camera.fx);
+    EXPECT_EQ(fromText.geometryFiles, fromFile.geometryFiles);
+    ASSERT_EQ(fromText.photos.size(), 1u);
+    EXPECT_EQ(fromText.photos[0].file, fromFile.photos[0].file);
+
+    // Messages name <dir>/scene.json, as loadScene()'s do.
+    std::istringstream bad("{\n \"format\": 1\n}\n");
+    try {
+        relight::parseScene(bad, roomDir);
+        ADD_FAILURE() << "accepted a bad format";
+    } catch (const InputError& e) {
+        EXPECT_TRUE(contains(e.what(), (roomDir / "scene.json").string() + ": key \"format\""))
+            << e.what();
+    }
+}
+
 TEST_F(LoadScene, RoomCameraMatchesRowMajorWorldToCamera) {
     const fs::path room = fs::path(RELIGHT_DATA_DIR) / "room";
     const SceneFile sf = loadScene(room);
@@ -447,6 +474,21 @@ TEST(ObjReader, MalformedInputNeverCrashes) {
         } catch (const std::exception& e) {
             ADD_FAILURE() << "not an InputError for \"" << text << "\": " << e.what();
         }
+    }
+}
+
+// Found while writing the OBJ fuzz target (the input is kept in its corpus as
+// fuzz/corpus/obj/most_negative_vertex_index.obj): the range check negated the index,
+// which overflows for -2^63 (UBSan stopped the reader there).
+TEST(ObjReader, MostNegativeVertexIndexIsAnError) {
+    try {
+        parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n");
+        ADD_FAILURE() << "accepted vertex index -2^63";
+    } catch (const InputError& e) {
+        EXPECT_TRUE(contains(e.what(),
+                             "dir/thing.obj:4: face references vertex "
+                             "-9223372036854775808, but only 3 are defined so far"))
+            << e.what();
     }
 }
 
