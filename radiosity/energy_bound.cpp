@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "radiosity/detail/hemisphere.h"
 #include "radiosity/detail/rng.h"
 #include "radiosity/parallel.h"
 #include "radiosity/solver.h"
@@ -111,40 +112,19 @@ std::vector<double> HierarchicalSolver::meanOverLeaves(
 }
 
 void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {
-    // Malley's method: points uniform on the unit disc, lifted to the hemisphere, are
-    // cosine-distributed; strata of a k x k grid on the square, mapped to the disc by
-    // the concentric map (Shirley & Chiu 1997), and a random point of the leaf per ray.
+    // Cosine-distributed rays, stratified over the hemisphere (detail/hemisphere.h), from
+    // a random point of the leaf each.
     const double diag = glm::length(h_.nodes[Hierarchy::kRoot].bounds.diagonal());
     const double tMin = 1e-6 * diag;       // above Embree's float rounding (visibility.h)
     constexpr int kFirst = 8, kMore = 16;  // 64 rays; 256 where they disagree
     parallelFor(leaves.size(), 16, [&](size_t i) {
         Node& e = h_.nodes[leaves[i]];
         Rng rng(0xC0FFEEull ^ (static_cast<uint64_t>(leaves[i]) * 0x9E3779B97F4A7C15ull));
-        // An orthonormal frame about the normal.
-        const Vec3 n = e.normal;
-        const Vec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3{1, 0, 0})
-                                                          : glm::cross(n, Vec3{0, 1, 0}));
-        const Vec3 b = glm::cross(n, t);
+        const HemisphereFrame frame(e.normal);
         int hits = 0, cast = 0;
         const auto castRays = [&](int k) {
             for (int cell = 0; cell < k * k; ++cell) {
-                const double a = 2 * ((cell % k) + rng.uniform()) / k - 1;
-                const double c = 2 * ((cell / k) + rng.uniform()) / k - 1;
-                // Concentric square-to-disc map.
-                double r, phi;
-                if (a == 0 && c == 0) {
-                    r = 0;
-                    phi = 0;
-                } else if (std::abs(a) > std::abs(c)) {
-                    r = a;
-                    phi = (std::numbers::pi / 4) * (c / a);
-                } else {
-                    r = c;
-                    phi = std::numbers::pi / 2 - (std::numbers::pi / 4) * (a / c);
-                }
-                const double x = r * std::cos(phi), y = r * std::sin(phi);
-                const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
-                const Vec3 dir = x * t + y * b + z * n;
+                const Vec3 dir = cosineDirection(frame, cell, k, rng);
                 const Vec3 org = pointOnElement(e, rng.uniform(), rng.uniform());
                 const Visibility::Hit hit = vis_->intersect(org, dir, tMin);
                 if (hit.polygon < 0 || hit.polygon == e.polygon) continue;

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
+#include "radiosity/detail/hemisphere.h"
 #include "radiosity/detail/rng.h"
 #include "radiosity/hierarchy.h"
 
@@ -24,27 +24,11 @@ LightReach lightReach(const Scene& scene, const Visibility& vis, int light, int 
     double area = 0, reached = 0;
     for (const int f : L.polygons) {
         const Polygon& face = scene.polygons[static_cast<size_t>(f)];
-        // Cosine-distributed directions as the solver's measureSeen casts them: strata of a
-        // k x k grid mapped to the disc (concentric map) and lifted to the hemisphere.
-        const Vec3 n = face.normal;
-        const Vec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3{1, 0, 0})
-                                                          : glm::cross(n, Vec3{0, 1, 0}));
-        const Vec3 b = glm::cross(n, t);
+        // Cosine-distributed directions, as the energy bound casts them (detail/hemisphere.h).
+        const HemisphereFrame frame(face.normal);
         int hits = 0;
         for (int cell = 0; cell < k * k; ++cell) {
-            const double a = 2 * ((cell % k) + rng.uniform()) / k - 1;
-            const double c = 2 * ((cell / k) + rng.uniform()) / k - 1;
-            double r = 0, phi = 0;
-            if (std::abs(a) > std::abs(c)) {
-                r = a;
-                phi = (std::numbers::pi / 4) * (c / a);
-            } else if (c != 0) {
-                r = c;
-                phi = std::numbers::pi / 2 - (std::numbers::pi / 4) * (a / c);
-            }
-            const double x = r * std::cos(phi), y = r * std::sin(phi);
-            const double z = std::sqrt(std::max(0.0, 1 - x * x - y * y));
-            const Vec3 dir = x * t + y * b + z * n;
+            const Vec3 dir = cosineDirection(frame, cell, k, rng);
             const Vec3 org = pointOnPolygon(face, rng.uniform(), rng.uniform());
             const Visibility::Hit hit = vis.intersect(org, dir, tMin);
             if (hit.polygon < 0 || hit.polygon == f) continue;
