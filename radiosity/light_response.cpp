@@ -1,8 +1,5 @@
 #include "radiosity/light_response.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -168,21 +165,19 @@ class ResponseSweeps {
     /// Each polygon's element tree: what its cluster ancestors gathered, by its normal,
     /// handed down with its elements' own; leaves take B = E + rho (Hd + H gatherScale).
     void pushToLeaves() {
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, layout_.roots.size(), 256),
-            [&](const tbb::blocked_range<size_t>& range) {
-                std::vector<Rgb> down(2 * static_cast<size_t>(K_));
-                for (size_t i = range.begin(); i != range.end(); ++i) {
-                    std::fill(down.begin(), down.end(), Rgb{});
-                    for (int a = layout_.ancestorStart[i]; a < layout_.ancestorStart[i + 1]; ++a) {
-                        const DirectionalIrradiance* Hv =
-                            Hv_.data() + static_cast<size_t>(layout_.ancestorSlot[a]) * K_;
-                        const Vec3& n = layout_.ancestorNormal[a];
-                        for (int l = 0; l < K_; ++l) down[l] += Hv[l].onto(n);
-                    }
-                    pushElement(layout_.roots[i], down.data(), down.data() + K_);
+        parallelForChunks(layout_.roots.size(), 256, [&](size_t begin, size_t end) {
+            std::vector<Rgb> down(2 * static_cast<size_t>(K_));
+            for (size_t i = begin; i != end; ++i) {
+                std::fill(down.begin(), down.end(), Rgb{});
+                for (int a = layout_.ancestorStart[i]; a < layout_.ancestorStart[i + 1]; ++a) {
+                    const DirectionalIrradiance* Hv =
+                        Hv_.data() + static_cast<size_t>(layout_.ancestorSlot[a]) * K_;
+                    const Vec3& n = layout_.ancestorNormal[a];
+                    for (int l = 0; l < K_; ++l) down[l] += Hv[l].onto(n);
                 }
-            });
+                pushElement(layout_.roots[i], down.data(), down.data() + K_);
+            }
+        });
     }
 
     void pushElement(int node, const Rgb* Hdown, const Rgb* HdDown) {

@@ -1,7 +1,5 @@
 #include "relight/display/ratio_display.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -121,7 +119,7 @@ void joinBands(std::vector<DisplayBand>& bands, DisplayMap& m) {
     m.weight.resize(vFirst.back());
     m.emitterLight.resize(eFirst.back());
     m.emitterFraction.resize(eFirst.back());
-    tbb::parallel_for(0, static_cast<int>(bands.size()), [&](int b) {
+    radiosity::parallelFor(bands.size(), 1, [&](size_t b) {
         DisplayBand& band = bands[b];
         const size_t p0 = static_cast<size_t>(b) * kBandRows * m.width;
         for (size_t i = 0; i < band.start.size(); ++i) {
@@ -149,8 +147,9 @@ DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& m
     m.height = items.height;
     m.unshaded.assign(static_cast<size_t>(items.width) * items.height, 0.0f);
     std::vector<DisplayBand> bands(static_cast<size_t>((items.height + kBandRows - 1) / kBandRows));
-    tbb::parallel_for(0, static_cast<int>(bands.size()),
-                      [&](int b) { buildBand(items, mesh, scene, b, bands[b], m.unshaded); });
+    radiosity::parallelFor(bands.size(), 1, [&](size_t b) {
+        buildBand(items, mesh, scene, static_cast<int>(b), bands[b], m.unshaded);
+    });
     joinBands(bands, m);
     packDisplayMap(m);
     return m;
@@ -161,8 +160,9 @@ void packDisplayMap(DisplayMap& m) {
     const size_t pixels = static_cast<size_t>(m.width) * m.height;
     m.runWeight.assign(pixels * 3, 0.0f);
     std::vector<std::vector<Run>> rows(static_cast<size_t>(m.height));
-    tbb::parallel_for(0, m.height, [&](int y) {
-        std::vector<Run>& runs = rows[y];
+    radiosity::parallelFor(static_cast<size_t>(m.height), 1, [&](size_t row) {
+        const int y = static_cast<int>(row);
+        std::vector<Run>& runs = rows[row];
         for (int x = 0; x < m.width; ++x) {
             const size_t px = static_cast<size_t>(y) * m.width + x;
             const int k0 = m.start[px], count = m.start[px + 1] - k0;

@@ -1,8 +1,5 @@
 #include "relight/dynamic/dynamic_relighting.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -145,33 +142,30 @@ void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool vir
     const int lights = static_cast<int>(scene.lights.size());
     const VertexDirect& before = r_.direct;
     const auto& correction = r_.removal.linkCorrection;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertices.size(), 16),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          std::vector<double> G(static_cast<size_t>(lights));
-                          for (size_t i = range.begin(); i != range.end(); ++i) {
-                              const int v = vertices[i];
-                              const int p = mesh.vertices()[v].polygon;
-                              if (scene.polygons[p].light >= 0) continue;  // shown, not lit
-                              // A virtual light added or removed changes the virtual lights' direct
-                              // light only; a moved object may change every light's.
-                              direct.geometry(p, mesh.insidePoint(v), static_cast<uint64_t>(v),
-                                              G.data(), nullptr, virtualOnly ? realLights_ : 0);
-                              if (!virtualOnly) {
-                                  const Rgb c = correction.empty() ? Rgb::gray(1.0) : correction[v];
-                                  Rgb d;
-                                  for (int l = 0; l < realLights_; ++l) {
-                                      const double was =
-                                          before.visible[static_cast<size_t>(v) * realLights_ + l];
-                                      d += radiance_[l] * c * (kPi * G[l] - was);
-                                  }
-                                  realDirect_[v] = d;
-                              }
-                              Rgb d;
-                              for (int l = realLights_; l < lights; ++l)
-                                  d += radiance_[l] * (kPi * G[l]);
-                              virtualDirect_[v] = d;
-                          }
-                      });
+    radiosity::parallelForChunks(vertices.size(), 16, [&](size_t first, size_t last) {
+        std::vector<double> G(static_cast<size_t>(lights));
+        for (size_t i = first; i != last; ++i) {
+            const int v = vertices[i];
+            const int p = mesh.vertices()[v].polygon;
+            if (scene.polygons[p].light >= 0) continue;  // shown, not lit
+            // A virtual light added or removed changes the virtual lights' direct
+            // light only; a moved object may change every light's.
+            direct.geometry(p, mesh.insidePoint(v), static_cast<uint64_t>(v), G.data(), nullptr,
+                            virtualOnly ? realLights_ : 0);
+            if (!virtualOnly) {
+                const Rgb c = correction.empty() ? Rgb::gray(1.0) : correction[v];
+                Rgb d;
+                for (int l = 0; l < realLights_; ++l) {
+                    const double was = before.visible[static_cast<size_t>(v) * realLights_ + l];
+                    d += radiance_[l] * c * (kPi * G[l] - was);
+                }
+                realDirect_[v] = d;
+            }
+            Rgb d;
+            for (int l = realLights_; l < lights; ++l) d += radiance_[l] * (kPi * G[l]);
+            virtualDirect_[v] = d;
+        }
+    });
 }
 
 std::vector<Rgb> DynamicRelighting::gatherAtVertices() const {
@@ -217,19 +211,18 @@ void DynamicRelighting::refreshIndirect(bool full) {
     const radiosity::DirectLight direct(solver_);
     const size_t nv = objectMesh_->vertices().size();
     objectRadiance_.assign(nv, Rgb{});
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 8),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          std::vector<double> G(static_cast<size_t>(lights));
-                          for (size_t v = range.begin(); v != range.end(); ++v) {
-                              const int p = objectMesh_->vertices()[v].polygon;
-                              if (scene.polygons[p].light >= 0) continue;
-                              direct.geometry(p, objectMesh_->insidePoint(static_cast<int>(v)),
-                                              kObjectSeed + v, G.data());
-                              Rgb H = indirectAtCorners[v];
-                              for (int l = 0; l < lights; ++l) H += radiance_[l] * (kPi * G[l]);
-                              objectRadiance_[v] = scene.polygons[p].rho * H * (1.0 / kPi);
-                          }
-                      });
+    radiosity::parallelForChunks(nv, 8, [&](size_t first, size_t last) {
+        std::vector<double> G(static_cast<size_t>(lights));
+        for (size_t v = first; v != last; ++v) {
+            const int p = objectMesh_->vertices()[v].polygon;
+            if (scene.polygons[p].light >= 0) continue;
+            direct.geometry(p, objectMesh_->insidePoint(static_cast<int>(v)), kObjectSeed + v,
+                            G.data());
+            Rgb H = indirectAtCorners[v];
+            for (int l = 0; l < lights; ++l) H += radiance_[l] * (kPi * G[l]);
+            objectRadiance_[v] = scene.polygons[p].rho * H * (1.0 / kPi);
+        }
+    });
 }
 
 std::vector<Rgb> DynamicRelighting::vertexIrradiance() const {

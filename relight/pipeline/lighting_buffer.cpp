@@ -1,14 +1,12 @@
 #include "relight/pipeline/lighting_buffer.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "radiosity/final_gather.h"
+#include "radiosity/parallel.h"
 
 namespace relight {
 
@@ -37,20 +35,19 @@ LightingBuffer computeLightingBuffer(const ItemBuffer& items,
     };
     buf.G.assign(static_cast<size_t>(n) * buf.lights, 0.0f);
     if (buf.lights > 0) {
-        tbb::parallel_for(
-            tbb::blocked_range<int>(0, n, 256), [&](const tbb::blocked_range<int>& r) {
-                std::vector<double> G(static_cast<size_t>(buf.lights));
-                for (int i = r.begin(); i != r.end(); ++i) {
-                    const int idx = sampleOf(i);
-                    const int p = items.polygon[idx];
-                    if (p < 0 || scene.polygons[p].light >= 0) continue;
-                    // The ray seed is the item-buffer sample, so that a sample's direct
-                    // light does not depend on the stride.
-                    dl.geometry(p, items.point[idx], static_cast<uint64_t>(idx), G.data());
-                    for (int l = 0; l < buf.lights; ++l)
-                        buf.G[static_cast<size_t>(i) * buf.lights + l] = static_cast<float>(G[l]);
-                }
-            });
+        radiosity::parallelForChunks(static_cast<size_t>(n), 256, [&](size_t first, size_t last) {
+            std::vector<double> G(static_cast<size_t>(buf.lights));
+            for (int i = static_cast<int>(first); i != static_cast<int>(last); ++i) {
+                const int idx = sampleOf(i);
+                const int p = items.polygon[idx];
+                if (p < 0 || scene.polygons[p].light >= 0) continue;
+                // The ray seed is the item-buffer sample, so that a sample's direct
+                // light does not depend on the stride.
+                dl.geometry(p, items.point[idx], static_cast<uint64_t>(idx), G.data());
+                for (int l = 0; l < buf.lights; ++l)
+                    buf.G[static_cast<size_t>(i) * buf.lights + l] = static_cast<float>(G[l]);
+            }
+        });
     }
     buf.rays = dl.raysCast();
 
@@ -86,10 +83,9 @@ LightingBuffer computeLightingBuffer(const ItemBuffer& items,
 void updateIndirect(LightingBuffer& buf, const radiosity::HierarchicalSolver& solver) {
     const int m = static_cast<int>(buf.gatherPolygon.size());
     buf.indirect.assign(static_cast<size_t>(m), Rgb{});
-    tbb::parallel_for(tbb::blocked_range<int>(0, m, 64), [&](const tbb::blocked_range<int>& r) {
-        for (int g = r.begin(); g != r.end(); ++g)
-            buf.indirect[g] = radiosity::finalGatherIndirect(
-                solver, buf.gatherPolygon[g], buf.gatherPosition[g], 4, static_cast<uint64_t>(g));
+    radiosity::parallelFor(static_cast<size_t>(m), 64, [&](size_t g) {
+        buf.indirect[g] = radiosity::finalGatherIndirect(
+            solver, buf.gatherPolygon[g], buf.gatherPosition[g], 4, static_cast<uint64_t>(g));
     });
 }
 
@@ -109,9 +105,9 @@ Image renderRadiosity(const ItemBuffer& items, const LightingBuffer& buf,
         throw std::invalid_argument("renderRadiosity: the lighting buffer has pixel stride " +
                                     std::to_string(buf.stride) + "; it needs every pixel");
     Image img(items.width, items.height);
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, items.height), [&](const tbb::blocked_range<int>& rows) {
-            for (int y = rows.begin(); y != rows.end(); ++y) {
+    radiosity::parallelForChunks(
+        static_cast<size_t>(items.height), 1, [&](size_t first, size_t last) {
+            for (int y = static_cast<int>(first); y != static_cast<int>(last); ++y) {
                 for (int x = 0; x < items.width; ++x) {
                     Rgb sum;
                     for (int s = 0; s < items.spp; ++s) {

@@ -8,10 +8,9 @@
 #include <numbers>
 #include <vector>
 
-#include <tbb/parallel_for.h>
-
 #include "radiosity/final_gather.h"
 #include "radiosity/leaf_mesh.h"
+#include "radiosity/parallel.h"
 #include "relight/pipeline/leaf_texture.h"
 
 namespace relight {
@@ -122,7 +121,7 @@ std::vector<Rgb> sumIrradiance(const radiosity::HierarchicalSolver& solver, cons
     const int np = static_cast<int>(sums.L.size());
     const auto& nodes = solver.hierarchy().nodes;
     std::vector<Rgb> sumH(np);
-    tbb::parallel_for(0, np, [&](int p) {
+    radiosity::parallelFor(static_cast<size_t>(np), 1, [&](size_t p) {
         Rgb sumI;
         double weight = 0;
         for (size_t i = 0; i < sums.points[p].size(); ++i) {
@@ -227,11 +226,12 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
     const std::vector<int> surface = surfaceOf(scene);
     // The gather points' terms, once: between rounds only the radiosities change.
     GatherTerms terms(np);
-    tbb::parallel_for(0, np, [&](int p) {
+    radiosity::parallelFor(static_cast<size_t>(np), 1, [&](size_t p) {
         terms[p].reserve(sums.points[p].size());
         for (auto [g, n] : sums.points[p])
-            terms[p].push_back(radiosity::finalGatherWeights(solver, p, lighting.gatherPosition[g],
-                                                             4, static_cast<uint64_t>(g)));
+            terms[p].push_back(radiosity::finalGatherWeights(solver, static_cast<int>(p),
+                                                             lighting.gatherPosition[g], 4,
+                                                             static_cast<uint64_t>(g)));
     });
     for (int round = 0; round < rounds; ++round) {
         RoundEstimates e =

@@ -1,13 +1,11 @@
 #include "relight/pipeline/vertex_lighting.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <atomic>
 #include <numbers>
 #include <span>
 
 #include "radiosity/final_gather.h"
+#include "radiosity/parallel.h"
 
 namespace relight {
 
@@ -57,10 +55,10 @@ VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver
     std::atomic<uint64_t> gatherRays{0};
     // The gather's terms, kept for the lightings that follow (regatherVertexLighting).
     std::vector<std::vector<radiosity::GatherWeight>> terms(n);
-    tbb::parallel_for(tbb::blocked_range<int>(0, n, 64), [&](const tbb::blocked_range<int>& r) {
+    radiosity::parallelForChunks(static_cast<size_t>(n), 64, [&](size_t first, size_t last) {
         std::vector<double> G(static_cast<size_t>(L)), G0(static_cast<size_t>(L));
         uint64_t rays = 0;
-        for (int v = r.begin(); v != r.end(); ++v) {
+        for (int v = static_cast<int>(first); v != static_cast<int>(last); ++v) {
             const int p = mesh.vertices()[v].polygon;
             // A light's own emitting face is shown with the light's radiance, not lit.
             if (solver.scene().polygons[p].light >= 0) continue;
@@ -102,9 +100,9 @@ VertexLighting regatherVertexLighting(const radiosity::HierarchicalSolver& solve
     if (L == 0) return out;
     std::atomic<uint64_t> gatherRays{0};
     const bool useTerms = direct.termStart.size() == static_cast<size_t>(n) + 1;
-    tbb::parallel_for(tbb::blocked_range<int>(0, n, 64), [&](const tbb::blocked_range<int>& r) {
+    radiosity::parallelForChunks(static_cast<size_t>(n), 64, [&](size_t from, size_t to) {
         uint64_t rays = 0;
-        for (int v = r.begin(); v != r.end(); ++v) {
+        for (int v = static_cast<int>(from); v != static_cast<int>(to); ++v) {
             const int p = mesh.vertices()[v].polygon;
             if (solver.scene().polygons[p].light >= 0) continue;  // shown, not lit
             Rgb* h = out.response.data() + static_cast<size_t>(v) * L;
