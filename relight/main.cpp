@@ -10,36 +10,27 @@
 // which kind (relight/errors.h): 2 the input is wrong (the command line's options too), 3
 // an output cannot be written, 1 anything else.
 #include <CLI/CLI.hpp>
-#include <cmath>
-#include <cstdlib>
-
 #include <cstdio>
 #include <string>
 
 #include "relight/cli/commands.h"
+#include "relight/cli/validators.h"
 #include "relight/errors.h"
 
 using namespace relight;
+using cli::finiteNumber;
+using cli::Sign;
 
 namespace {
 
-/// A finite number, and at least 0 (kNonNegative) or above 0 (kPositive). CLI11's
-/// PositiveNumber and Range let NaN through (every comparison with NaN is false):
-/// --epsilon nan refined nothing, silently.
-enum class Sign { kAny, kNonNegative, kPositive };
-CLI::Validator finiteNumber(Sign sign) {
-    const char* what = sign == Sign::kPositive      ? "a finite number > 0"
-                       : sign == Sign::kNonNegative ? "a finite number >= 0"
-                                                    : "a finite number";
-    return CLI::Validator(
-        [sign, what](std::string& text) -> std::string {
-            char* end = nullptr;
-            const double v = std::strtod(text.c_str(), &end);
-            const bool ok = end != text.c_str() && *end == '\0' && std::isfinite(v) &&
-                            (sign == Sign::kAny || (sign == Sign::kPositive ? v > 0 : v >= 0));
-            return ok ? std::string() : std::string("must be ") + what + ", got " + text;
-        },
-        "FINITE");
+/// The budget options, the same for `solve`, `prepare` and `render`.
+void addBudgetOptions(CLI::App* app, size_t& maxLinks, double& maxMemoryMB) {
+    app->add_option("--max-links", maxLinks,
+                    "refinement budget in links (default: what fits in --max-memory)")
+        ->check(cli::wholeNumber());
+    app->add_option("--max-memory", maxMemoryMB,
+                    "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
+        ->check(finiteNumber(Sign::kNonNegative));
 }
 
 /// The options of the preparation, the same for `prepare` and `render`.
@@ -48,11 +39,7 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
     app->add_option("--epsilon", p.epsilon, "BF refinement threshold")
         ->capture_default_str()
         ->check(finiteNumber(Sign::kPositive));
-    app->add_option("--max-links", p.maxLinks,
-                    "refinement budget in links (default: what fits in --max-memory)");
-    app->add_option("--max-memory", p.maxMemoryMB,
-                    "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
-        ->check(finiteNumber(Sign::kNonNegative));
+    addBudgetOptions(app, p.maxLinks, p.maxMemoryMB);
     app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     app->add_flag("!--no-refinement", p.shadowRefinement,
                   "skip the texture-based refinement of shadow boundaries (§4.2)");
@@ -64,13 +51,7 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
         ->check(finiteNumber(Sign::kNonNegative));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{"relight: relight photographs of real rooms (Loscos, Drettakis & Robert 2000)"};
-    app.require_subcommand(1);
-
-    cli::SolveArgs sa;
+CLI::App* addSolveCommand(CLI::App& app, cli::SolveArgs& sa) {
     auto* solve =
         app.add_subcommand("solve", "clustered hierarchical radiosity solution of a scene");
     solve->add_option("scene_dir", sa.scene, "scene folder holding scene.json")->required();
@@ -81,12 +62,7 @@ int main(int argc, char** argv) {
         ->add_option("--min-area", sa.minArea,
                      "smallest element area in m^2 (0: 2e-5 of the scene's area)")
         ->check(finiteNumber(Sign::kNonNegative));
-    solve->add_option("--max-links", sa.maxLinks,
-                      "refinement budget in links (default: what fits in --max-memory)");
-    solve
-        ->add_option("--max-memory", sa.maxMemoryMB,
-                     "refinement budget in MiB of nodes and links (default: 40 % of RAM)")
-        ->check(finiteNumber(Sign::kNonNegative));
+    addBudgetOptions(solve, sa.maxLinks, sa.maxMemoryMB);
     solve->add_option("--min-rays", sa.minRays, "visibility rays per link, first round")
         ->capture_default_str()
         ->check(CLI::Range(1, 256));
@@ -106,18 +82,25 @@ int main(int argc, char** argv) {
                       "write the radiosity seen from the camera (radiance B/pi)");
     solve->add_option("--exposure", sa.exposure, "exposure in stops for 8-bit output")
         ->check(finiteNumber(Sign::kAny));
+    return solve;
+}
 
-    std::string evScene, evEdit, evImage;
+struct EvalArgs {
+    std::string scene, edit, image, errorMap;
+};
+
+CLI::App* addEvalCommand(CLI::App& app, EvalArgs& ea) {
     auto* eval =
         app.add_subcommand("eval", "score an image against a scene's ground truth (spec metric)");
-    eval->add_option("scene_dir", evScene)->required();
-    eval->add_option("edit_name", evEdit)->required();
-    eval->add_option("image", evImage)->required();
-    std::string evErrorMap;
-    eval->add_option("--error-map", evErrorMap,
+    eval->add_option("scene_dir", ea.scene)->required();
+    eval->add_option("edit_name", ea.edit)->required();
+    eval->add_option("image", ea.image)->required();
+    eval->add_option("--error-map", ea.errorMap,
                      "write the per-block error relative to the mean truth (EXR, or PNG)");
+    return eval;
+}
 
-    cli::RenderArgs ra;
+CLI::App* addRenderCommand(CLI::App& app, cli::RenderArgs& ra) {
     auto* render = app.add_subcommand("render", "relight the scene's photo for an edit");
     render->add_option("scene_dir", ra.scene, "scene folder holding scene.json")->required();
     render->add_option("--edit", ra.edit, "relight-edit/1 JSON file (none: the photo's lights)");
@@ -134,8 +117,10 @@ int main(int argc, char** argv) {
     render->add_option("--debug-views", ra.debugViews,
                        "write the pipeline's intermediate images (B, D, textures, mesh, shadow "
                        "frontier) and an index.json into this folder");
+    return render;
+}
 
-    cli::PrepareArgs pa;
+CLI::App* addPrepareCommand(CLI::App& app, cli::PrepareArgs& pa) {
     auto* prepare = app.add_subcommand(
         "prepare", "prepare a scene for rendering once and cache the prepared state on disk");
     prepare->add_option("scene_dir", pa.scene, "scene folder holding scene.json")->required();
@@ -143,26 +128,46 @@ int main(int argc, char** argv) {
     prepare->add_option("--cache", pa.cache.file,
                         "where to write it (default <scene_dir>/.relight/prepared.bin)");
     prepare->add_flag("--force", pa.cache.force, "prepare again even when the cache is valid");
+    return prepare;
+}
 
+/// A command line CLI11 could not parse: --help (exit code 0) as CLI11 prints it. A bad
+/// option is bad input like any other: one line and exit code 2, not CLI11's own codes (105
+/// for a value that fails its check, 106 for a missing one, ...), which scripts could not
+/// tell from a crash.
+int parseFailure(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    const auto given = app.get_subcommands();
+    const std::string help = given.empty() ? "relight" : "relight " + given.front()->get_name();
+    // A misspelt command is not one CLI11 knows, so it only says that one is required.
+    const std::string first = argc > 1 ? argv[1] : "";
+    if (given.empty() && !first.empty() && first[0] != '-')
+        std::fprintf(stderr,
+                     "error: unknown command \"%s\" (solve, prepare, render or eval); see "
+                     "relight --help\n",
+                     first.c_str());
+    else
+        std::fprintf(stderr, "error: %s; see %s --help\n", e.what(), help.c_str());
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"relight: relight photographs of real rooms (Loscos, Drettakis & Robert 2000)"};
+    app.require_subcommand(1);
+    cli::SolveArgs sa;
+    EvalArgs ea;
+    cli::RenderArgs ra;
+    cli::PrepareArgs pa;
+    const CLI::App* solve = addSolveCommand(app, sa);
+    const CLI::App* eval = addEvalCommand(app, ea);
+    const CLI::App* render = addRenderCommand(app, ra);
+    const CLI::App* prepare = addPrepareCommand(app, pa);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        // --help (exit code 0) as CLI11 prints it. A bad option is bad input like any other:
-        // one line and exit code 2, not CLI11's own codes (105 for a value that fails its
-        // check, 106 for a missing one, ...), which scripts could not tell from a crash.
-        if (e.get_exit_code() == 0) return app.exit(e);
-        const auto given = app.get_subcommands();
-        const std::string help = given.empty() ? "relight" : "relight " + given.front()->get_name();
-        // A misspelt command is not one CLI11 knows, so it only says that one is required.
-        const std::string first = argc > 1 ? argv[1] : "";
-        if (given.empty() && !first.empty() && first[0] != '-')
-            std::fprintf(stderr,
-                         "error: unknown command \"%s\" (solve, prepare, render or eval); see "
-                         "relight --help\n",
-                         first.c_str());
-        else
-            std::fprintf(stderr, "error: %s; see %s --help\n", e.what(), help.c_str());
-        return 2;
+        return parseFailure(app, e, argc, argv);
     }
     try {
         if (*solve) {
@@ -171,7 +176,7 @@ int main(int argc, char** argv) {
         }
         if (*render) return cli::runRender(ra);
         if (*prepare) return cli::runPrepare(pa);
-        if (*eval) return cli::runEval(evScene, evEdit, evImage, evErrorMap);
+        if (*eval) return cli::runEval(ea.scene, ea.edit, ea.image, ea.errorMap);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return exitCode(e);

@@ -20,6 +20,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "relight/cli/validators.h"
 #include "relight/errors.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/scene_file.h"
@@ -133,6 +134,10 @@ int run(const Args& a) {
     std::fprintf(stderr, "relight-viewer: preparing %s\n", a.scene.c_str());
     const std::unique_ptr<Relighting> prepared = prepareRelighting(sf, o);
     Session session(*prepared, edit);
+    for (const std::string& w :
+         virtualLightReachWarnings(edit, prepared->solver->scene(), prepared->solver->visibility(),
+                                   static_cast<size_t>(session.realLights())))
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
     for (const Action& act : actions) runAction(session, act);
     GpuRatioDisplay display(session.prepared());
     FrameRenderer frame(session, display);
@@ -175,14 +180,17 @@ int main(int argc, char** argv) {
                    "draw one frame, write it (.png sRGB 8-bit, .exr linear) and exit");
     app.add_option("--window-screenshot", a.windowShot,
                    "open the window, write all of it (panel included) after a few frames, exit");
-    app.add_option("--exposure", a.exposure, "exposure in stops");
+    app.add_option("--exposure", a.exposure, "exposure in stops")
+        ->check(cli::finiteNumber(cli::Sign::kAny));
     app.add_option("--framebuffer", a.framebuffer,
                    "float (one pass) or multipass (8-bit, the paper's §5.3 passes)");
     app.add_option("--view", a.view, "relit, mesh, B, D, T_orig, T_final, reflectance or frontier");
     app.add_option("--do", a.actions, "light:U,V | box:U,V | drag:U0,V0:U1,V1 (in order)");
     app.add_option("--save-edit", a.saveEdit,
                    "with --screenshot: write the session's edit here; else the panel's default");
-    app.add_option("--epsilon", a.epsilon, "BF refinement threshold")->check(CLI::PositiveNumber);
+    app.add_option("--epsilon", a.epsilon, "BF refinement threshold")
+        ->capture_default_str()
+        ->check(cli::finiteNumber(cli::Sign::kPositive));
     app.add_option("--spp", a.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     try {
         app.parse(argc, argv);

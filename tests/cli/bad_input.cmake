@@ -114,6 +114,14 @@ endfunction()
 expect_option_error("a value that fails its check" "--epsilon: must be a finite number > 0, got abc"
                     solve "${room}" --epsilon abc)
 expect_option_error("a value out of range" "--spp: " render "${room}" --spp 0 -o "${output}")
+# NaN passes every comparison-based check (CLI11's PositiveNumber); a negative count would
+# wrap to 2^64 - 5 links, that is no budget at all.
+expect_option_error("NaN for a threshold" "--epsilon: must be a finite number > 0, got nan"
+                    render "${room}" --epsilon nan -o "${output}")
+expect_option_error("a negative count" "--max-links: must be a whole number >= 0, got -5"
+                    solve "${room}" --max-links -5)
+expect_option_error("a negative count (render)" "--max-links: must be a whole number >= 0, got -5"
+                    render "${room}" --max-links -5 -o "${output}")
 expect_option_error("a missing option" "--output is required" render "${room}")
 expect_option_error("an unknown option" "[^\n]*--no-such-option"
                     render "${room}" --no-such-option -o "${output}")

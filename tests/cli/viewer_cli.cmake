@@ -102,6 +102,13 @@ expect("${o}" "huge_edit.json: key \"lights.B.radiance\": the relit image is not
 # A bad option: exit code 2 as for any bad input (not CLI11's 105), one line naming it.
 viewer(o 2 "${SCENE}" --spp 0 --screenshot "${WORK}/keep.png")
 expect("${o}" "^relight-viewer: error: --spp: [^\n]*\n$" "bad option")
+# NaN passes CLI11's PositiveNumber (every comparison with NaN is false).
+viewer(o 2 "${SCENE}" --epsilon nan --screenshot "${WORK}/keep.png")
+expect("${o}" "^relight-viewer: error: --epsilon: must be a finite number > 0, got nan; see[^\n]*\n$"
+       "NaN epsilon")
+viewer(o 2 "${SCENE}" --exposure inf --screenshot "${WORK}/keep.png")
+expect("${o}" "^relight-viewer: error: --exposure: must be a finite number, got inf; see[^\n]*\n$"
+       "infinite exposure")
 viewer(o 0 --help)
 expect("${o}" "--screenshot" "--help")
 viewer(o 1 "${SCENE}" --do light:abc --screenshot "${WORK}/keep.png")
