@@ -42,21 +42,47 @@ Image loadFirstPhoto(const SceneFile& sf) {
     return photo;
 }
 
+namespace {
+
+/// The warning for light `l` of `faces` when too little of its emission meets a surface;
+/// `where` names the file and key it comes from. Empty when it lights the scene.
+std::string reachWarning(const radiosity::Scene& faces, const radiosity::Visibility& vis, size_t l,
+                         const std::string& where) {
+    const radiosity::LightReach reach = radiosity::lightReach(faces, vis, static_cast<int>(l));
+    if (reach.fraction >= kMinLightReach) return {};
+    char share[160];
+    std::snprintf(share, sizeof share, "%d of %d rays from its face meet the front of a surface",
+                  reach.hits, reach.rays);
+    return where + ": light \"" + faces.lights[l].name + "\": its emitting side sees " +
+           (reach.hits == 0 ? "no" : "almost no") + " part of the scene (" + share +
+           "; is it below the floor, facing away or inside an object?): its power is lost to "
+           "the room";
+}
+
+}  // namespace
+
 std::vector<std::string> lightReachWarnings(const SceneFile& sf, const radiosity::Scene& faces,
                                             const radiosity::Visibility& vis) {
     std::vector<std::string> out;
+    const std::string file = (sf.dir / "scene.json").string();
     for (size_t l = 0; l < faces.lights.size(); ++l) {
-        const radiosity::LightReach reach = radiosity::lightReach(faces, vis, static_cast<int>(l));
-        if (reach.fraction >= kMinLightReach) continue;
-        char share[160];
-        std::snprintf(share, sizeof share,
-                      "%d of %d rays from its face meet the front of a surface", reach.hits,
-                      reach.rays);
-        out.push_back((sf.dir / "scene.json").string() + ": key \"lights[" + std::to_string(l) +
-                      "]\": light \"" + faces.lights[l].name + "\": its emitting side sees " +
-                      (reach.hits == 0 ? "no" : "almost no") + " part of the scene (" + share +
-                      "; is it below the floor, facing away or inside an object?): its power is "
-                      "lost to the room");
+        std::string w =
+            reachWarning(faces, vis, l, file + ": key \"lights[" + std::to_string(l) + "]\"");
+        if (!w.empty()) out.push_back(std::move(w));
+    }
+    return out;
+}
+
+std::vector<std::string> virtualLightReachWarnings(const EditFile& edit,
+                                                   const radiosity::Scene& faces,
+                                                   const radiosity::Visibility& vis,
+                                                   size_t realLights) {
+    std::vector<std::string> out;
+    for (size_t i = 0; i < edit.addLights.size() && realLights + i < faces.lights.size(); ++i) {
+        std::string w =
+            reachWarning(faces, vis, realLights + i,
+                         edit.file.string() + ": key \"add_lights[" + std::to_string(i) + "]\"");
+        if (!w.empty()) out.push_back(std::move(w));
     }
     return out;
 }

@@ -118,6 +118,15 @@ inline constexpr double kMinLightReach = 0.02;
 std::vector<std::string> lightReachWarnings(const SceneFile& scene, const radiosity::Scene& faces,
                                             const radiosity::Visibility& vis);
 
+/// The same for the virtual lights of an edit, once all of its parts are in the solver (a
+/// virtual object may enclose a virtual light): `faces` and `vis` hold the scene's
+/// `realLights` lights, then edit.addLights in order. Each warning names the edit file and
+/// its key ("add_lights[0]").
+std::vector<std::string> virtualLightReachWarnings(const EditFile& edit,
+                                                   const radiosity::Scene& faces,
+                                                   const radiosity::Visibility& vis,
+                                                   size_t realLights);
+
 /// The scene's first photo, linear (sRGB decoded when the scene says so), checked against
 /// the camera's size; a non-finite pixel is an error naming it (it would spread through
 /// every ratio that touches it). Throws InputError naming the file; also without photos.

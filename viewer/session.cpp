@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "radiosity/stopwatch.h"
+#include "relight/errors.h"
 #include "relight/io/edit_writer.h"
 #include "relight/io/mesh_reader.h"
 
@@ -116,11 +119,45 @@ void Session::update() {
     for (size_t i = 0; !radianceChanged && i < now.size(); ++i)
         radianceChanged = !(now[i] == applied_[i]);
     if (!stale_ && !radianceChanged) return;
+    const std::vector<Rgb> before = std::exchange(applied_, now);
     // Without virtual parts a radiance change is the superposition path: nothing to solve.
     if (stale_ || (radianceChanged && hasVirtualParts())) rebuild();
-    applied_ = now;
+    // The first update (the edit the session starts from) is checked on its first frame,
+    // which names the edit's key (viewer/main.cpp); a change made in the panel here.
+    if (!before.empty() && before.size() == now.size() && !displayFinite()) undo(before);
     updateSeconds_ = secondsSince(t0);
     changed();
+}
+
+bool Session::displayFinite() const {
+    // The display's values go to the GPU as 32-bit floats.
+    constexpr double kMax = std::numeric_limits<float>::max();
+    for (const Rgb& v : vertexRatios())
+        for (int c = 0; c < 3; ++c)
+            if (!(std::abs(v[c]) <= kMax)) return false;
+    return true;
+}
+
+void Session::undo(const std::vector<Rgb>& before) {
+    std::string names;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        LightControl& l = lights_[i];
+        if (l.radiance() == before[i]) continue;
+        char value[96];
+        std::snprintf(value, sizeof value, " [%.6g, %.6g, %.6g]", l.radiance().r, l.radiance().g,
+                      l.radiance().b);
+        names += (names.empty() ? "" : ", ") + ("\"" + l.name + "\"") + value;
+        if (before[i].maxComponent() > 0)
+            l.setRadiance(before[i]);
+        else
+            l.on = false;
+    }
+    applied_.clear();
+    for (const LightControl& l : lights_) applied_.push_back(l.radiance());
+    if (hasVirtualParts()) rebuild();
+    changed();
+    throw InputError("the relit image would not be finite with the radiance of " + names +
+                     ": the change is undone");
 }
 
 void Session::setReflectance(int i, const Rgb& reflectance) {

@@ -73,7 +73,9 @@ class Session {
     int realLights() const { return realLights_; }
 
     /// Brings the solution up to date with the lights' controls (a no-op when nothing
-    /// changed). Changes the generation when the display values change.
+    /// changed). Changes the generation when the display values change. A radiance that
+    /// would make the display not finite (typed into a slider: 1e38) is undone, and an
+    /// InputError names the light.
     void update();
     /// Sets object i's reflectance (inserted again).
     void setReflectance(int i, const Rgb& reflectance);
@@ -125,6 +127,10 @@ class Session {
   private:
     void rebuild();  ///< inserts every virtual part again, in render's order
     void changed() { ++generation_; }
+    bool displayFinite() const;  ///< every display ratio fits a 32-bit float
+    /// Puts the lights' radiances back to `before` (one per light) and throws InputError
+    /// naming the lights that changed.
+    [[noreturn]] void undo(const std::vector<Rgb>& before);
     bool hasVirtualParts() const {
         return lights_.size() > static_cast<size_t>(realLights_) || !objects_.empty();
     }

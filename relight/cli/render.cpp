@@ -61,6 +61,10 @@ Image renderWithVirtualParts(Relighting& full, const EditFile& edit,
         dyn.addObject(obj);
         report.push_back(insertionReport(dyn, "object", obj.name));
     }
+    const radiosity::HierarchicalSolver& solver = *full.solver;
+    for (const std::string& w : virtualLightReachWarnings(edit, solver.scene(), solver.visibility(),
+                                                          static_cast<size_t>(dyn.realLights())))
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
     return dyn.render();
 }
 
@@ -147,6 +151,7 @@ int runRender(const RenderArgs& a) {
         edit = loadEdit(a.edit, sf);
         requireRenderable(edit);
     }
+    for (const std::string& w : edit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // A folder that cannot be made fails at once too, not after the preparation.
     if (!a.debugViews.empty()) createDebugViewsFolder(a.debugViews);
     std::unique_ptr<Relighting> full;

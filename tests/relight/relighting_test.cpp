@@ -264,6 +264,52 @@ TEST(LightReachWarnings, ALampBelowTheFloorIsNamedAndOneInTheRoomIsNot) {
     EXPECT_TRUE(lightReachWarnings(moved, solver2.scene(), solver2.visibility()).empty());
 }
 
+TEST(LightReachWarnings, AVirtualLightFacingAwayIsNamedByItsEditKey) {
+    // The same room with one lamp; an edit adds two virtual lights facing down: "In" under
+    // the ceiling, "Away" above it, where it sees only the ceiling's back. Only "Away" is
+    // reported, with the edit's file and key; the solver holds both (as after insertion).
+    const test::TempDir dir;
+    dir.write("room.obj",
+              "v 0 0 0\nv 4 0 0\nv 4 3 0\nv 0 3 0\nv 0 0 2.5\nv 4 0 2.5\nv 4 3 2.5\nv 0 3 2.5\n"
+              "o room\nf 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n");
+    dir.write("scene.json", R"({
+      "format": "relight-scene/1",
+      "geometry": ["room.obj"],
+      "camera": {"width": 64, "height": 48, "K": [[50, 0, 31.5], [0, 50, 23.5], [0, 0, 1]],
+                 "world_to_camera": [[1, 0, 0, -2], [0, -1, 0, 1.5], [0, 0, -1, 2.4]]},
+      "lights": [
+        {"name": "Lamp", "type": "quad", "radiance": [10, 10, 10],
+         "vertices": [[1.1, 1.1, 2.45], [1.4, 1.1, 2.45], [1.4, 0.8, 2.45], [1.1, 0.8, 2.45]]}
+      ]})");
+    dir.write("edit.json", R"({
+      "format": "relight-edit/1",
+      "add_lights": [
+        {"name": "In", "type": "quad", "radiance": [5, 5, 5],
+         "vertices": [[2.1, 1.6, 2.4], [2.4, 1.6, 2.4], [2.4, 1.3, 2.4], [2.1, 1.3, 2.4]]},
+        {"name": "Away", "type": "quad", "radiance": [5, 5, 5],
+         "vertices": [[2.1, 1.6, 2.7], [2.4, 1.6, 2.7], [2.4, 1.3, 2.7], [2.1, 1.3, 2.7]]}
+      ]})");
+    const SceneFile sf = loadScene(dir.path());
+    const EditFile edit = loadEdit(dir.path() / "edit.json", sf);
+    radiosity::HierarchicalSolver solver(sf.scene, radiosity::SolverOptions{});
+    solver.solve();
+    for (const VirtualLight& v : edit.addLights) {
+        std::vector<radiosity::Vec3> corners(v.corners.begin(), v.corners.end());
+        solver.insertObject(v.name, {radiosity::makePolygon(corners, -1, radiosity::Rgb{})},
+                            &v.radiance);
+    }
+    const std::vector<std::string> warnings =
+        virtualLightReachWarnings(edit, solver.scene(), solver.visibility(), 1);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find((dir.path() / "edit.json").string() +
+                               ": key \"add_lights[1]\": light \"Away\": its emitting side sees"),
+              std::string::npos)
+        << warnings[0];
+    // Before the parts are inserted there is nothing to look at: no warning, no crash.
+    const radiosity::HierarchicalSolver bare(sf.scene, radiosity::SolverOptions{});
+    EXPECT_TRUE(virtualLightReachWarnings(edit, bare.scene(), bare.visibility(), 1).empty());
+}
+
 namespace {
 
 /// A copy of the room whose photo is replaced by `photo`.

@@ -22,6 +22,7 @@
 
 #include "relight/display/debug_views.h"
 #include "relight/display/multipass.h"
+#include "relight/errors.h"
 #include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 #include "viewer/frame.h"
@@ -224,6 +225,51 @@ TEST_F(ViewerGpu, DraggedBoxFollowsThePointer) {
     EXPECT_NEAR(during - before, 40.0, 12.0);  // perspective: the box's far side moves less
     EXPECT_NEAR(boxCentre(), during, 0.5);
     EXPECT_LE(maxStepDifference(after, cpuDisplay(session), kAllPixels), 1);
+}
+
+/// True when every display ratio of the session is finite.
+bool finiteRatios(const Session& session) {
+    for (const Rgb& v : session.vertexRatios())
+        if (!std::isfinite(v.r) || !std::isfinite(v.g) || !std::isfinite(v.b)) return false;
+    return true;
+}
+
+TEST_F(ViewerGpu, ARadianceThatOverflowsTheDisplayIsUndoneAndNamed) {
+    // A radiance typed into a slider (ImGui lets a ctrl-click type any number) whose display
+    // ratios do not fit a float: refused naming the light, and the session is as before, on
+    // the superposition path (light edits only) and with virtual parts (the solver's path).
+    for (const char* name : {"identity", "virtual_light_and_box"}) {
+        SCOPED_TRACE(name);
+        Session session(*relighting_, edit(name));
+        const std::vector<Rgb> before = session.vertexRatios();
+        ASSERT_TRUE(finiteRatios(session));
+        LightControl& light = session.lights().back();  // a virtual light where there is one
+        const Rgb radiance = light.radiance();
+        const int generation = session.generation();
+        light.intensity = 1e300;
+        try {
+            session.update();
+            ADD_FAILURE() << "a radiance of 1e300 was accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("\"" + light.name + "\""), std::string::npos)
+                << e.what();
+        }
+        EXPECT_EQ(light.radiance(), radiance);
+        EXPECT_NE(session.generation(), generation);  // the display follows the undo
+        const std::vector<Rgb> after = session.vertexRatios();
+        ASSERT_EQ(after.size(), before.size());
+        // The same radiances again: bit for bit on the superposition path; with virtual
+        // parts the solver is warm-started from a solution converged to a tolerance, so
+        // within 1e-6 relative (what is seen here: 6e-8).
+        for (size_t v = 0; v < after.size(); ++v)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(after[v][c], before[v][c], 1e-6 * std::max(1.0, std::abs(before[v][c])))
+                    << "vertex " << v;
+        // A finite change after the refusal is taken as usual.
+        light.intensity = radiance.maxComponent() * 0.5;
+        EXPECT_NO_THROW(session.update());
+        EXPECT_TRUE(finiteRatios(session));
+    }
 }
 
 }  // namespace
