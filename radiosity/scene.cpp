@@ -1,5 +1,6 @@
 #include "radiosity/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -77,6 +78,14 @@ PolygonCheck checkPolygon(const std::vector<Vec3>& corners) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
             r.status = S::nonFinite;
             r.message = "vertex coordinate is NaN or infinite";
+            return r;
+        }
+        // Beyond this the products of coordinates that areas, normals and form factors take
+        // can overflow (at 1e154 the normal came out NaN and the polygon passed); no room is
+        // a billion kilometres wide, whatever its unit.
+        if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate) {
+            r.status = S::nonFinite;
+            r.message = "vertex coordinate beyond +-1e12 (the scene's unit is the metre)";
             return r;
         }
     }

@@ -56,11 +56,15 @@ struct Scene {
     int findObject(const std::string& name) const;  ///< -1 when absent
 };
 
+/// The largest coordinate a polygon may have, in metres (checkPolygon): the squares and
+/// products of coordinates stay far from overflow.
+inline constexpr double kMaxCoordinate = 1e12;
+
 /// Result of checking a candidate polygon.
 struct PolygonCheck {
     enum class Status {
         ok,          ///< planar, convex, non-degenerate
-        nonFinite,   ///< a coordinate is NaN or infinite
+        nonFinite,   ///< a coordinate is NaN, infinite or beyond kMaxCoordinate
         tooFew,      ///< fewer than 3 vertices
         degenerate,  ///< (near) zero area or repeated vertices
         nonPlanar,   ///< a vertex lies off the plane of the others

@@ -142,6 +142,10 @@ void addFace(const ObjFile& obj, const ObjFace& face, PolygonSink& sink,
     std::vector<Vec3> c;
     for (int i : face.vertices) c.push_back(obj.positions[static_cast<size_t>(i)]);
     const size_t given = c.size();
+    // Coordinates so large that lengths overflow would make every corner a repeat of the
+    // next: refused as they are, before the repairs measure anything.
+    if (const PolygonCheck raw = checkPolygon(c); raw.status == S::nonFinite)
+        throw InputError(at + raw.message);
     if (size_t removed = removeRepeatedCorners(c); removed > 0 && c.size() >= 3)
         warnings.push_back(at + "removed " + std::to_string(removed) +
                            " repeated vertex(es) from a face with " + std::to_string(given) +

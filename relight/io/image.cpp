@@ -8,6 +8,7 @@
 
 #include "relight/errors.h"
 #include "relight/io/atomic_write.h"
+#include "relight/io/input_file.h"
 
 namespace relight {
 
@@ -22,7 +23,7 @@ double srgbDecode(double y) {
 }
 
 Image readImage(const std::filesystem::path& path, bool srgb) {
-    if (!std::filesystem::exists(path)) throw InputError(path.string() + ": file not found");
+    requireRegularFile(path, "file", "an image file");
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) throw InputError(path.string() + ": cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
@@ -45,7 +46,7 @@ Image readImage(const std::filesystem::path& path, bool srgb) {
 }
 
 std::vector<uint8_t> readMask(const std::filesystem::path& path, int& width, int& height) {
-    if (!std::filesystem::exists(path)) throw InputError(path.string() + ": file not found");
+    requireRegularFile(path, "file", "an image file");
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) throw InputError(path.string() + ": cannot read mask: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();

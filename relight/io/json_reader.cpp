@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "relight/io/input_file.h"
+
 namespace relight::jsonio {
 
 namespace fs = std::filesystem;
@@ -24,9 +26,7 @@ std::string element(const std::string& path, size_t i) {
 
 json parseJsonFile(const fs::path& path) {
     const std::string file = path.string();
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(file + ": file not found");
-    if (fs::is_directory(path, ec)) throw InputError(file + ": is a directory");
+    requireRegularFile(path, "file", "a JSON file");
     std::ifstream in(path);
     if (!in) throw InputError(file + ": cannot open: " + std::strerror(errno));
     return parseJson(in, file);

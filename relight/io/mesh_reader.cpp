@@ -18,6 +18,8 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include "relight/io/input_file.h"
+
 namespace relight {
 
 namespace fs = std::filesystem;
@@ -578,10 +580,7 @@ MeshFile readMesh(const fs::path& path) {
 
     // The same checks as readObj's, so that a missing file is not reported in Assimp's
     // words ("Unable to open file") but in the loader's.
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(name + ": geometry file not found");
-    if (fs::is_directory(path, ec))
-        throw InputError(name + ": is a directory, not a geometry file");
+    requireRegularFile(path, "geometry file", "a geometry file");
     return readWithAssimp(path, ext);
 }
 

@@ -11,6 +11,8 @@
 #include <set>
 #include <system_error>
 
+#include "relight/io/input_file.h"
+
 namespace relight {
 
 namespace {
@@ -234,10 +236,7 @@ ObjFile parseObj(std::istream& in, const std::string& name) {
 
 ObjFile readObj(const std::filesystem::path& path) {
     const std::string name = path.string();
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw InputError(name + ": OBJ file not found");
-    if (std::filesystem::is_directory(path, ec))
-        throw InputError(name + ": is a directory, not an OBJ file");
+    requireRegularFile(path, "OBJ file", "an OBJ file");
     std::ifstream in(path);
     if (!in) throw InputError(name + ": cannot open: " + std::strerror(errno));
     return parseObj(in, name);

@@ -25,6 +25,8 @@
 
 #include "relight/io/edit_file.h"
 #include "relight/io/face_repair.h"
+#include "relight/io/image.h"
+#include "relight/io/json_reader.h"
 #include "relight/io/obj_reader.h"
 #include "relight/io/scene_file.h"
 #include "temp_dir.h"
@@ -757,6 +759,53 @@ TEST(MeshReaderErrors, MissingFileAndDirectory) {
     fs::create_directories(dir.path() / "dir.gltf");
     msg = readError(dir.path() / "dir.gltf");
     EXPECT_TRUE(contains(msg, (dir.path() / "dir.gltf").string() + ": is a directory")) << msg;
+}
+
+TEST(MeshReaderErrors, ADeviceIsNotReadWithoutEnd) {
+    // A file that is a link to a device (or a pipe) never ends: reading it as an OBJ, PLY or
+    // glTF would hang. It is refused by name, as are scene.json, an edit or a photo.
+    TempDir dir;
+    for (const std::string name : {"zero.obj", "zero.ply", "zero.gltf"}) {
+        const fs::path link = dir.path() / name;
+        fs::create_symlink("/dev/zero", link);
+        const std::string msg = readError(link);
+        EXPECT_TRUE(contains(msg, link.string() + ": is not a regular file")) << msg;
+    }
+    const fs::path sceneJson = dir.path() / "scene.json";
+    fs::create_symlink("/dev/zero", sceneJson);
+    try {
+        (void)relight::jsonio::parseJsonFile(sceneJson);
+        ADD_FAILURE() << "a device was read as JSON";
+    } catch (const InputError& e) {
+        EXPECT_TRUE(contains(e.what(), sceneJson.string() + ": is not a regular file")) << e.what();
+    }
+    const fs::path photo = dir.path() / "photo.exr";
+    fs::create_symlink("/dev/zero", photo);
+    try {
+        (void)relight::readImage(photo, false);
+        ADD_FAILURE() << "a device was read as an image";
+    } catch (const InputError& e) {
+        EXPECT_TRUE(contains(e.what(), photo.string() + ": is not a regular file")) << e.what();
+    }
+}
+
+TEST(MeshReaderErrors, CoordinatesThatOverflowAreAnErrorNamingTheLine) {
+    // Finite, but their products overflow: the face's normal came out NaN and passed.
+    TempDir dir;
+    const fs::path file = dir.write("huge.obj", "v 0 0 0\nv 1e154 0 0\nv 1e154 1e154 0\nf 1 2 3\n");
+    const ObjFile obj = readMesh(file).geometry;
+    radiosity::Scene scene;
+    scene.objects.push_back("huge");
+    std::vector<std::string> warnings;
+    try {
+        relight::addObjFaces(
+            obj, std::vector<int>{0}, [](int) { return radiosity::Rgb::gray(0.5); }, scene,
+            warnings);
+        ADD_FAILURE() << "a face whose normal overflows was accepted";
+    } catch (const InputError& e) {
+        EXPECT_TRUE(contains(e.what(), file.string() + ":4:")) << e.what();
+        EXPECT_TRUE(contains(e.what(), "beyond +-1e12")) << e.what();
+    }
 }
 
 TEST(MeshReaderErrors, TruncatedPly) {
