@@ -109,6 +109,14 @@ CLI::App* addRenderCommand(CLI::App& app, cli::RenderArgs& ra) {
     addPrepareOptions(render, ra.prep);
     render->add_option("--exposure", ra.exposure, "exposure in stops for 8-bit output")
         ->check(finiteNumber(Sign::kAny));
+    render
+        ->add_option("--display", ra.display,
+                     "ratio: T B/D everywhere (Loscos et al. 2000); confidence: the light an "
+                     "edit adds (lamps off in the photo, virtual parts) as the model's "
+                     "rho B / pi where the photo's lamps did not light a point (Loscos et al. "
+                     "1999's confidence)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"ratio", "confidence"}));
     auto* renderCache =
         render->add_option("--cache", ra.cache.file,
                            "prepared-state cache (default <scene_dir>/.relight/prepared.bin)");

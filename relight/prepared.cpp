@@ -1,6 +1,10 @@
 #include "relight/prepared.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
 
 namespace relight {
 
@@ -21,15 +25,67 @@ std::vector<Rgb> vertexRatio(const PreparedImage& p, std::span<const Rgb> H) {
     return ratio;
 }
 
-Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance) {
+const char* displayModeName(DisplayMode mode) {
+    return mode == DisplayMode::ratio ? "ratio" : "confidence";
+}
+
+DisplayMode parseDisplayMode(const std::string& name) {
+    if (name == "ratio") return DisplayMode::ratio;
+    if (name == "confidence") return DisplayMode::confidence;
+    throw std::invalid_argument("unknown display \"" + name + "\" (ratio or confidence)");
+}
+
+SplitIrradiance splitIrradiance(const PreparedImage& p, std::span<const Rgb> radiance) {
+    // A lamp that was off in the photo (radiance 0 in every channel) brings fresh light.
+    std::vector<Rgb> kept(radiance.begin(), radiance.end()), fresh(radiance.size());
+    for (size_t l = 0; l < radiance.size() && l < p.photoRadiance.size(); ++l)
+        if (!(p.photoRadiance[l].maxComponent() > 0)) std::swap(kept[l], fresh[l]);
+    SplitIrradiance H;
+    H.kept = vertexIrradiance(p, kept);
+    H.fresh = vertexIrradiance(p, fresh);
+    return H;
+}
+
+VertexDisplay vertexDisplay(const PreparedImage& p, const SplitIrradiance& H, DisplayMode mode) {
+    const size_t n = H.kept.size();
+    if (H.fresh.size() != n)
+        throw std::invalid_argument("vertexDisplay: kept and fresh irradiance differ in size");
+    VertexDisplay d;
+    const bool fresh =
+        std::any_of(H.fresh.begin(), H.fresh.end(), [](const Rgb& b) { return !(b == Rgb{}); });
+    const bool confident = mode == DisplayMode::confidence && fresh && p.confidence.size() == n &&
+                           p.modelReflectance.size() == n;
+    std::vector<Rgb> B(n);
+    if (!confident) {
+        for (size_t v = 0; v < n; ++v) B[v] = H.kept[v] + H.fresh[v];
+        d.ratio = vertexRatio(p, B);
+        return d;
+    }
+    d.added.resize(n);
+    for (size_t v = 0; v < n; ++v) {
+        const double K = p.confidence[v];
+        B[v] = H.kept[v] + H.fresh[v] * K;
+        d.added[v] = p.modelReflectance[v] * H.fresh[v] * ((1 - K) / std::numbers::pi);
+    }
+    d.ratio = vertexRatio(p, B);
+    return d;
+}
+
+Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, DisplayMode mode) {
     Image out;
-    renderEdit(p, radiance, out);
+    renderEdit(p, radiance, out, mode);
     return out;
 }
 
-void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& out) {
-    const auto ratio = vertexRatio(p, vertexIrradiance(p, radiance));
-    renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance, out);
+void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& out,
+                DisplayMode mode) {
+    if (mode == DisplayMode::ratio) {  // one gather of the lights, as before the split
+        const auto ratio = vertexRatio(p, vertexIrradiance(p, radiance));
+        renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance, out);
+        return;
+    }
+    const VertexDisplay d = vertexDisplay(p, splitIrradiance(p, radiance), mode);
+    renderRatio(p.display, p.photo, d.ratio, radiance, p.photoRadiance, out, d.added);
 }
 
 std::string stepTimes(const PrepareTimes& t) {

@@ -10,6 +10,24 @@
 // the leaf vertices), 1 where no shadow is removed. Keeping T_orig and k apart instead of
 // storing T_final makes the unedited display give back the photo exactly (k B/D = 1 at
 // every vertex), whatever the interpolation.
+//
+// The confidence display (DisplayMode::confidence; `relight render --display confidence`)
+// splits the edit's
+// irradiance in two: B_kept, the light of the lamps that were on in the photo (at their new
+// radiance), and B_new, the light the photo did not hold (lamps that were off, virtual
+// lamps, and the change virtual objects make). With the photo's confidence K(v) (Loscos et
+// al. 1999, §4.1-4.3; relight/pipeline/confidence.h) and the model's reflectance rho(v):
+//   r(v) = k (B_kept + K B_new) / D            multiplies the photo, as above
+//   a(v) = (1 - K) rho B_new / pi              is added (radiance)
+//   pixel = T_orig * sum_v w_v r(v) + sum_v w_v a(v)
+// Where K = 1 this is the ratio display; where the photo's lamps did not light a point
+// (K = 0), the light an edit brings there is the model's, rho B / pi, rather than the photo
+// times a ratio whose denominator the model knows least there. An edit of the photo's own
+// lamps (B_new = 0) is the ratio display whatever K: the unedited display stays the photo.
+// The ratio display stays the default: the confidence display is better on the bundled
+// scenes' virtual lights (Cornell virtual_light_only 0.139 -> 0.084) but worse on a room cut
+// into 22 k jittered triangles (0.013 -> 0.027), whose textures it flattens where K is low
+// (bench/RESULTS.md, 2026-11-25).
 #pragma once
 
 #include <span>
@@ -38,6 +56,8 @@ struct PreparedImage {
     std::vector<radiosity::Rgb> D;              ///< per vertex: display correction factor
     std::vector<radiosity::Rgb> textureFactor;  ///< per vertex: k = T_final / T_orig
     std::vector<radiosity::Rgb> photoRadiance;  ///< per light: its radiance in the photo
+    std::vector<float> confidence;              ///< per vertex: K in [0, 1] (confidence.h)
+    std::vector<radiosity::Rgb> modelReflectance;  ///< per vertex: the polygon's rho
     // Counts for reports.
     int leaves = 0, links = 0;
     /// The refinement budget (HierarchicalSolver's stats): whether it was reached, the
@@ -53,13 +73,41 @@ struct PreparedImage {
 std::vector<radiosity::Rgb> vertexIrradiance(const PreparedImage& p,
                                              std::span<const radiosity::Rgb> radiance);
 
+/// How the relit photo is made from the vertex values (above).
+enum class DisplayMode {
+    ratio,       ///< Loscos et al. 2000: T k B / D everywhere
+    confidence,  ///< the ratio where the photo is trusted, the model where it is not
+};
+/// "ratio", "confidence"; and back (std::invalid_argument naming the modes).
+const char* displayModeName(DisplayMode mode);
+DisplayMode parseDisplayMode(const std::string& name);
+
+/// The edit's irradiance per vertex in the two parts the confidence display weighs apart:
+/// the photo's lamps at their new radiance (kept) and the rest (fresh: lamps off in the
+/// photo; the caller adds what virtual parts change).
+struct SplitIrradiance {
+    std::vector<radiosity::Rgb> kept, fresh;
+};
+SplitIrradiance splitIrradiance(const PreparedImage& p, std::span<const radiosity::Rgb> radiance);
+
+/// What the display multiplies the photo by, and adds to it, per vertex.
+struct VertexDisplay {
+    std::vector<radiosity::Rgb> ratio;
+    std::vector<radiosity::Rgb> added;  ///< empty for the ratio display
+};
+/// The display values for irradiance kept + fresh (above). Without confidence data (a map
+/// built by hand) the confidence display is the ratio display.
+VertexDisplay vertexDisplay(const PreparedImage& p, const SplitIrradiance& H, DisplayMode mode);
+
 /// The display ratio k H/D per vertex for vertex irradiance H (displayRatio() times the
 /// texture correction k of real-shadow removal).
 std::vector<radiosity::Rgb> vertexRatio(const PreparedImage& p, std::span<const radiosity::Rgb> H);
 
 /// The relit photo for the lights' radiances (superposition path).
-Image renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance);
+Image renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance,
+                 DisplayMode mode = DisplayMode::ratio);
 /// The same into `out`, reused from edit to edit (renderRatio).
-void renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance, Image& out);
+void renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance, Image& out,
+                DisplayMode mode = DisplayMode::ratio);
 
 }  // namespace relight

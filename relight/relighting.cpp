@@ -9,6 +9,7 @@
 #include "radiosity/light_reach.h"
 #include "radiosity/stopwatch.h"
 #include "relight/io/json_reader.h"
+#include "relight/pipeline/confidence.h"
 #include "relight/pipeline/lighting_buffer.h"
 #include "relight/pipeline/reflectance.h"
 
@@ -262,6 +263,9 @@ void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
     // The vertices' gather terms served the lightings above; edits gather afresh.
     r.direct.termStart = {};
     r.direct.terms = {};
+    // What the confidence display needs (relight/prepared.h, relight/pipeline/confidence.h).
+    P.confidence = vertexConfidence(r.direct, P.photoRadiance);
+    P.modelReflectance = vertexModelReflectance(*r.mesh, r.solver->scene(), P.confidence);
 }
 
 /// Step 6: the display map, and the solver's figures for the report.

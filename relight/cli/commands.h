@@ -64,6 +64,7 @@ struct RenderArgs {
     std::string debugViews;  ///< folder for the pipeline's intermediate images (empty: none)
     double exposure = 0;
     CacheArgs cache;
+    std::string display = "ratio";  ///< DisplayMode (relight/prepared.h)
 };
 int runRender(const RenderArgs& a);
 

@@ -51,7 +51,8 @@ nlohmann::json insertionReport(const DynamicRelighting& dyn, const std::string& 
 /// The relit image of an edit with virtual lights or objects: each is inserted into the
 /// prepared solver state `full` in turn, and reported in `report` (insertionReport).
 Image renderWithVirtualParts(Relighting& full, const EditFile& edit,
-                             std::span<const radiosity::Rgb> radiance, nlohmann::json& report) {
+                             std::span<const radiosity::Rgb> radiance, DisplayMode mode,
+                             nlohmann::json& report) {
     DynamicRelighting dyn(full, radiance);
     for (const VirtualLight& l : edit.addLights) {
         dyn.addLight(l);
@@ -65,7 +66,7 @@ Image renderWithVirtualParts(Relighting& full, const EditFile& edit,
     for (const std::string& w : virtualLightReachWarnings(edit, solver.scene(), solver.visibility(),
                                                           static_cast<size_t>(dyn.realLights())))
         std::fprintf(stderr, "warning: %s\n", w.c_str());
-    return dyn.render();
+    return dyn.render(mode);
 }
 
 /// Seconds spent on each part of a render.
@@ -109,6 +110,7 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
         {"epsilon", a.prep.epsilon},
         {"shadow_refinement", a.prep.shadowRefinement},
         {"shadow_removal", a.prep.shadowRemoval},
+        {"display", a.display},
         {"cache", s.cache},
         {"cache_file", s.file.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.file.string())},
         {"debug_views", views},
@@ -165,7 +167,8 @@ int runRender(const RenderArgs& a) {
     // The real lights' part of the edit (all of it without virtual parts), refused when not
     // finite before anything is written, the debug views (which show that part) included.
     auto t0 = Clock::now();
-    Image img = renderEdit(s.image, radiance);
+    const DisplayMode mode = parseDisplayMode(a.display);
+    Image img = renderEdit(s.image, radiance, mode);
     requireFiniteImage(img, sf, edit, radiance);
     t.edit = secondsSince(t0);
     size_t viewFiles = 0;
@@ -177,7 +180,7 @@ int runRender(const RenderArgs& a) {
     nlohmann::json virtualJson = nlohmann::json::array();
     if (virtualParts) {
         t0 = Clock::now();
-        img = renderWithVirtualParts(*full, edit, radiance, virtualJson);
+        img = renderWithVirtualParts(*full, edit, radiance, mode, virtualJson);
         requireFiniteImage(img, sf, edit, radiance);
         t.edit = secondsSince(t0);
     }

@@ -4,6 +4,7 @@
 #include <array>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "radiosity/parallel.h"
 
@@ -257,18 +258,45 @@ void leafRun(const float* __restrict t, const float* __restrict w, float* __rest
     }
 }
 
+// The same with an added radiance interpolated alike: out = max(0, T r + a), a = p0 + w1 e1 +
+// w2 e2 + w3 e3 (the confidence display).
+void leafRunAdded(const float* __restrict t, const float* __restrict w, float* __restrict o,
+                  int length, const float* q, const float (*d)[3], const float* p,
+                  const float (*e)[3]) {
+    for (int j = 0; j < length; ++j) {
+        const float x = w[3 * j], y = w[3 * j + 1], z = w[3 * j + 2];
+        for (int c = 0; c < 3; ++c) {
+            const float r = q[c] + x * d[0][c] + y * d[1][c] + z * d[2][c];
+            const float a = p[c] + x * e[0][c] + y * e[1][c] + z * e[2][c];
+            o[3 * j + c] = std::max(t[3 * j + c] * r + a, 0.0f);
+        }
+    }
+}
+
+/// Per vertex as floats, 16 bytes a vertex: the table stays in cache while the pixels
+/// stream through.
+std::vector<std::array<float, 4>> asFloats(std::span<const Rgb> values) {
+    std::vector<std::array<float, 4>> f(values.size());
+    for (size_t v = 0; v < values.size(); ++v)
+        f[v] = {static_cast<float>(values[v][0]), static_cast<float>(values[v][1]),
+                static_cast<float>(values[v][2]), 0.0f};
+    return f;
+}
+
 }  // namespace
 
 void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb> ratio,
-                 std::span<const Rgb> radianceNow, std::span<const Rgb> radianceInPhoto,
-                 Image& out) {
+                 std::span<const Rgb> radianceNow, std::span<const Rgb> radianceInPhoto, Image& out,
+                 std::span<const Rgb> added) {
     if (out.width != map.width || out.height != map.height) out = Image(map.width, map.height);
-    // The ratios as floats, 16 bytes a vertex: the table stays in cache while the pixels
-    // stream through (one multiply-add per (pixel, vertex) pair, Eq. (3)).
-    std::vector<std::array<float, 4>> r(ratio.size());
-    for (size_t v = 0; v < ratio.size(); ++v)
-        r[v] = {static_cast<float>(ratio[v][0]), static_cast<float>(ratio[v][1]),
-                static_cast<float>(ratio[v][2]), 0.0f};
+    if (!added.empty() && added.size() != ratio.size())
+        throw std::invalid_argument("renderRatio: " + std::to_string(added.size()) +
+                                    " added values for " + std::to_string(ratio.size()) +
+                                    " vertices");
+    // One multiply-add per (pixel, vertex) pair, Eq. (3); two with an added radiance.
+    const std::vector<std::array<float, 4>> r = asFloats(ratio);
+    const std::vector<std::array<float, 4>> a = asFloats(added);
+    const bool adds = !a.empty();
     const bool packed = map.rowRuns.size() == static_cast<size_t>(map.height) + 1 &&
                         map.runWeight.size() == static_cast<size_t>(map.width) * map.height * 3;
 
@@ -278,16 +306,20 @@ void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb>
         const int px = y * map.width + x;
         const float* t = photo.at(x, y);
         float* o = out.at(x, y);
-        float sum[3];
+        float sum[3], add[3] = {0, 0, 0};
         sum[0] = sum[1] = sum[2] = map.unshaded[px];
         for (int k = map.start[px]; k < map.start[px + 1]; ++k) {
             const float w = map.weight[k];
             const float* q = r[static_cast<size_t>(map.vertex[k])].data();
             for (int c = 0; c < 3; ++c) sum[c] += w * q[c];
+            if (adds) {
+                const float* p = a[static_cast<size_t>(map.vertex[k])].data();
+                for (int c = 0; c < 3; ++c) add[c] += w * p[c];
+            }
         }
         if (map.emitterStart[px] == map.emitterStart[px + 1]) {
-            // No emitting face in the pixel: T times the mean ratio.
-            for (int c = 0; c < 3; ++c) o[c] = std::max(t[c] * sum[c], 0.0f);
+            // No emitting face in the pixel: T times the mean ratio (plus the added term).
+            for (int c = 0; c < 3; ++c) o[c] = std::max(t[c] * sum[c] + add[c], 0.0f);
             return;
         }
         Rgb T{t[0], t[1], t[2]};
@@ -300,7 +332,7 @@ void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb>
             emitFraction += f;
         }
         const double rest = 1.0 - emitFraction;
-        Rgb value = emitNow;
+        Rgb value = emitNow + Rgb{add[0], add[1], add[2]};
         // T_rest is left signed: where the photo shows less of a face than the item buffer
         // says (its edge), T_rest < 0 and the unedited display still gives back T exactly;
         // only the result is clamped.
@@ -331,8 +363,19 @@ void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb>
                 for (int c = 0; c < 3; ++c) d[i][c] = qi[c] - q0[c];
             }
             const size_t first = static_cast<size_t>(y) * map.width + run.x0;
-            leafRun(photo.rgb.data() + first * 3, map.runWeight.data() + first * 3,
-                    out.rgb.data() + first * 3, run.length, q0, d);
+            if (!adds) {
+                leafRun(photo.rgb.data() + first * 3, map.runWeight.data() + first * 3,
+                        out.rgb.data() + first * 3, run.length, q0, d);
+                continue;
+            }
+            const float* p0 = a[static_cast<size_t>(run.vertex[0])].data();
+            float e[3][3];
+            for (int i = 0; i < 3; ++i) {
+                const float* pi = a[static_cast<size_t>(run.vertex[i + 1])].data();
+                for (int c = 0; c < 3; ++c) e[i][c] = pi[c] - p0[c];
+            }
+            leafRunAdded(photo.rgb.data() + first * 3, map.runWeight.data() + first * 3,
+                         out.rgb.data() + first * 3, run.length, q0, d, p0, e);
         }
     });
 }

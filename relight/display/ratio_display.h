@@ -105,8 +105,12 @@ Image renderRatio(const DisplayMap& map, const Image& photo, std::span<const rad
 /// edit after edit reuses its image, which saves allocating and clearing it each time
 /// (at 12 MP that is 144 MB). Rows run in parallel (TBB); each pixel is computed alone, in
 /// float, so the image is the same with any number of threads.
+/// `added` (empty, or one per vertex): a radiance added to the modulated photo, interpolated
+/// with the same weights, signed (the confidence display's model term, relight/prepared.h):
+///   out = max(0, T_rest * rbar + abar + sum_e f_e L_e(now)).
 void renderRatio(const DisplayMap& map, const Image& photo, std::span<const radiosity::Rgb> ratio,
                  std::span<const radiosity::Rgb> radianceNow,
-                 std::span<const radiosity::Rgb> radianceInPhoto, Image& out);
+                 std::span<const radiosity::Rgb> radianceInPhoto, Image& out,
+                 std::span<const radiosity::Rgb> added = {});
 
 }  // namespace relight

@@ -237,11 +237,27 @@ std::vector<Rgb> DynamicRelighting::vertexRatios() const {
     return vertexRatio(r_.prepared, vertexIrradiance());
 }
 
-Image DynamicRelighting::render() {
+VertexDisplay DynamicRelighting::vertexDisplay(DisplayMode mode) const {
+    const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
+    // Fresh light: lamps off in the photo, and all that the virtual parts change (their
+    // lamps' light, the light objects block or reflect).
+    SplitIrradiance H = splitIrradiance(r_.prepared, real);
+    for (size_t v = 0; v < H.fresh.size(); ++v)
+        H.fresh[v] += realDirect_[v] + virtualDirect_[v] + indirect_[v];
+    return relight::vertexDisplay(r_.prepared, H, mode);
+}
+
+Image DynamicRelighting::render(DisplayMode mode) {
     const auto t0 = Clock::now();
     const PreparedImage& P = r_.prepared;
     const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
-    Image img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
+    Image img;
+    if (mode == DisplayMode::ratio) {
+        img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
+    } else {
+        const VertexDisplay d = vertexDisplay(mode);
+        renderRatio(P.display, P.photo, d.ratio, real, P.photoRadiance, img, d.added);
+    }
     const double tRatio = secondsSince(t0);
     applyOverlay(img, overlay());
     times_.display += tRatio;

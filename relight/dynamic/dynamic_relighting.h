@@ -77,12 +77,16 @@ class DynamicRelighting {
     /// Removes the virtual part added last (object or light).
     void removeLast();
 
-    /// The relit photo as it stands: the ratio display of vertexRatios() with overlay().
-    Image render();
+    /// The relit photo as it stands: the display of vertexDisplay(mode) with overlay().
+    Image render(DisplayMode mode = DisplayMode::ratio);
     /// Its two parts, for a display that does the per-pixel work itself (the viewer's GPU):
-    /// the display ratio k H/D per leaf vertex of the scene (relight/prepared.h, vertexRatio)
-    /// and the virtual parts' overlay (casts the camera's samples in their box again).
+    /// the display ratio k H/D per leaf vertex of the scene (relight/prepared.h, vertexRatio;
+    /// the ratio display) and the virtual parts' overlay (casts the camera's samples in their
+    /// box again).
     std::vector<Rgb> vertexRatios() const;
+    /// The display values per vertex for `mode` (relight/prepared.h): the light the virtual
+    /// parts change counts as fresh light, weighed by the photo's confidence.
+    VertexDisplay vertexDisplay(DisplayMode mode) const;
     VirtualOverlay overlay();
     /// Irradiance H per leaf vertex of the scene, with every change the edit makes.
     std::vector<Rgb> vertexIrradiance() const;

@@ -255,6 +255,8 @@ void serialize(A& a, T& x) {
     a(x.D);
     a(x.textureFactor);
     a(x.photoRadiance);
+    a(x.confidence);
+    a(x.modelReflectance);
     a(x.leaves);
     a(x.links);
     a(x.budgetReached);
@@ -382,6 +384,14 @@ std::string checkPrepared(const PreparedImage& p) {
                " vertices x " + n(lights) + " lights";
     if (p.textureFactor.size() != vertices)
         return "textureFactor has " + n(p.textureFactor.size()) + " entries, not " + n(vertices);
+    if (p.confidence.size() != vertices)
+        return "confidence has " + n(p.confidence.size()) + " entries, not " + n(vertices);
+    for (size_t v = 0; v < vertices; ++v)
+        if (!(p.confidence[v] >= 0 && p.confidence[v] <= 1))
+            return "confidence[" + n(v) + "] is not in [0, 1]";
+    if (p.modelReflectance.size() != vertices)
+        return "modelReflectance has " + n(p.modelReflectance.size()) + " entries, not " +
+               n(vertices);
     if (p.leaves < 0 || p.links < 0) return "negative counts";
     if (p.budgetReached != 0 && p.budgetReached != 1) return "budget flag neither 0 nor 1";
     return {};

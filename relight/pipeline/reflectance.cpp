@@ -17,11 +17,6 @@ namespace relight {
 
 using radiosity::Rgb;
 
-namespace {
-
-/// Surfaces: polygons joined where they share a corner and their normals are within 25
-/// degrees (radiosity::LeafMesh's rule), so that a wall a reconstruction cut into
-/// triangles is one surface. Returns a surface id per polygon (union-find).
 std::vector<int> surfaceOf(const radiosity::Scene& scene) {
     const int np = static_cast<int>(scene.polygons.size());
     std::vector<int> parent(np);
@@ -48,6 +43,8 @@ std::vector<int> surfaceOf(const radiosity::Scene& scene) {
     for (int p = 0; p < np; ++p) parent[p] = find(p);
     return parent;
 }
+
+namespace {
 
 /// Per polygon, what does not change between rounds: sums over its usable photo samples
 /// (the photo's values, the direct light, which depends on the lights only), and the gather

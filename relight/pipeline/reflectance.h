@@ -44,6 +44,12 @@ inline radiosity::Rgb clampReflectance(radiosity::Rgb rho) {
     return rho;
 }
 
+/// Surfaces: polygons joined where they share a corner and their normals are within 25
+/// degrees (radiosity::LeafMesh's rule), so that a wall a reconstruction cut into
+/// triangles is one surface. Returns a surface id per polygon (union-find; a polygon's id is
+/// one of its surface's polygons). Emitting faces are surfaces of their own.
+std::vector<int> surfaceOf(const radiosity::Scene& scene);
+
 struct ReflectanceReport {
     int rounds = 0;
     int polygonsSeen = 0;       ///< polygons with enough photo samples, or their surface

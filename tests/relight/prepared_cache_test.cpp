@@ -421,7 +421,7 @@ TEST(PreparedCache, LayoutGuard) {
     EXPECT_EQ(sizeof(VertexLighting), 40u)
         << "VertexLighting changed: update serialize(VertexLighting)";
     EXPECT_EQ(sizeof(PrepareTimes), 64u) << "PrepareTimes changed: update serialize(PrepareTimes)";
-    EXPECT_EQ(sizeof(PreparedImage), 496u)
+    EXPECT_EQ(sizeof(PreparedImage), 544u)
         << "PreparedImage changed: update serialize(PreparedImage)";
     EXPECT_EQ(sizeof(ShadowRefinementOptions), 64u)
         << "ShadowRefinementOptions changed: hash the new option in hashOptions()";
