@@ -273,6 +273,18 @@ void leafRunAdded(const float* __restrict t, const float* __restrict w, float* _
     }
 }
 
+/// A leaf run's vertex values read once: v0 = f(vertex[0]) and d[i] = f(vertex[i + 1]) - v0,
+/// so that the interpolation sum_i w_i f_i is v0 + sum_i w_i d[i-1] (the weights sum to 1).
+const float* runDeltas(const std::vector<std::array<float, 4>>& f, const DisplayMap::Run& run,
+                       float (*d)[3]) {
+    const float* v0 = f[static_cast<size_t>(run.vertex[0])].data();
+    for (int i = 0; i < 3; ++i) {
+        const float* vi = f[static_cast<size_t>(run.vertex[i + 1])].data();
+        for (int c = 0; c < 3; ++c) d[i][c] = vi[c] - v0[c];
+    }
+    return v0;
+}
+
 /// Per vertex as floats, 16 bytes a vertex: the table stays in cache while the pixels
 /// stream through.
 std::vector<std::array<float, 4>> asFloats(std::span<const Rgb> values) {
@@ -356,24 +368,16 @@ void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb>
                 continue;
             }
             // r = r_0 + sum_i w_i (r_i - r_0): the run's vertex ratios read once.
-            const float* q0 = r[static_cast<size_t>(run.vertex[0])].data();
             float d[3][3];
-            for (int i = 0; i < 3; ++i) {
-                const float* qi = r[static_cast<size_t>(run.vertex[i + 1])].data();
-                for (int c = 0; c < 3; ++c) d[i][c] = qi[c] - q0[c];
-            }
+            const float* q0 = runDeltas(r, run, d);
             const size_t first = static_cast<size_t>(y) * map.width + run.x0;
             if (!adds) {
                 leafRun(photo.rgb.data() + first * 3, map.runWeight.data() + first * 3,
                         out.rgb.data() + first * 3, run.length, q0, d);
                 continue;
             }
-            const float* p0 = a[static_cast<size_t>(run.vertex[0])].data();
             float e[3][3];
-            for (int i = 0; i < 3; ++i) {
-                const float* pi = a[static_cast<size_t>(run.vertex[i + 1])].data();
-                for (int c = 0; c < 3; ++c) e[i][c] = pi[c] - p0[c];
-            }
+            const float* p0 = runDeltas(a, run, e);
             leafRunAdded(photo.rgb.data() + first * 3, map.runWeight.data() + first * 3,
                          out.rgb.data() + first * 3, run.length, q0, d, p0, e);
         }

@@ -218,10 +218,11 @@ TEST(Relighting, EditWhoseImageIsNotFiniteIsRefusedNamingItsKey) {
     }
 }
 
-TEST(LightReachWarnings, ALampBelowTheFloorIsNamedAndOneInTheRoomIsNot) {
-    // A 4 x 3 x 2.5 m room, faces inward; "Lamp" under the ceiling faces down into it, "Under"
-    // lies below the floor facing up at its back. Only the solver's scene is needed.
-    const test::TempDir dir;
+namespace {
+
+/// A 4 x 3 x 2.5 m room, faces inward, and its scene.json with "Lamp" under the ceiling,
+/// facing down into it, followed by `moreLights` (JSON, each with a leading comma).
+void writeLampRoom(const test::TempDir& dir, const std::string& moreLights) {
     dir.write("room.obj",
               "v 0 0 0\nv 4 0 0\nv 4 3 0\nv 0 3 0\nv 0 0 2.5\nv 4 0 2.5\nv 4 3 2.5\nv 0 3 2.5\n"
               "o room\nf 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n");
@@ -232,10 +233,19 @@ TEST(LightReachWarnings, ALampBelowTheFloorIsNamedAndOneInTheRoomIsNot) {
                  "world_to_camera": [[1, 0, 0, -2], [0, -1, 0, 1.5], [0, 0, -1, 2.4]]},
       "lights": [
         {"name": "Lamp", "type": "quad", "radiance": [10, 10, 10],
-         "vertices": [[1.1, 1.1, 2.45], [1.4, 1.1, 2.45], [1.4, 0.8, 2.45], [1.1, 0.8, 2.45]]},
+         "vertices": [[1.1, 1.1, 2.45], [1.4, 1.1, 2.45], [1.4, 0.8, 2.45], [1.1, 0.8, 2.45]]})" +
+                                moreLights + "]}");
+}
+
+}  // namespace
+
+TEST(LightReachWarnings, ALampBelowTheFloorIsNamedAndOneInTheRoomIsNot) {
+    // A 4 x 3 x 2.5 m room, faces inward; "Lamp" under the ceiling faces down into it, "Under"
+    // lies below the floor facing up at its back. Only the solver's scene is needed.
+    const test::TempDir dir;
+    writeLampRoom(dir, R"(,
         {"name": "Under", "type": "quad", "radiance": [10, 10, 10],
-         "vertices": [[1.1, 0.8, -0.2], [1.4, 0.8, -0.2], [1.4, 1.1, -0.2], [1.1, 1.1, -0.2]]}
-      ]})");
+         "vertices": [[1.1, 0.8, -0.2], [1.4, 0.8, -0.2], [1.4, 1.1, -0.2], [1.1, 1.1, -0.2]]})");
     const SceneFile sf = loadScene(dir.path());
     const radiosity::HierarchicalSolver solver(sf.scene, radiosity::SolverOptions{});
     const std::vector<std::string> warnings =
@@ -269,18 +279,7 @@ TEST(LightReachWarnings, AVirtualLightFacingAwayIsNamedByItsEditKey) {
     // the ceiling, "Away" above it, where it sees only the ceiling's back. Only "Away" is
     // reported, with the edit's file and key; the solver holds both (as after insertion).
     const test::TempDir dir;
-    dir.write("room.obj",
-              "v 0 0 0\nv 4 0 0\nv 4 3 0\nv 0 3 0\nv 0 0 2.5\nv 4 0 2.5\nv 4 3 2.5\nv 0 3 2.5\n"
-              "o room\nf 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n");
-    dir.write("scene.json", R"({
-      "format": "relight-scene/1",
-      "geometry": ["room.obj"],
-      "camera": {"width": 64, "height": 48, "K": [[50, 0, 31.5], [0, 50, 23.5], [0, 0, 1]],
-                 "world_to_camera": [[1, 0, 0, -2], [0, -1, 0, 1.5], [0, 0, -1, 2.4]]},
-      "lights": [
-        {"name": "Lamp", "type": "quad", "radiance": [10, 10, 10],
-         "vertices": [[1.1, 1.1, 2.45], [1.4, 1.1, 2.45], [1.4, 0.8, 2.45], [1.1, 0.8, 2.45]]}
-      ]})");
+    writeLampRoom(dir, "");
     dir.write("edit.json", R"({
       "format": "relight-edit/1",
       "add_lights": [
