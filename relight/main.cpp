@@ -1,8 +1,9 @@
 // relight: the command line. Subcommands (relight/cli/):
 //   relight solve   <scene_dir> [--epsilon E] [--report out.json] [-o radiosity.exr|png]
-//   relight prepare <scene_dir> [preparation options] [--cache FILE] [--force]
+//   relight prepare <scene_dir> [preparation options] [--cache FILE] [--force] [--pixel-light]
 //   relight render  <scene_dir> [--edit edit.json] -o out.exr|png [--report r.json]
 //                   [preparation options] [--cache FILE | --no-cache] [--debug-views DIR]
+//                   [--display ratio|confidence|pixel]
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
 //                        --max-links N, --max-memory MiB, --display-pixels P
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
@@ -114,9 +115,10 @@ CLI::App* addRenderCommand(CLI::App& app, cli::RenderArgs& ra) {
                      "ratio: T B/D everywhere (Loscos et al. 2000); confidence: the light an "
                      "edit adds (lamps off in the photo, virtual parts) as the model's "
                      "rho B / pi where the photo's lamps did not light a point (Loscos et al. "
-                     "1999's confidence)")
+                     "1999's confidence); pixel: T H/H_photo with the direct light per pixel "
+                     "(Loscos et al. 1999; light edits only, prepares with --pixel-light)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"ratio", "confidence"}));
+        ->check(CLI::IsMember({"ratio", "confidence", "pixel"}));
     auto* renderCache =
         render->add_option("--cache", ra.cache.file,
                            "prepared-state cache (default <scene_dir>/.relight/prepared.bin)");
@@ -136,6 +138,8 @@ CLI::App* addPrepareCommand(CLI::App& app, cli::PrepareArgs& pa) {
     prepare->add_option("--cache", pa.cache.file,
                         "where to write it (default <scene_dir>/.relight/prepared.bin)");
     prepare->add_flag("--force", pa.cache.force, "prepare again even when the cache is valid");
+    prepare->add_flag("--pixel-light", pa.prep.pixelLight,
+                      "measure the direct light per pixel too, for render --display pixel");
     return prepare;
 }
 

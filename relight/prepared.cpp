@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "relight/pipeline/pixel_light.h"
+
 namespace relight {
 
 using radiosity::Rgb;
@@ -26,13 +28,16 @@ std::vector<Rgb> vertexRatio(const PreparedImage& p, std::span<const Rgb> H) {
 }
 
 const char* displayModeName(DisplayMode mode) {
-    return mode == DisplayMode::ratio ? "ratio" : "confidence";
+    return mode == DisplayMode::ratio        ? "ratio"
+           : mode == DisplayMode::confidence ? "confidence"
+                                             : "pixel";
 }
 
 DisplayMode parseDisplayMode(const std::string& name) {
     if (name == "ratio") return DisplayMode::ratio;
     if (name == "confidence") return DisplayMode::confidence;
-    throw std::invalid_argument("unknown display \"" + name + "\" (ratio or confidence)");
+    if (name == "pixel") return DisplayMode::pixel;
+    throw std::invalid_argument("unknown display \"" + name + "\" (ratio, confidence or pixel)");
 }
 
 SplitIrradiance splitIrradiance(const PreparedImage& p, std::span<const Rgb> radiance) {
@@ -79,9 +84,17 @@ Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, DisplayM
 
 void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& out,
                 DisplayMode mode) {
-    if (mode == DisplayMode::ratio) {  // one gather of the lights, as before the split
+    if (mode == DisplayMode::ratio || mode == DisplayMode::pixel) {
+        // One gather of the lights, as before the split. The per-pixel display keeps this
+        // image where a pixel sees a lamp's face or nothing.
         const auto ratio = vertexRatio(p, vertexIrradiance(p, radiance));
         renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance, out);
+        if (mode == DisplayMode::ratio) return;
+        if (p.pixelDirect.empty())
+            throw std::invalid_argument(
+                "renderEdit: the per-pixel display needs a preparation with per-pixel light");
+        renderPixelLight(p.display, p.photo, p.pixelDirect, p.vertexIndirect, radiance,
+                         p.photoRadiance, out);
         return;
     }
     const VertexDisplay d = vertexDisplay(p, splitIrradiance(p, radiance), mode);

@@ -28,6 +28,13 @@
 // scenes' virtual lights (Cornell virtual_light_only 0.139 -> 0.084) but worse on a room cut
 // into 22 k jittered triangles (0.013 -> 0.027), whose textures it flattens where K is low
 // (bench/RESULTS.md, 2026-11-25).
+//
+// The per-pixel display (DisplayMode::pixel; relight/pipeline/pixel_light.h) divides the
+// photo by the light each pixel received, the direct light measured per pixel:
+//   pixel = T sum_l L_l h_l(p) / sum_l L_l(photo) h_l(p)
+// Better than the ratio display on every light edit measured (room back_off 0.0174 ->
+// 0.0126), it needs a preparation with RelightOptions::pixelLight and shows light edits
+// only so far: virtual parts would need their direct light per pixel too.
 #pragma once
 
 #include <span>
@@ -57,6 +64,11 @@ struct PreparedImage {
     std::vector<radiosity::Rgb> textureFactor;  ///< per vertex: k = T_final / T_orig
     std::vector<radiosity::Rgb> photoRadiance;  ///< per light: its radiance in the photo
     std::vector<float> confidence;              ///< per vertex: K in [0, 1] (confidence.h)
+    /// Per-pixel direct light (pipeline/pixel_light.h), only when prepared with
+    /// RelightOptions::pixelLight: pi Gbar per pixel and light, and the indirect part of
+    /// each vertex's response per light. Empty otherwise.
+    std::vector<float> pixelDirect;
+    std::vector<radiosity::Rgb> vertexIndirect;
     std::vector<radiosity::Rgb> modelReflectance;  ///< per vertex: the polygon's rho
     // Counts for reports.
     int leaves = 0, links = 0;
@@ -77,8 +89,9 @@ std::vector<radiosity::Rgb> vertexIrradiance(const PreparedImage& p,
 enum class DisplayMode {
     ratio,       ///< Loscos et al. 2000: T k B / D everywhere
     confidence,  ///< the ratio where the photo is trusted, the model where it is not
+    pixel,       ///< per-pixel direct light (pipeline/pixel_light.h): light edits only
 };
-/// "ratio", "confidence"; and back (std::invalid_argument naming the modes).
+/// "ratio", "confidence", "pixel"; and back (std::invalid_argument naming the modes).
 const char* displayModeName(DisplayMode mode);
 DisplayMode parseDisplayMode(const std::string& name);
 
@@ -103,7 +116,8 @@ VertexDisplay vertexDisplay(const PreparedImage& p, const SplitIrradiance& H, Di
 /// texture correction k of real-shadow removal).
 std::vector<radiosity::Rgb> vertexRatio(const PreparedImage& p, std::span<const radiosity::Rgb> H);
 
-/// The relit photo for the lights' radiances (superposition path).
+/// The relit photo for the lights' radiances (superposition path). DisplayMode::pixel needs
+/// a preparation with per-pixel light (std::invalid_argument otherwise).
 Image renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance,
                  DisplayMode mode = DisplayMode::ratio);
 /// The same into `out`, reused from edit to edit (renderRatio).

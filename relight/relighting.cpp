@@ -11,6 +11,7 @@
 #include "relight/io/json_reader.h"
 #include "relight/pipeline/confidence.h"
 #include "relight/pipeline/lighting_buffer.h"
+#include "relight/pipeline/pixel_light.h"
 #include "relight/pipeline/reflectance.h"
 
 namespace relight {
@@ -237,6 +238,18 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     P.times.reflectance += since(t0);
 }
 
+/// Step 4b, when asked: the direct light per pixel, and the indirect part of the vertices'
+/// responses before real-shadow removal scales their light links.
+void lightPixels(Relighting& r, const RelightOptions& o) {
+    if (!o.pixelLight) return;
+    PreparedImage& P = r.prepared;
+    const auto t0 = Clock::now();
+    say(o, "direct light per pixel");
+    P.pixelDirect = measurePixelDirect(r.items, *r.solver, directLightOptions(o));
+    P.vertexIndirect = vertexIndirect(P.lighting, r.direct);
+    P.times.vertexLighting += since(t0);
+}
+
 /// Step 5: real-shadow removal (§4.3-4.4) gives D and the texture factor; without it, the
 /// 1997 method: D is the photo's own lighting, so the unedited display is the photo (B/D = 1).
 void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
@@ -299,6 +312,7 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     solveAndEstimateReflectance(*r, o);  // 3
     refineAlongPhotoShadows(*r, o);      // 3, §4.2
     lightLeafVertices(*r, o);            // 4
+    lightPixels(*r, o);                  // 4b, Loscos et al. 1999 §4.1, when asked
     removeShadowsForDisplay(*r, o);      // 5, §4.3-4.4
     mapDisplay(*r, o);                   // 6
     return r;

@@ -78,6 +78,9 @@ struct RelightOptions {
     /// covers fewer than this many photo pixels (at most LeafMesh::kMaxSplits times), and
     /// the light is measured at every piece's corners. 0: leaf corners only.
     double displayPiecePixels = 4;
+    /// Measure the direct light per pixel as well (pipeline/pixel_light.h), for the
+    /// per-pixel display: shadow rays at every sample of every pixel.
+    bool pixelLight = false;
     std::function<void(const std::string&)> progress;  ///< one line per step (may be empty)
 };
 

@@ -52,6 +52,7 @@ struct PrepareOptionArgs {
     bool shadowRefinement = true;
     bool shadowRemoval = true;
     double displayPixels = RelightOptions{}.displayPiecePixels;
+    bool pixelLight = false;  ///< measure the direct light per pixel (render --display pixel)
 
     /// The pipeline's options, with progress lines on stderr.
     RelightOptions relightOptions() const;

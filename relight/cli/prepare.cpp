@@ -38,6 +38,7 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     o.shadowRefinement = shadowRefinement;
     o.shadowRemoval = shadowRemoval;
     o.displayPiecePixels = displayPixels;
+    o.pixelLight = pixelLight;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     return o;
 }

@@ -17,6 +17,7 @@
 #include "relight/cli/util.h"
 #include "relight/display/debug_views.h"
 #include "relight/dynamic/dynamic_relighting.h"
+#include "relight/errors.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/image.h"
 #include "relight/relighting.h"
@@ -143,7 +144,9 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
 
 int runRender(const RenderArgs& a) {
     const auto tAll = Clock::now();
-    const RelightOptions o = a.prep.relightOptions();
+    RelightOptions o = a.prep.relightOptions();
+    const DisplayMode mode = parseDisplayMode(a.display);
+    if (mode == DisplayMode::pixel) o.pixelLight = true;
     std::fprintf(stderr, "relight render %s\n", a.scene.c_str());
     // The edit is read (and checked against the scene) before the long preparation, so a
     // bad edit fails at once.
@@ -158,6 +161,10 @@ int runRender(const RenderArgs& a) {
     if (!a.debugViews.empty()) createDebugViewsFolder(a.debugViews);
     std::unique_ptr<Relighting> full;
     const bool virtualParts = !edit.addLights.empty() || !edit.addObjects.empty();
+    if (virtualParts && mode == DisplayMode::pixel)
+        throw InputError(edit.file.string() +
+                         ": --display pixel shows light edits only so far; this edit adds "
+                         "virtual lights or objects (use --display ratio or confidence)");
     const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false,
                                           a.debugViews.empty() && !virtualParts ? nullptr : &full);
     RenderTimes t;
@@ -167,7 +174,6 @@ int runRender(const RenderArgs& a) {
     // The real lights' part of the edit (all of it without virtual parts), refused when not
     // finite before anything is written, the debug views (which show that part) included.
     auto t0 = Clock::now();
-    const DisplayMode mode = parseDisplayMode(a.display);
     Image img = renderEdit(s.image, radiance, mode);
     requireFiniteImage(img, sf, edit, radiance);
     t.edit = secondsSince(t0);

@@ -106,6 +106,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.i64(o.shadowRemoval ? 1 : 0);
     hashOptions(h, o.removal);
     h.f64(o.displayPiecePixels);
+    h.i64(o.pixelLight ? 1 : 0);
 }
 
 // ---- the two directions ------------------------------------------------------------------
@@ -257,6 +258,8 @@ void serialize(A& a, T& x) {
     a(x.photoRadiance);
     a(x.confidence);
     a(x.modelReflectance);
+    a(x.pixelDirect);
+    a(x.vertexIndirect);
     a(x.leaves);
     a(x.links);
     a(x.budgetReached);
@@ -389,6 +392,11 @@ std::string checkPrepared(const PreparedImage& p) {
     for (size_t v = 0; v < vertices; ++v)
         if (!(p.confidence[v] >= 0 && p.confidence[v] <= 1))
             return "confidence[" + n(v) + "] is not in [0, 1]";
+    if (!p.pixelDirect.empty() && p.pixelDirect.size() != pixels * lights)
+        return "pixelDirect has " + n(p.pixelDirect.size()) + " entries, not " + n(pixels) +
+               " pixels x " + n(lights) + " lights";
+    if (p.vertexIndirect.size() != (p.pixelDirect.empty() ? 0 : vertices * lights))
+        return "vertexIndirect has " + n(p.vertexIndirect.size()) + " entries";
     if (p.modelReflectance.size() != vertices)
         return "modelReflectance has " + n(p.modelReflectance.size()) + " entries, not " +
                n(vertices);

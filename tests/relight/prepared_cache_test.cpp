@@ -421,13 +421,13 @@ TEST(PreparedCache, LayoutGuard) {
     EXPECT_EQ(sizeof(VertexLighting), 40u)
         << "VertexLighting changed: update serialize(VertexLighting)";
     EXPECT_EQ(sizeof(PrepareTimes), 64u) << "PrepareTimes changed: update serialize(PrepareTimes)";
-    EXPECT_EQ(sizeof(PreparedImage), 544u)
+    EXPECT_EQ(sizeof(PreparedImage), 592u)
         << "PreparedImage changed: update serialize(PreparedImage)";
     EXPECT_EQ(sizeof(ShadowRefinementOptions), 64u)
         << "ShadowRefinementOptions changed: hash the new option in hashOptions()";
     EXPECT_EQ(sizeof(ShadowRemovalOptions), 32u)
         << "ShadowRemovalOptions changed: hash the new option in hashOptions()";
-    EXPECT_EQ(sizeof(RelightOptions), 208u)
+    EXPECT_EQ(sizeof(RelightOptions), 216u)
         << "RelightOptions changed: hash the new option in hashOptions()";
 #else
     GTEST_SKIP() << "sizes known for libstdc++ on 64-bit targets only";

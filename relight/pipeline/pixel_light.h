@@ -1,0 +1,51 @@
+// Direct light per pixel (Loscos et al. 1999, §4.1 and §5): the form factor and visibility
+// of every light at the camera's samples, kept per pixel, so that the display divides the
+// photo by the light it really received, shadows included, rather than by the light
+// interpolated between leaf vertices.
+//
+// Per pixel p and light l, per unit radiance of l:
+//   h_l(p) = pi Gbar_l(p) + sum_v w_v(p) h_l,indirect(v)
+// - Gbar_l(p): the mean of G_l (radiosity/direct_light.h: exact point-to-polygon form
+//   factor, shadow rays) over the pixel's samples that see a reflecting surface;
+// - the indirect part at the leaf vertices, interpolated with the display map's weights
+//   (indirect light varies slowly: the hierarchy's, as the paper's B-hat).
+// The per-pixel display (DisplayMode::pixel, relight/prepared.h) is then
+//   pixel = T (sum_l L_l h_l(p) + delta) / (sum_l L_l(photo) h_l(p) + delta),
+// Eq. (2) and (4) of the 1999 paper: the reflectance T / H_photo times the new irradiance.
+// Real shadows divide out at the pixel, so no shadow removal is needed for it.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "radiosity/direct_light.h"
+#include "radiosity/rgb.h"
+#include "radiosity/solver.h"
+#include "relight/display/ratio_display.h"
+#include "relight/pipeline/item_buffer.h"
+#include "relight/pipeline/vertex_lighting.h"
+
+namespace relight {
+
+/// pi Gbar_l(p) for every pixel and light, [pixel * lights + l] (irradiance per unit
+/// radiance); 0 for a pixel none of whose samples sees a reflecting surface. Casts shadow
+/// rays at every sample of the item buffer (all pixels), in parallel, deterministically.
+std::vector<float> measurePixelDirect(const ItemBuffer& items,
+                                      const radiosity::HierarchicalSolver& solver,
+                                      radiosity::DirectLightOptions options);
+
+/// The indirect part of each vertex's response, h_l(v) - pi G_l(v), [vertex * lights + l]:
+/// `lighting` and `direct` as measureVertexLighting() gave them (before real-shadow
+/// removal scales the light links).
+std::vector<radiosity::Rgb> vertexIndirect(const VertexLighting& lighting,
+                                           const VertexDirect& direct);
+
+/// The per-pixel display (above) into `out`, which must hold the ratio display of the same
+/// edit (its emitting faces and its pixels with unshaded samples are kept). `pixelDirect`
+/// and `indirect` as above; `radianceNow` and `radianceInPhoto` one per light.
+void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
+                      std::span<const radiosity::Rgb> indirect,
+                      std::span<const radiosity::Rgb> radianceNow,
+                      std::span<const radiosity::Rgb> radianceInPhoto, Image& out);
+
+}  // namespace relight

@@ -1,0 +1,99 @@
+// The per-pixel display (relight/pipeline/pixel_light.h): the photo given back exactly for
+// its own lighting, a light edit nearer the path-traced truth than the vertex ratio
+// display, and the prepared state's cache keeping what it needs.
+#include "relight/pipeline/pixel_light.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "relight/display/metric.h"
+#include "relight/io/edit_file.h"
+#include "relight/io/prepared_cache.h"
+#include "relight/prepared.h"
+#include "relight/relighting.h"
+#include "room_fixture.h"
+#include "temp_dir.h"
+
+using namespace relight;
+using radiosity::Rgb;
+
+namespace {
+
+const std::string kRoom = RELIGHT_DATA_DIR "/room";
+
+/// The room prepared once with the tests' coarse settings and the direct light per pixel.
+const Relighting& pixelRoom() {
+    static const auto r = [] {
+        RelightOptions o = test::coarseOptions();
+        o.pixelLight = true;
+        return prepareRelighting(loadScene(kRoom), o);
+    }();
+    return *r;
+}
+
+}  // namespace
+
+TEST(PixelLight, ThePhotosOwnLightingGivesThePhotoBack) {
+    // Same radiances in numerator and denominator: the ratio is exactly 1 at every surface
+    // pixel, so the display is T there, bit for bit; emitting faces show their radiance.
+    const PreparedImage& p = pixelRoom().prepared;
+    ASSERT_EQ(p.pixelDirect.size(), static_cast<size_t>(p.photo.width) *
+                                        static_cast<size_t>(p.photo.height) *
+                                        p.photoRadiance.size());
+    const Image out = renderEdit(p, p.photoRadiance, DisplayMode::pixel);
+    int surface = 0;
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            const size_t px =
+                static_cast<size_t>(y) * static_cast<size_t>(out.width) + static_cast<size_t>(x);
+            if (p.display.emitterStart[px] != p.display.emitterStart[px + 1] ||
+                p.display.unshaded[px] > 0)
+                continue;
+            ++surface;
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(out.at(x, y)[c], std::max(p.photo.at(x, y)[c], 0.0f)) << x << "," << y;
+        }
+    EXPECT_GT(surface, out.width * out.height / 2);
+}
+
+TEST(PixelLight, ALightEditIsNearerTheTruthThanTheVertexRatio) {
+    // back_off: the two back lamps off. The photo's shadows (table, cabinet) divide out at
+    // each pixel rather than between leaf vertices. Measured at the default settings: 0.0126
+    // against 0.0174 for the ratio display (bench/RESULTS.md); at the tests' coarse ones
+    // here the per-pixel display must stay within 0.02 and below the ratio display.
+    const Relighting& r = pixelRoom();
+    const EditFile e = loadEdit(kRoom + "/edits/back_off.json", r.scene);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
+    int w = r.prepared.photo.width, h = r.prepared.photo.height;
+    const Image truth = readImage(kRoom + "/truth/back_off.exr");
+    const auto maskT = readMask(kRoom + "/truth/back_off.mask.png", w, h);
+    const auto maskP = readMask(kRoom + "/photo.mask.png", w, h);
+    const Score pixel = scoreImage(renderEdit(r.prepared, radiance, DisplayMode::pixel), truth,
+                                   r.prepared.photo, maskT, maskP);
+    const Score ratio = scoreImage(renderEdit(r.prepared, radiance, DisplayMode::ratio), truth,
+                                   r.prepared.photo, maskT, maskP);
+    std::printf("back_off: pixel %.4f, ratio %.4f\n", pixel.relRmse, ratio.relRmse);
+    EXPECT_LT(pixel.relRmse, ratio.relRmse);
+    EXPECT_LE(pixel.relRmse, 0.02);
+}
+
+TEST(PixelLight, TheCacheKeepsItAndAPreparationWithoutItRefusesTheMode) {
+    const Relighting& r = pixelRoom();
+    const test::TempDir dir("relight_pixel_light_test");
+    const auto file = dir.path() / "prepared.bin";
+    writePreparedCache(file, r.prepared, 42);
+    std::string why;
+    const auto back = readPreparedCache(file, 42, &why);
+    ASSERT_TRUE(back) << why;
+    const EditFile e = loadEdit(kRoom + "/edits/colours.json", r.scene);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
+    const Image a = renderEdit(*back, radiance, DisplayMode::pixel);
+    const Image b = renderEdit(r.prepared, radiance, DisplayMode::pixel);
+    EXPECT_EQ(std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)), 0);
+    // The tests' shared room is prepared without per-pixel light.
+    EXPECT_TRUE(test::coarseRoom().prepared.pixelDirect.empty());
+    EXPECT_THROW(renderEdit(test::coarseRoom().prepared, radiance, DisplayMode::pixel),
+                 std::invalid_argument);
+}
