@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Every edit of the bundled scenes (and of any scene folders given), relit with each
-# display mode and scored against the path-traced truth (spec metric, `relight eval`):
+# display mode (ratio, confidence, pixel: relight/prepared.h) and scored against the path-traced truth (spec metric, `relight eval`):
 # rel_rmse and changed_rel_rmse side by side. Edits the engine refuses (remove_objects) are
-# listed as refused. Prepares each scene once (a cache per scene in the work folder).
+# listed as refused, as are virtual parts in the pixel display (light edits only so far).
+# Prepares each scene once per mode (a cache per scene and mode in the work folder).
 #   bash bench/score_edits.sh [SCENE_DIR ...]      (default: data/room data/cornell data/room-multi)
 # A scene folder without truth/ (a tessellated copy) may link its original's truth/.
 set -euo pipefail
@@ -13,17 +14,18 @@ scenes=("$@")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 echo "command: bash bench/score_edits.sh ${*:-}"
-printf '%-20s %-24s %17s %17s %17s\n' scene edit "ratio" "confidence" "photo (unedited)"
+printf '%-20s %-24s %17s %17s %17s %17s\n' scene edit "ratio" "confidence" "pixel" \
+    "photo (unedited)"
 for dir in "${scenes[@]}"; do
     name=$(basename "$dir")
     for file in "$dir"/edits/*.json; do
         edit=$(basename "$file" .json)
         [ -f "$dir/truth/$edit.exr" ] || continue
         row=()
-        for mode in ratio confidence; do
+        for mode in ratio confidence pixel; do
             out="$work/$name-$edit-$mode.exr"
             if "$relight" render "$dir" --edit "$file" -o "$out" --display "$mode" \
-                --cache "$work/$name.bin" >"$work/log" 2>&1; then
+                --cache "$work/$name-$mode.bin" >"$work/log" 2>&1; then
                 row+=("$("$relight" eval "$dir" "$edit" "$out" |
                     awk '/^rel_rmse/ {r = $2} /^changed_rel_rmse/ {c = $2} END {print r " / " c}')")
             else
@@ -32,6 +34,7 @@ for dir in "${scenes[@]}"; do
         done
         photo=$("$relight" eval "$dir" "$edit" "$dir/photo.exr" |
             awk '/^rel_rmse/ {r = $2} /^changed_rel_rmse/ {c = $2} END {print r " / " c}')
-        printf '%-20s %-24s %17s %17s %17s\n' "$name" "$edit" "${row[0]}" "${row[1]}" "$photo"
+        printf '%-20s %-24s %17s %17s %17s %17s\n' "$name" "$edit" "${row[0]}" "${row[1]}" \
+            "${row[2]}" "$photo"
     done
 done
