@@ -182,7 +182,12 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
     say(o, "reflectance from the photo");
     const LightingBuffer lighting =
         computeLightingBuffer(r.items, *r.solver, directLightOptions(o), r.sampling.stride);
-    estimatePolygonReflectance(*r.solver, r.scene, r.items, lighting, P.photo, o.reflectanceRounds);
+    r.surface = estimatePolygonReflectance(*r.solver, r.scene, r.items, lighting, P.photo,
+                                           o.reflectanceRounds)
+                    .surface;
+    // Per-pixel direct light, when asked, from these same rays where they cover every pixel.
+    if (o.pixelLight && lighting.stride == 1)
+        P.pixelDirect = pixelDirect(r.items, r.solver->scene(), lighting);
     P.times.reflectance = since(t0);
 }
 
@@ -238,14 +243,17 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     P.times.reflectance += since(t0);
 }
 
-/// Step 4b, when asked: the direct light per pixel, and the indirect part of the vertices'
-/// responses before real-shadow removal scales their light links.
+/// Step 4b, when asked: the direct light per pixel (unless step 3 had it already, with the
+/// photo sampled in full), and the indirect part of the vertices' responses before
+/// real-shadow removal scales their light links.
 void lightPixels(Relighting& r, const RelightOptions& o) {
     if (!o.pixelLight) return;
     PreparedImage& P = r.prepared;
     const auto t0 = Clock::now();
-    say(o, "direct light per pixel");
-    P.pixelDirect = measurePixelDirect(r.items, *r.solver, directLightOptions(o));
+    if (P.pixelDirect.empty()) {
+        say(o, "direct light per pixel");
+        P.pixelDirect = measurePixelDirect(r.items, *r.solver, directLightOptions(o));
+    }
     P.vertexIndirect = vertexIndirect(P.lighting, r.direct);
     P.times.vertexLighting += since(t0);
 }
@@ -278,7 +286,8 @@ void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
     r.direct.terms = {};
     // What the confidence display needs (relight/prepared.h, relight/pipeline/confidence.h).
     P.confidence = vertexConfidence(r.direct, P.photoRadiance);
-    P.modelReflectance = vertexModelReflectance(*r.mesh, r.solver->scene(), P.confidence);
+    P.modelReflectance =
+        vertexModelReflectance(*r.mesh, r.solver->scene(), r.surface, P.confidence);
 }
 
 /// Step 6: the display map, and the solver's figures for the report.

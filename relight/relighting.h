@@ -105,6 +105,7 @@ struct Relighting {
     std::unique_ptr<radiosity::LeafMesh> mesh;
     std::unique_ptr<radiosity::LightResponses> responses;
     std::unique_ptr<LeafTexture> texture;  ///< the photo per leaf
+    std::vector<int> surface;  ///< per polygon: its surface (pipeline/reflectance.h, surfaceOf)
     ShadowRefinementReport refinement;
     VertexDirect direct;    ///< direct light per vertex and light, with and without blockers
     ShadowRemoval removal;  ///< empty when options.shadowRemoval is off

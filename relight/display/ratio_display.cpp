@@ -225,8 +225,7 @@ std::vector<Rgb> displayRatio(std::span<const Rgb> B, std::span<const Rgb> D) {
     const Rgb delta = ratioFloor(D);
     std::vector<Rgb> r(D.size());
     for (size_t v = 0; v < D.size(); ++v)
-        for (int c = 0; c < 3; ++c)
-            r[v][c] = (std::max(B[v][c], 0.0) + delta[c]) / (std::max(D[v][c], 0.0) + delta[c]);
+        for (int c = 0; c < 3; ++c) r[v][c] = guardedRatio(B[v][c], D[v][c], delta[c]);
     return r;
 }
 

@@ -10,6 +10,7 @@
 // photo). A light edit then costs one multiply-add per (pixel, vertex) pair.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <span>
 #include <vector>
@@ -89,6 +90,10 @@ constexpr double kRatioFloor = 1e-4;
 /// positive number where every D is 0, a scene without light). Shadow removal closes its
 /// texture factor with the same floor, so that the unedited display is exact.
 radiosity::Rgb ratioFloor(std::span<const radiosity::Rgb> D);
+/// One channel of the guarded ratio (B + delta) / (D + delta), negative B and D as 0.
+inline double guardedRatio(double B, double D, double delta) {
+    return (std::max(B, 0.0) + delta) / (std::max(D, 0.0) + delta);
+}
 std::vector<radiosity::Rgb> displayRatio(std::span<const radiosity::Rgb> B,
                                          std::span<const radiosity::Rgb> D);
 

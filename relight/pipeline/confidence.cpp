@@ -4,8 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "relight/pipeline/reflectance.h"
-
 namespace relight {
 
 using radiosity::Rgb;
@@ -37,15 +35,16 @@ std::vector<float> vertexConfidence(const VertexDirect& direct, std::span<const 
 }
 
 std::vector<Rgb> vertexModelReflectance(const radiosity::LeafMesh& mesh,
-                                        const radiosity::Scene& scene,
+                                        const radiosity::Scene& scene, std::span<const int> surface,
                                         std::span<const float> confidence) {
     const size_t nv = mesh.vertices().size();
-    if (confidence.size() != nv)
+    if (confidence.size() != nv || surface.size() != scene.polygons.size())
         throw std::invalid_argument("vertexModelReflectance: " + std::to_string(confidence.size()) +
-                                    " confidences for " + std::to_string(nv) + " vertices");
+                                    " confidences for " + std::to_string(nv) + " vertices, " +
+                                    std::to_string(surface.size()) + " surfaces for " +
+                                    std::to_string(scene.polygons.size()) + " polygons");
     // Per surface, sum of K a rho and of K a over its leaves (K: the mean of the leaf's
     // corners), the leaves' reflectances from their texture (relight/pipeline/reflectance.h).
-    const std::vector<int> surface = surfaceOf(scene);
     std::vector<Rgb> sumRho(scene.polygons.size());
     std::vector<double> sumWeight(scene.polygons.size(), 0.0);
     const auto& nodes = mesh.hierarchy().nodes;

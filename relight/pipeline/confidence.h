@@ -53,8 +53,10 @@ std::vector<float> vertexConfidence(const VertexDirect& direct,
 /// over the surface's well-lit parts instead of over several photos: a dim leaf's own
 /// estimate, which divides by the model's light where the model is least sure, does not
 /// count. A surface with no trusted leaf keeps its polygon's estimate.
+/// `surface`: surfaceOf(scene), one per polygon.
 std::vector<radiosity::Rgb> vertexModelReflectance(const radiosity::LeafMesh& mesh,
                                                    const radiosity::Scene& scene,
+                                                   std::span<const int> surface,
                                                    std::span<const float> confidence);
 
 }  // namespace relight

@@ -6,21 +6,19 @@
 #include <string>
 
 #include "radiosity/parallel.h"
-#include "relight/pipeline/lighting_buffer.h"
 
 namespace relight {
 
 using radiosity::Rgb;
 
-std::vector<float> measurePixelDirect(const ItemBuffer& items,
-                                      const radiosity::HierarchicalSolver& solver,
-                                      radiosity::DirectLightOptions options) {
-    // G per sample, every pixel (stride 1), the shadow rays seeded by the sample.
-    const LightingBuffer buf = computeLightingBuffer(items, solver, options, 1);
+std::vector<float> pixelDirect(const ItemBuffer& items, const radiosity::Scene& scene,
+                               const LightingBuffer& buf) {
+    if (buf.stride != 1)
+        throw std::invalid_argument("pixelDirect: the lighting buffer has pixel stride " +
+                                    std::to_string(buf.stride) + "; it needs every pixel");
     const size_t L = static_cast<size_t>(buf.lights);
     const size_t pixels = static_cast<size_t>(items.width) * static_cast<size_t>(items.height);
     std::vector<float> out(pixels * L, 0.0f);
-    const auto& polygons = solver.scene().polygons;
     radiosity::parallelFor(pixels, 64, [&](size_t px) {
         const int x = static_cast<int>(px % static_cast<size_t>(items.width));
         const int y = static_cast<int>(px / static_cast<size_t>(items.width));
@@ -29,7 +27,7 @@ std::vector<float> measurePixelDirect(const ItemBuffer& items,
         for (int s = 0; s < items.spp; ++s) {
             const int idx = items.sampleIndex(x, y, s);
             const int p = items.polygon[static_cast<size_t>(idx)];
-            if (p < 0 || polygons[static_cast<size_t>(p)].light >= 0) continue;
+            if (p < 0 || scene.polygons[static_cast<size_t>(p)].light >= 0) continue;
             const float* G = buf.direct(idx);
             for (size_t l = 0; l < L; ++l) sum[l] += static_cast<double>(G[l]);
             ++n;
@@ -39,6 +37,12 @@ std::vector<float> measurePixelDirect(const ItemBuffer& items,
             out[px * L + l] = static_cast<float>(std::numbers::pi * sum[l] / n);
     });
     return out;
+}
+
+std::vector<float> measurePixelDirect(const ItemBuffer& items,
+                                      const radiosity::HierarchicalSolver& solver,
+                                      radiosity::DirectLightOptions options) {
+    return pixelDirect(items, solver.scene(), computeLightingBuffer(items, solver, options, 1));
 }
 
 std::vector<Rgb> vertexIndirect(const VertexLighting& lighting, const VertexDirect& direct) {
@@ -52,7 +56,7 @@ std::vector<Rgb> vertexIndirect(const VertexLighting& lighting, const VertexDire
 
 void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
                       std::span<const Rgb> indirect, std::span<const Rgb> radianceNow,
-                      std::span<const Rgb> radianceInPhoto, Image& out) {
+                      std::span<const Rgb> radianceInPhoto, const Rgb& delta, Image& out) {
     const size_t L = radianceInPhoto.size();
     const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
     if (radianceNow.size() != L || pixelDirect.size() != pixels * L ||
@@ -61,42 +65,28 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
                                     std::to_string(pixelDirect.size()) + " direct values for " +
                                     std::to_string(pixels) + " pixels x " + std::to_string(L) +
                                     " lights)");
-    // Per-light irradiance of every surface pixel under the photo's light, for the guard
-    // delta (kRatioFloor times its mean, per channel, as the ratio display's).
-    const auto pixelH = [&](size_t px, std::span<const Rgb> radiance) {
-        double wsum = 0;
-        for (int k = map.start[px]; k < map.start[px + 1]; ++k)
-            wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
-        Rgb H;
-        for (size_t l = 0; l < L; ++l) {
-            Rgb ind;
-            for (int k = map.start[px]; k < map.start[px + 1]; ++k)
-                ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
-                       (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
-            H += radiance[l] * (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
-        }
-        return H;
-    };
-    const auto surface = [&](size_t px) {
-        return map.emitterStart[px] == map.emitterStart[px + 1] && map.unshaded[px] == 0 &&
-               map.start[px] < map.start[px + 1];
-    };
-    Rgb meanPhoto;
-    size_t count = 0;
-    for (size_t px = 0; px < pixels; ++px)
-        if (surface(px)) {
-            meanPhoto += pixelH(px, radianceInPhoto);
-            ++count;
-        }
-    const Rgb delta = meanPhoto * (kRatioFloor / static_cast<double>(std::max<size_t>(count, 1)));
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
-        if (!surface(px)) return;  // the ratio display's value stays
-        const Rgb now = pixelH(px, radianceNow), before = pixelH(px, radianceInPhoto);
+        const int k0 = map.start[px], k1 = map.start[px + 1];
+        // A lamp's face, samples that see nothing, or no leaf: the ratio display's value.
+        if (map.emitterStart[px] != map.emitterStart[px + 1] || map.unshaded[px] > 0 || k0 == k1)
+            return;
+        double wsum = 0;
+        for (int k = k0; k < k1; ++k)
+            wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+        // h_l(p) once per light, weighed by the edit's radiances and the photo's.
+        Rgb now, before;
+        for (size_t l = 0; l < L; ++l) {
+            Rgb h = Rgb::gray(static_cast<double>(pixelDirect[px * L + l]));
+            for (int k = k0; k < k1; ++k)
+                h += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
+                     (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+            now += radianceNow[l] * h;
+            before += radianceInPhoto[l] * h;
+        }
         const float* t = photo.rgb.data() + px * 3;
         float* o = out.rgb.data() + px * 3;
         for (int c = 0; c < 3; ++c) {
-            const double d = std::max(delta[c], 1e-300);  // a photo with no light at all
-            const double r = (std::max(now[c], 0.0) + d) / (std::max(before[c], 0.0) + d);
+            const double r = guardedRatio(now[c], before[c], delta[c]);
             o[c] = std::max(static_cast<float>(static_cast<double>(t[c]) * r), 0.0f);
         }
     });

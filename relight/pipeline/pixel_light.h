@@ -23,13 +23,18 @@
 #include "radiosity/solver.h"
 #include "relight/display/ratio_display.h"
 #include "relight/pipeline/item_buffer.h"
+#include "relight/pipeline/lighting_buffer.h"
 #include "relight/pipeline/vertex_lighting.h"
 
 namespace relight {
 
 /// pi Gbar_l(p) for every pixel and light, [pixel * lights + l] (irradiance per unit
-/// radiance); 0 for a pixel none of whose samples sees a reflecting surface. Casts shadow
-/// rays at every sample of the item buffer (all pixels), in parallel, deterministically.
+/// radiance); 0 for a pixel none of whose samples sees a reflecting surface. From a
+/// lighting buffer of every pixel (stride 1), such as the reflectance estimate casts for a
+/// photo that is sampled in full: no ray is cast again.
+std::vector<float> pixelDirect(const ItemBuffer& items, const radiosity::Scene& scene,
+                               const LightingBuffer& buffer);
+/// The same, casting the shadow rays of every sample (computeLightingBuffer, stride 1).
 std::vector<float> measurePixelDirect(const ItemBuffer& items,
                                       const radiosity::HierarchicalSolver& solver,
                                       radiosity::DirectLightOptions options);
@@ -41,11 +46,15 @@ std::vector<radiosity::Rgb> vertexIndirect(const VertexLighting& lighting,
                                            const VertexDirect& direct);
 
 /// The per-pixel display (above) into `out`, which must hold the ratio display of the same
-/// edit (its emitting faces and its pixels with unshaded samples are kept). `pixelDirect`
-/// and `indirect` as above; `radianceNow` and `radianceInPhoto` one per light.
+/// edit: it is left as it is where a pixel sees a lamp's face or has samples that see
+/// nothing (the ratio display already shows those as the spec wants), and replaced on the
+/// other pixels. `pixelDirect` and `indirect` as above; `radianceNow` and `radianceInPhoto`
+/// one per light; `delta` the ratio display's floor (ratioFloor of D), so that both
+/// displays guard a vanishing photo irradiance alike.
 void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
                       std::span<const radiosity::Rgb> indirect,
                       std::span<const radiosity::Rgb> radianceNow,
-                      std::span<const radiosity::Rgb> radianceInPhoto, Image& out);
+                      std::span<const radiosity::Rgb> radianceInPhoto, const radiosity::Rgb& delta,
+                      Image& out);
 
 }  // namespace relight

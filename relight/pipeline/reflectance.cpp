@@ -220,7 +220,8 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
     const int np = static_cast<int>(scene.polygons.size());
     PhotoSums sums = sumPhotoSamples(scene, items, lighting, photo);
     thinGatherPoints(sums.points);
-    const std::vector<int> surface = surfaceOf(scene);
+    report.surface = surfaceOf(scene);
+    const std::vector<int>& surface = report.surface;
     // The gather points' terms, once: between rounds only the radiosities change.
     GatherTerms terms(np);
     radiosity::parallelFor(static_cast<size_t>(np), 1, [&](size_t p) {

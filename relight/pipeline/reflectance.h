@@ -55,6 +55,9 @@ struct ReflectanceReport {
     int polygonsSeen = 0;       ///< polygons with enough photo samples, or their surface
     int polygonsDefaulted = 0;  ///< reflecting polygons the photo does not see
     double lastChange = 0;      ///< largest reflectance change in the last round
+    /// surfaceOf(the solver's scene), which the estimate pooled over: later steps that pool
+    /// over surfaces take it from here rather than joining the polygons again.
+    std::vector<int> surface;
 };
 
 /// `rounds` estimate/solve rounds from a solved `solver`. H per sample is the direct light
