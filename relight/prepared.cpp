@@ -55,6 +55,10 @@ VertexDisplay vertexDisplay(const PreparedImage& p, const SplitIrradiance& H, Di
     const size_t n = H.kept.size();
     if (H.fresh.size() != n)
         throw std::invalid_argument("vertexDisplay: kept and fresh irradiance differ in size");
+    // The per-pixel display is not a value per vertex (renderEdit draws it): no silent
+    // fallback to the ratio display for a caller that asks for it (virtual parts).
+    if (mode == DisplayMode::pixel)
+        throw std::invalid_argument("vertexDisplay: the per-pixel display has no vertex values");
     VertexDisplay d;
     const bool fresh =
         std::any_of(H.fresh.begin(), H.fresh.end(), [](const Rgb& b) { return !(b == Rgb{}); });

@@ -83,6 +83,8 @@ TEST(VertexDisplay, WeighsFreshLightByConfidence) {
     const VertexDisplay same = vertexDisplay(p, H, DisplayMode::confidence);
     EXPECT_TRUE(same.added.empty());
     EXPECT_EQ(same.ratio, vertexRatio(p, H.kept));
+    // The per-pixel display has no vertex values (virtual parts cannot use it yet).
+    EXPECT_THROW(vertexDisplay(p, H, DisplayMode::pixel), std::invalid_argument);
 }
 
 TEST(RenderRatio, AddedRadianceIsInterpolatedAndClampedWithTheRest) {
