@@ -8,7 +8,7 @@
 # A scene folder without truth/ (a tessellated copy) may link its original's truth/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-relight=./build/relight/relight
+relight=${RELIGHT:-./build/relight/relight}  # RELIGHT=path: another binary
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(data/room data/cornell data/room-multi)
 work=$(mktemp -d)

@@ -33,7 +33,7 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
     const Scene& scene = solver_.scene();
     const Polygon& p = scene.polygons[polygon];
     const int leaf = solver_.hierarchy().locateLeaf(polygon, x);
-    Rng rng(seed * 0x9E3779B97F4A7C15ull + 0x1234567ull);
+    const uint64_t base = seed * 0x9E3779B97F4A7C15ull + 0x1234567ull;
     const int maxRays = options_.maxRays;
     const int k = strataSide(maxRays);
     uint64_t rays = 0;
@@ -49,6 +49,11 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
                 g += F;
                 continue;
             }
+            // The rays toward q from a stream of their own: which polygons before q had a
+            // clear shaft (it changes as links are refined, or cut by a virtual object)
+            // does not change them, so a point gets the same rays in every state of the
+            // solver where it needs them.
+            Rng rng(Rng(base ^ (static_cast<uint64_t>(qi) * 0xD1B54A32D192ED03ull)).next());
             // Stratified points on q, strata in random order so that any prefix of the
             // set covers q uniformly: the first minRays decide, the rest follow in
             // penumbra. Only points above x's horizon carry light (F is clipped the same

@@ -299,6 +299,16 @@ void mapDisplay(Relighting& r, const RelightOptions& o) {
         say(o, "warning: " + std::to_string(n) +
                    " pixels on a lamp's emitting face do not show the lamp in the photo (is the "
                    "lamp where scene.json says?); they are kept as in the photo");
+    // Each vertex weighed by what it shows in the photo, rho B_photo (luminance), so that a
+    // pixel across a lit and a dark surface divides sums (ratio_display.h).
+    const std::vector<Rgb> Bphoto = vertexIrradiance(P, P.photoRadiance);
+    const bool rho = P.modelReflectance.size() == Bphoto.size();
+    std::vector<double> shown(Bphoto.size());
+    for (size_t v = 0; v < shown.size(); ++v) {
+        const Rgb s = rho ? P.modelReflectance[v] * Bphoto[v] : Bphoto[v];
+        shown[v] = 0.2126 * s[0] + 0.7152 * s[1] + 0.0722 * s[2];  // Rec. 709 luminance
+    }
+    weighByPhotoRadiance(P.display, shown);
     P.times.displayMap = since(t0);
     const auto st = r.solver->stats();
     P.leaves = st.leaves;
@@ -314,6 +324,7 @@ void mapDisplay(Relighting& r, const RelightOptions& o) {
 std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& o) {
     auto r = std::make_unique<Relighting>();
     r->scene = std::move(scene);
+    r->directOptions = directLightOptions(o);
     checkEstimableLights(r->scene);  // before the long work: an "estimate" light off in the photo
     // The steps of the header's list.
     readPhotoAndCastItems(*r, o);        // 1

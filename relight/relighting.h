@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "radiosity/defaults.h"
+#include "radiosity/direct_light.h"
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/light_response.h"
 #include "radiosity/solver.h"
@@ -109,6 +110,9 @@ struct Relighting {
     ShadowRefinementReport refinement;
     VertexDirect direct;    ///< direct light per vertex and light, with and without blockers
     ShadowRemoval removal;  ///< empty when options.shadowRemoval is off
+    /// The shadow rays of the per-point direct light (RelightOptions' minRays, maxRays), for
+    /// the edits that measure it again (relight/dynamic/dynamic_relighting.h).
+    radiosity::DirectLightOptions directOptions;
 };
 
 /// Below this share of its emission meeting the front of a surface (radiosity::lightReach), a

@@ -161,10 +161,6 @@ int runRender(const RenderArgs& a) {
     if (!a.debugViews.empty()) createDebugViewsFolder(a.debugViews);
     std::unique_ptr<Relighting> full;
     const bool virtualParts = !edit.addLights.empty() || !edit.addObjects.empty();
-    if (virtualParts && mode == DisplayMode::pixel)
-        throw InputError(edit.file.string() +
-                         ": --display pixel shows light edits only so far; this edit adds "
-                         "virtual lights or objects (use --display ratio or confidence)");
     const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false,
                                           a.debugViews.empty() && !virtualParts ? nullptr : &full);
     RenderTimes t;

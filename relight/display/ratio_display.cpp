@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -187,6 +188,34 @@ void packDisplayMap(DisplayMap& m) {
     m.runs.resize(static_cast<size_t>(m.rowRuns.back()));
     for (int y = 0; y < m.height; ++y)
         std::copy(rows[y].begin(), rows[y].end(), m.runs.begin() + m.rowRuns[y]);
+}
+
+void weighByPhotoRadiance(DisplayMap& m, std::span<const double> photoRadiance) {
+    const size_t pixels = static_cast<size_t>(m.width) * static_cast<size_t>(m.height);
+    for (const int v : m.vertex)
+        if (v < 0 || static_cast<size_t>(v) >= photoRadiance.size())
+            throw std::invalid_argument("weighByPhotoRadiance: vertex " + std::to_string(v) +
+                                        " of the map, " + std::to_string(photoRadiance.size()) +
+                                        " values given");
+    parallelFor(pixels, 1024, [&](size_t px) {
+        const int k0 = m.start[px], k1 = m.start[px + 1];
+        double total = 0, weighed = 0;
+        for (int k = k0; k < k1; ++k) {
+            const double y = photoRadiance[static_cast<size_t>(m.vertex[k])];
+            total += static_cast<double>(m.weight[k]);
+            weighed +=
+                static_cast<double>(m.weight[k]) * (std::isfinite(y) ? std::max(y, 0.0) : 0.0);
+        }
+        // Nothing shown in the photo at any of the pixel's vertices: no basis to weigh by.
+        if (!(weighed > 0) || !std::isfinite(weighed)) return;
+        const double scale = total / weighed;
+        for (int k = k0; k < k1; ++k) {
+            const double y = photoRadiance[static_cast<size_t>(m.vertex[k])];
+            m.weight[k] = static_cast<float>(static_cast<double>(m.weight[k]) *
+                                             (std::isfinite(y) ? std::max(y, 0.0) : 0.0) * scale);
+        }
+    });
+    packDisplayMap(m);
 }
 
 int trustPhotoAtEmitters(DisplayMap& m, const Image& photo, std::span<const Rgb> radianceInPhoto) {

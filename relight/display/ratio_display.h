@@ -69,6 +69,21 @@ SampleHit locateSample(const ItemBuffer& items, const radiosity::Hierarchy& h,
 DisplayMap buildDisplayMap(const ItemBuffer& items, const radiosity::LeafMesh& mesh,
                            const radiosity::Scene& scene);
 
+/// Weighs each pixel's vertices by what they show in the photo, so that the display divides
+/// sums, not averages ratios. A pixel's photo value T is the sum of what its samples show,
+/// and a sample shows about rho B_photo (its reflectance times the photo's light). The new
+/// pixel is then T sum_s rho_s B_s / sum_s rho_s B_photo,s, which with r = B / B_photo per
+/// vertex is sum_k u_k r_k with u_k proportional to w_k rho_k B_photo,k. The plain average
+/// sum_k w_k r_k is wrong where a pixel straddles a lit and a dark surface (a silhouette, a
+/// shadow's edge): T, almost all from the lit side, would be multiplied by the dark side's
+/// large ratio as well (an edge of the Cornell box's short block lit from the side showed
+/// 2x the truth's mean). Inside one surface this interpolates B and B_photo apart rather
+/// than their ratio. `photoRadiance` per vertex: the luminance of rho B_photo (any positive
+/// scale). A pixel keeps its total weight (the share of its samples on surfaces), and its
+/// plain weights where every vertex it touches shows nothing in the photo. Repacks the map.
+/// The unedited display, r = 1 at every vertex, stays the photo.
+void weighByPhotoRadiance(DisplayMap& map, std::span<const double> photoRadiance);
+
 /// Where the photo contradicts the model about a lamp: a pixel the item buffer puts (partly)
 /// on light e's emitting face, with e on in the photo, but whose photo value is below half
 /// of what those samples would show (sum_e f_e L_e(photo), brightest channel). The lamp is

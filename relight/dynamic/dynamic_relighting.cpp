@@ -10,6 +10,7 @@
 #include "radiosity/final_gather.h"
 #include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
+#include "relight/pipeline/pixel_light.h"
 
 namespace relight {
 
@@ -75,7 +76,7 @@ std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
 }
 
 int DynamicRelighting::addLight(const VirtualLight& light) {
-    if (gatherBefore_.empty()) gatherBefore_ = gatherAtVertices();  // no virtual part yet
+    rememberGatherBefore();
     std::vector<Vec3> corners(light.corners.begin(), light.corners.end());
     radiosity::Polygon p = radiosity::makePolygon(corners, -1, Rgb{});
     radiosity::DynamicUpdate u;
@@ -83,6 +84,20 @@ int DynamicRelighting::addLight(const VirtualLight& light) {
     radiance_.push_back(light.radiance);
     afterUpdate(u, /*allVertices=*/true);
     return static_cast<int>(radiance_.size()) - 1;
+}
+
+void DynamicRelighting::rememberGatherBefore() {
+    // The final gather at the vertices before any virtual part: the baseline of a light's
+    // indirect change, taken at the first light (a gather at every vertex is too slow for
+    // each object). Objects inserted before it are taken out of it at the leaves' level, as
+    // refreshIndirect() counts an object's change.
+    if (!gatherBefore_.empty()) return;
+    gatherBefore_ = gatherAtVertices();
+    if (solver_.insertedObjects() == 0) return;
+    const std::vector<Rgb> now = indirectPerNode();
+    const std::vector<Rgb> objects =
+        r_.mesh->averageOfLeaves([&](int n) { return now[n] - indirect0_[n]; });
+    for (size_t v = 0; v < gatherBefore_.size(); ++v) gatherBefore_[v] -= objects[v];
 }
 
 void DynamicRelighting::addObject(const VirtualObject& object) {
@@ -106,8 +121,92 @@ void DynamicRelighting::removeLast() {
     afterUpdate(u, light);
 }
 
+void DynamicRelighting::markChangedLeaves(const std::vector<int>& leaves) {
+    if (leafPending_.empty()) {
+        leafPending_.assign(realNodes_, 0);
+        leafEver_.assign(realNodes_, 0);
+    }
+    const auto& nodes = solver_.hierarchy().nodes;
+    for (int leaf : leaves) {
+        // A leaf the insertion made by subdividing one of the scene's: that one.
+        while (leaf >= 0 && static_cast<size_t>(leaf) >= realNodes_) leaf = nodes[leaf].parent;
+        if (leaf < 0) continue;
+        leafPending_[static_cast<size_t>(leaf)] = 1;
+        leafEver_[static_cast<size_t>(leaf)] = 1;
+    }
+}
+
+std::span<const float> DynamicRelighting::pixelDirect() {
+    const PreparedImage& P = r_.prepared;
+    const ItemBuffer& items = r_.items;
+    const auto& scene = solver_.scene();
+    const auto& h = solver_.hierarchy();
+    const size_t Lr = static_cast<size_t>(realLights_), L = scene.lights.size();
+    const size_t pixels = static_cast<size_t>(items.width) * static_cast<size_t>(items.height);
+    if (P.pixelDirect.size() != pixels * Lr)
+        throw std::invalid_argument(
+            "DynamicRelighting: the per-pixel display needs a preparation with per-pixel light");
+    if (leafPending_.empty()) markChangedLeaves({});
+    if (sampleLeaf_.empty()) {
+        sampleLeaf_.assign(items.polygon.size(), -1);
+        parallelFor(sampleLeaf_.size(), 4096, [&](size_t i) {
+            int leaf = locateSample(items, h, scene, static_cast<int>(i)).leaf;
+            while (leaf >= 0 && static_cast<size_t>(leaf) >= realNodes_)
+                leaf = h.nodes[leaf].parent;
+            sampleLeaf_[i] = leaf;
+        });
+    }
+    // A light added or removed: start again from the photo's light, every virtual light at
+    // every pixel, the real lights where any part ever changed them.
+    const bool full = pixelLights_ != L || pixelDirect_.size() != pixels * L;
+    const std::vector<char>& changed = full ? leafEver_ : leafPending_;
+    if (full) {
+        pixelDirect_.assign(pixels * L, 0.0f);
+        for (size_t px = 0; px < pixels; ++px)
+            std::copy_n(P.pixelDirect.begin() + static_cast<std::ptrdiff_t>(px * Lr), Lr,
+                        pixelDirect_.begin() + static_cast<std::ptrdiff_t>(px * L));
+        pixelLights_ = L;
+    }
+    const radiosity::DirectLight direct(solver_, r_.directOptions);
+    const int spp = items.spp;
+    radiosity::parallelForChunks(pixels, 64, [&](size_t first, size_t last) {
+        std::vector<double> G(L), sum(L);
+        for (size_t px = first; px != last; ++px) {
+            const int x = static_cast<int>(px % static_cast<size_t>(items.width));
+            const int y = static_cast<int>(px / static_cast<size_t>(items.width));
+            bool dirty = false;
+            for (int s = 0; s < spp && !dirty; ++s) {
+                const int leaf = sampleLeaf_[static_cast<size_t>(items.sampleIndex(x, y, s))];
+                dirty = leaf >= 0 && changed[static_cast<size_t>(leaf)];
+            }
+            // Only the virtual lights where nothing blocks anew.
+            const size_t firstLight = dirty ? 0 : Lr;
+            if (firstLight == L || (!dirty && !full)) continue;
+            std::fill(sum.begin(), sum.end(), 0.0);
+            int n = 0;
+            for (int s = 0; s < spp; ++s) {
+                const int idx = items.sampleIndex(x, y, s);
+                const int p = items.polygon[static_cast<size_t>(idx)];
+                if (p < 0 || scene.polygons[static_cast<size_t>(p)].light >= 0) continue;
+                // Seeded by the sample, as the preparation's rays (pipeline/lighting_buffer.h):
+                // where no part blocks, the same value.
+                direct.geometry(p, items.point[static_cast<size_t>(idx)],
+                                static_cast<uint64_t>(idx), G.data(), nullptr,
+                                static_cast<int>(firstLight));
+                for (size_t l = firstLight; l < L; ++l) sum[l] += G[l];
+                ++n;
+            }
+            for (size_t l = firstLight; l < L; ++l)
+                pixelDirect_[px * L + l] = n > 0 ? static_cast<float>(kPi * sum[l] / n) : 0.0f;
+        }
+    });
+    std::fill(leafPending_.begin(), leafPending_.end(), 0);
+    return pixelDirect_;
+}
+
 void DynamicRelighting::afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices) {
     last_ = u;
+    markChangedLeaves(u.shadowLeaves);
     times_ = FrameTimes{};
     times_.shafts = u.timeShafts;
     times_.visibility = u.timeVisibility;
@@ -252,8 +351,13 @@ Image DynamicRelighting::render(DisplayMode mode) {
     const PreparedImage& P = r_.prepared;
     const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
     Image img;
-    if (mode == DisplayMode::ratio) {
+    if (mode == DisplayMode::ratio || mode == DisplayMode::pixel) {
         img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
+        // The ratio display stays where a pixel sees a lamp's face or nothing.
+        if (mode == DisplayMode::pixel)
+            renderPixelLight(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
+                             P.photoRadiance, ratioFloor(P.D), img,
+                             PixelLightChange{pixelDirect(), indirect_});
     } else {
         const VertexDisplay d = vertexDisplay(mode);
         renderRatio(P.display, P.photo, d.ratio, real, P.photoRadiance, img, d.added);

@@ -77,8 +77,17 @@ class DynamicRelighting {
     /// Removes the virtual part added last (object or light).
     void removeLast();
 
-    /// The relit photo as it stands: the display of vertexDisplay(mode) with overlay().
+    /// The relit photo as it stands: the display of vertexDisplay(mode) with overlay(); for
+    /// DisplayMode::pixel, the per-pixel display (relight/pipeline/pixel_light.h) with the
+    /// direct light of pixelDirect() and the vertices' indirect change, then overlay(). The
+    /// pixel mode needs a preparation with per-pixel light (std::invalid_argument otherwise).
     Image render(DisplayMode mode = DisplayMode::ratio);
+    /// The per-pixel display's direct light as the edit stands, pi Gbar per pixel and light
+    /// (the real lights, then the virtual ones; Loscos et al. 1999, §5.2: "the direct light
+    /// is recomputed per pixel in the changed region"): the photo's, measured again at the
+    /// pixels with a sample on a leaf whose light links a virtual part's shaft cut, and for
+    /// each virtual light at every pixel. Updated since the last call only.
+    std::span<const float> pixelDirect();
     /// Its two parts, for a display that does the per-pixel work itself (the viewer's GPU):
     /// the display ratio k H/D per leaf vertex of the scene (relight/prepared.h, vertexRatio;
     /// the ratio display) and the virtual parts' overlay (casts the camera's samples in their
@@ -102,6 +111,8 @@ class DynamicRelighting {
     void refreshDirect(const std::vector<int>& vertices, bool virtualOnly);
     void refreshIndirect(bool full);  ///< and the virtual objects' surfaces
     std::vector<Rgb> gatherAtVertices() const;
+    void rememberGatherBefore();
+    void markChangedLeaves(const std::vector<int>& leaves);
     std::vector<Rgb> indirectPerNode() const;
 
     Relighting& r_;
@@ -122,6 +133,13 @@ class DynamicRelighting {
     std::vector<Rgb> gatherBefore_, gatherDelta_, leafAtFull_;
     std::unique_ptr<radiosity::LeafMesh> objectMesh_;  ///< virtual objects' leaf corners
     std::vector<Rgb> objectRadiance_;                  ///< per object vertex: rho H / pi
+    // The per-pixel display (pixelDirect()): the scene leaf of each item-buffer sample (-1:
+    // none), the leaves whose light changed since the last call and since the photo, and the
+    // direct light per pixel with its number of lights.
+    std::vector<int> sampleLeaf_;
+    std::vector<char> leafPending_, leafEver_;
+    std::vector<float> pixelDirect_;
+    size_t pixelLights_ = 0;
     FrameTimes times_;
     radiosity::DynamicUpdate last_;
 };

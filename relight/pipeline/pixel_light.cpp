@@ -56,15 +56,22 @@ std::vector<Rgb> vertexIndirect(const VertexLighting& lighting, const VertexDire
 
 void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
                       std::span<const Rgb> indirect, std::span<const Rgb> radianceNow,
-                      std::span<const Rgb> radianceInPhoto, const Rgb& delta, Image& out) {
-    const size_t L = radianceInPhoto.size();
+                      std::span<const Rgb> radianceInPhoto, const Rgb& delta, Image& out,
+                      PixelLightChange change) {
+    const size_t L = radianceInPhoto.size();  // the photo's lights
     const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
-    if (radianceNow.size() != L || pixelDirect.size() != pixels * L ||
-        (L > 0 && indirect.size() % L != 0) || out.width != map.width || out.height != map.height)
+    const std::span<const float> directNow = change.direct.empty() ? pixelDirect : change.direct;
+    const size_t Lnow = radianceNow.size();
+    const size_t vertices = L > 0 ? indirect.size() / L : change.indirect.size();
+    if (Lnow < L || pixelDirect.size() != pixels * L || directNow.size() != pixels * Lnow ||
+        (L > 0 && indirect.size() % L != 0) ||
+        (!change.indirect.empty() && change.indirect.size() != vertices) ||
+        out.width != map.width || out.height != map.height)
         throw std::invalid_argument("renderPixelLight: sizes do not match (" +
                                     std::to_string(pixelDirect.size()) + " direct values for " +
                                     std::to_string(pixels) + " pixels x " + std::to_string(L) +
-                                    " lights)");
+                                    " lights, " + std::to_string(directNow.size()) + " for " +
+                                    std::to_string(Lnow) + " lights now)");
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
         const int k0 = map.start[px], k1 = map.start[px + 1];
         // A lamp's face, samples that see nothing, or no leaf: the ratio display's value.
@@ -73,16 +80,26 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
         double wsum = 0;
         for (int k = k0; k < k1; ++k)
             wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+        auto interpolate = [&](auto&& value) {
+            Rgb sum;
+            for (int k = k0; k < k1; ++k)
+                sum += value(static_cast<size_t>(map.vertex[static_cast<size_t>(k)])) *
+                       (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+            return sum;
+        };
         // h_l(p) once per light, weighed by the edit's radiances and the photo's.
         Rgb now, before;
         for (size_t l = 0; l < L; ++l) {
-            Rgb h = Rgb::gray(static_cast<double>(pixelDirect[px * L + l]));
-            for (int k = k0; k < k1; ++k)
-                h += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
-                     (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
-            now += radianceNow[l] * h;
-            before += radianceInPhoto[l] * h;
+            const Rgb ind = interpolate([&](size_t v) { return indirect[v * L + l]; });
+            now +=
+                radianceNow[l] * (Rgb::gray(static_cast<double>(directNow[px * Lnow + l])) + ind);
+            before += radianceInPhoto[l] *
+                      (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
         }
+        for (size_t l = L; l < Lnow; ++l)
+            now += radianceNow[l] * static_cast<double>(directNow[px * Lnow + l]);
+        if (!change.indirect.empty())
+            now += interpolate([&](size_t v) { return change.indirect[v]; });
         const float* t = photo.rgb.data() + px * 3;
         float* o = out.rgb.data() + px * 3;
         for (int c = 0; c < 3; ++c) {

@@ -45,16 +45,26 @@ std::vector<float> measurePixelDirect(const ItemBuffer& items,
 std::vector<radiosity::Rgb> vertexIndirect(const VertexLighting& lighting,
                                            const VertexDirect& direct);
 
+/// What changed since the photo besides the lamps' radiances (virtual lights and objects,
+/// relight/dynamic/dynamic_relighting.h): the direct light per pixel as it is now, for the
+/// real lights, then the virtual ones ([pixel * lights + l], pi Gbar per unit radiance),
+/// and the indirect irradiance the virtual parts add per vertex (signed, photo units).
+struct PixelLightChange {
+    std::span<const float> direct;             ///< empty: the photo's (pixelDirect)
+    std::span<const radiosity::Rgb> indirect;  ///< per vertex, or empty
+};
+
 /// The per-pixel display (above) into `out`, which must hold the ratio display of the same
 /// edit: it is left as it is where a pixel sees a lamp's face or has samples that see
 /// nothing (the ratio display already shows those as the spec wants), and replaced on the
-/// other pixels. `pixelDirect` and `indirect` as above; `radianceNow` and `radianceInPhoto`
-/// one per light; `delta` the ratio display's floor (ratioFloor of D), so that both
-/// displays guard a vanishing photo irradiance alike.
+/// other pixels. `pixelDirect` and `indirect` as above, for the photo's lights;
+/// `radianceInPhoto` one per light of the photo, `radianceNow` one per light now (the
+/// photo's, then the virtual lights of `change`); `delta` the ratio display's floor
+/// (ratioFloor of D), so that both displays guard a vanishing photo irradiance alike.
 void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
                       std::span<const radiosity::Rgb> indirect,
                       std::span<const radiosity::Rgb> radianceNow,
                       std::span<const radiosity::Rgb> radianceInPhoto, const radiosity::Rgb& delta,
-                      Image& out);
+                      Image& out, PixelLightChange change = {});
 
 }  // namespace relight

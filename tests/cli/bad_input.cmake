@@ -71,11 +71,6 @@ file(WRITE "${WORK}/unknown_key.json"
 expect_failure("edit with an unknown key" "[^\n]*unknown_key\\.json[^\n]*hue"
                --edit "${WORK}/unknown_key.json")
 expect_failure("missing edit" "[^\n]*missing\\.json" --edit "${WORK}/missing.json")
-# The per-pixel display shows light edits only so far: an edit with virtual parts is
-# refused before the preparation, naming the edit.
-expect_failure("virtual parts per pixel"
-               "[^\n]*virtual_box\\.json: --display pixel shows light edits only"
-               --edit "${SCENE}/edits/virtual_box.json" --display pixel)
 
 # Edits whose relit image is not finite: a scale that overflows the radiance (refused at
 # load, before the preparation), a finite radiance that overflows the image's floats.

@@ -116,4 +116,13 @@ relight(out 2 render "${room}" --edit "${WORK}/missing-edit.json" -o "${WORK}/g.
 expect("${out}" "missing-edit\\.json" "bad edit")
 expect_not("${out}" "preparing|using cache" "bad edit")
 
+# The per-pixel display renders an edit with virtual parts (a light and a box), and says
+# what it inserted.
+relight(out 0 render "${room}" ${cheap} --no-cache --display pixel
+        --edit "${SCENE}/edits/virtual_light_and_box.json" -o "${WORK}/pixel_virtual.exr")
+expect("${out}" "inserted light [^\n]*\ninserted object box" "pixel display, virtual parts")
+if(NOT EXISTS "${WORK}/pixel_virtual.exr")
+  message(FATAL_ERROR "render --display pixel wrote no image for virtual_light_and_box")
+endif()
+
 file(REMOVE_RECURSE "${WORK}")

@@ -113,6 +113,39 @@ const Relighting& room() {
 
 }  // namespace
 
+TEST(RenderRatio, APixelAcrossALitAndADarkSurfaceDividesSums) {
+    // One pixel, half of its samples on a lit surface (vertex 0: rho B_photo = 1, its light
+    // unchanged, r = 1) and half on a dark one (vertex 1: rho B_photo = 0.01, lit 100 times
+    // as much now, r = 100). The photo shows 0.505 (half of 1 + 0.01). The new pixel is half
+    // of 1 + 1 = 1: the sums' ratio 2 / 1.01 times T. The plain average of the ratios would
+    // give 50.5 T = 25.5025.
+    DisplayMap m;
+    m.width = m.height = 1;
+    m.start = {0, 2};
+    m.vertex = {0, 1};
+    m.weight = {0.5f, 0.5f};
+    m.unshaded = {0};
+    m.emitterStart = {0, 0};
+    packDisplayMap(m);
+    Image photo(1, 1);
+    for (float& v : photo.rgb) v = 0.505f;
+    const std::vector<Rgb> ratio = {Rgb::gray(1), Rgb::gray(100)};
+    DisplayMap weighed = m;
+    weighByPhotoRadiance(weighed, std::vector<double>{1.0, 0.01});
+    EXPECT_NEAR(weighed.weight[0] + weighed.weight[1], 1.0f, 1e-6f);  // the total is kept
+    EXPECT_NEAR(renderRatio(weighed, photo, ratio, {}, {}).at(0, 0)[0], 1.0f, 1e-5f);
+    EXPECT_NEAR(renderRatio(m, photo, ratio, {}, {}).at(0, 0)[0], 25.5025f, 1e-4f);
+    // The unedited display (r = 1) is the photo whatever the weights.
+    const std::vector<Rgb> one = {Rgb::gray(1), Rgb::gray(1)};
+    EXPECT_FLOAT_EQ(renderRatio(weighed, photo, one, {}, {}).at(0, 0)[0], 0.505f);
+    // Nothing shown in the photo at either vertex: the plain weights stay.
+    DisplayMap dark = m;
+    weighByPhotoRadiance(dark, std::vector<double>{0.0, 0.0});
+    EXPECT_EQ(dark.weight, m.weight);
+    // A value per vertex is needed.
+    EXPECT_THROW(weighByPhotoRadiance(dark, std::vector<double>{1.0}), std::invalid_argument);
+}
+
 TEST(Relighting, UneditedLightsReproduceThePhoto) {
     // With real-shadow removal the texture factor is k = (D + delta) / (B + delta) at
     // every vertex (delta the display's floor), so k B/D = 1 to rounding and each pixel is
