@@ -2,7 +2,7 @@
 # Every edit of the bundled scenes (and of any scene folders given), relit with each
 # display mode (ratio, confidence, pixel: relight/prepared.h) and scored against the path-traced truth (spec metric, `relight eval`):
 # rel_rmse and changed_rel_rmse side by side. Edits the engine refuses (remove_objects) are
-# listed as refused, as are virtual parts in the pixel display (light edits only so far).
+# listed as refused.
 # Prepares each scene once per mode (a cache per scene and mode in the work folder).
 #   bash bench/score_edits.sh [SCENE_DIR ...]      (default: data/room data/cornell data/room-multi)
 # A scene folder without truth/ (a tessellated copy) may link its original's truth/.

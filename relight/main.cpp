@@ -1,11 +1,12 @@
 // relight: the command line. Subcommands (relight/cli/):
 //   relight solve   <scene_dir> [--epsilon E] [--report out.json] [-o radiosity.exr|png]
-//   relight prepare <scene_dir> [preparation options] [--cache FILE] [--force] [--pixel-light]
+//   relight prepare <scene_dir> [preparation options] [--cache FILE] [--force]
 //   relight render  <scene_dir> [--edit edit.json] -o out.exr|png [--report r.json]
 //                   [preparation options] [--cache FILE | --no-cache] [--debug-views DIR]
 //                   [--display ratio|confidence|pixel]
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
-//                        --max-links N, --max-memory MiB, --display-pixels P
+//                        --max-links N, --max-memory MiB, --display-pixels P,
+//                        --no-pixel-light
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
 // Errors print one clear line naming the file (and the line or key); the exit code says
 // which kind (relight/errors.h): 2 the input is wrong (the command line's options too), 3
@@ -50,6 +51,10 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
                     "display pieces: leaves are split until a piece covers fewer photo pixels "
                     "than this (0: leaf corners only)")
         ->check(finiteNumber(Sign::kNonNegative));
+    app->add_flag("--pixel-light,!--no-pixel-light", p.pixelLight,
+                  "measure the direct light per pixel too (default), for render --display "
+                  "pixel; --no-pixel-light for the vertex displays only (less time and "
+                  "memory on large photos)");
 }
 
 CLI::App* addSolveCommand(CLI::App& app, cli::SolveArgs& sa) {
@@ -116,7 +121,7 @@ CLI::App* addRenderCommand(CLI::App& app, cli::RenderArgs& ra) {
                      "edit adds (lamps off in the photo, virtual parts) as the model's "
                      "rho B / pi where the photo's lamps did not light a point (Loscos et al. "
                      "1999's confidence); pixel: T H/H_photo with the direct light per pixel "
-                     "(Loscos et al. 1999; light edits only, prepares with --pixel-light)")
+                     "(Loscos et al. 1999; prepares with --pixel-light)")
         ->capture_default_str()
         ->check(CLI::IsMember({"ratio", "confidence", "pixel"}));
     auto* renderCache =
@@ -138,8 +143,6 @@ CLI::App* addPrepareCommand(CLI::App& app, cli::PrepareArgs& pa) {
     prepare->add_option("--cache", pa.cache.file,
                         "where to write it (default <scene_dir>/.relight/prepared.bin)");
     prepare->add_flag("--force", pa.cache.force, "prepare again even when the cache is valid");
-    prepare->add_flag("--pixel-light", pa.prep.pixelLight,
-                      "measure the direct light per pixel too, for render --display pixel");
     return prepare;
 }
 

@@ -32,9 +32,9 @@
 // The per-pixel display (DisplayMode::pixel; relight/pipeline/pixel_light.h) divides the
 // photo by the light each pixel received, the direct light measured per pixel:
 //   pixel = T sum_l L_l h_l(p) / sum_l L_l(photo) h_l(p)
-// Better than the ratio display on every light edit measured (room back_off 0.0174 ->
-// 0.0126), it needs a preparation with RelightOptions::pixelLight and shows light edits
-// only so far: virtual parts would need their direct light per pixel too.
+// Better than the ratio display on every edit of every bundled scene (room back_off 0.0167
+// -> 0.0125; with virtual parts through relight/dynamic/dynamic_relighting.h), it needs a
+// preparation with RelightOptions::pixelLight; `relight render` uses it by default.
 #pragma once
 
 #include <span>
@@ -89,7 +89,7 @@ std::vector<radiosity::Rgb> vertexIrradiance(const PreparedImage& p,
 enum class DisplayMode {
     ratio,       ///< Loscos et al. 2000: T k B / D everywhere
     confidence,  ///< the ratio where the photo is trusted, the model where it is not
-    pixel,       ///< per-pixel direct light (pipeline/pixel_light.h): light edits only
+    pixel,       ///< per-pixel direct light (pipeline/pixel_light.h): relight render's default
 };
 /// "ratio", "confidence", "pixel"; and back (std::invalid_argument naming the modes).
 const char* displayModeName(DisplayMode mode);

@@ -52,7 +52,9 @@ struct PrepareOptionArgs {
     bool shadowRefinement = true;
     bool shadowRemoval = true;
     double displayPixels = RelightOptions{}.displayPiecePixels;
-    bool pixelLight = false;  ///< measure the direct light per pixel (render --display pixel)
+    /// Measure the direct light per pixel too (the default display needs it; off with
+    /// --no-pixel-light for the vertex displays only).
+    bool pixelLight = true;
 
     /// The pipeline's options, with progress lines on stderr.
     RelightOptions relightOptions() const;
@@ -65,7 +67,9 @@ struct RenderArgs {
     std::string debugViews;  ///< folder for the pipeline's intermediate images (empty: none)
     double exposure = 0;
     CacheArgs cache;
-    std::string display = "ratio";  ///< DisplayMode (relight/prepared.h)
+    /// DisplayMode (relight/prepared.h): the per-pixel display by default, the most accurate
+    /// on every bundled scene's every edit (bench/RESULTS.md, 2026-11-25).
+    std::string display = "pixel";
 };
 int runRender(const RenderArgs& a);
 

@@ -19,6 +19,10 @@
 // samples are cast again (the item buffer's update): a sample that now sees a virtual
 // object shows rho H / pi of the object's leaf vertices (its own radiosity), one that sees a
 // virtual light's face shows its radiance; the pixel's other samples keep the ratio display.
+// The per-pixel display (DisplayMode::pixel, relight/pipeline/pixel_light.h) takes the
+// direct light per pixel instead (Loscos et al. 1999, §5.2): each virtual light's at every
+// sample, every light's again at the pixels with a sample on a leaf whose light links an
+// object's shaft cut (pixelDirect()), and the indirect change interpolated at each pixel.
 #pragma once
 
 #include <memory>

@@ -39,9 +39,12 @@ function(same_within_one_step a b what)
   endif()
 endfunction()
 
+# The viewer shows the ratio display (Loscos et al. 2000) on the GPU; render is asked for the
+# same display, prepared the viewer's way (no per-pixel light), so both share the cache.
+set(as_viewer --display ratio --no-pixel-light)
 foreach(edit identity back_off left_off_right_double right_off_left_double colours)
   relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/${edit}.json" -o "${WORK}/${edit}_render.png"
-          --cache "${cache}")
+          --cache "${cache}" ${as_viewer})
   viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/${edit}.json" --screenshot "${WORK}/${edit}_viewer.png")
   expect("${o}" "wrote .*${edit}_viewer.png \\(320x240, float framebuffer" "screenshot ${edit}")
   same_within_one_step("${WORK}/${edit}_viewer.png" "${WORK}/${edit}_render.png" "edit ${edit}")
@@ -49,7 +52,7 @@ endforeach()
 
 # Exposure is applied as render applies it (before the sRGB transfer function).
 relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/back_off.json" -o "${WORK}/exposed_render.png"
-        --cache "${cache}" --exposure 1.5)
+        --cache "${cache}" --exposure 1.5 ${as_viewer})
 viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --exposure 1.5
        --screenshot "${WORK}/exposed_viewer.png")
 same_within_one_step("${WORK}/exposed_viewer.png" "${WORK}/exposed_render.png" "exposure 1.5")
@@ -65,7 +68,8 @@ expect("${json}" "\"file\": \"session.box.obj\"" "saved session")
 if(NOT EXISTS "${WORK}/saved/session.box.obj")
   message(FATAL_ERROR "the saved session's box OBJ is missing")
 endif()
-relight(o 0 render "${SCENE}" --edit "${saved}" -o "${WORK}/session_render.png" --cache "${cache}")
+relight(o 0 render "${SCENE}" --edit "${saved}" -o "${WORK}/session_render.png" --cache "${cache}"
+        ${as_viewer})
 expect("${o}" "inserted object box1" "render of the saved session")
 same_within_one_step("${WORK}/session_viewer.png" "${WORK}/session_render.png" "saved session")
 
