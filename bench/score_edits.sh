@@ -9,11 +9,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 relight=${RELIGHT:-./build/relight/relight}  # RELIGHT=path: another binary
+read -r -a extra <<<"${RELIGHT_ARGS:-}"  # RELIGHT_ARGS="...": more options for render
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(data/room data/cornell data/room-multi)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-echo "command: bash bench/score_edits.sh ${*:-}"
+echo "command: ${RELIGHT_ARGS:+RELIGHT_ARGS=\"$RELIGHT_ARGS\" }bash bench/score_edits.sh ${*:-}"
 printf '%-20s %-24s %17s %17s %17s %17s\n' scene edit "ratio" "confidence" "pixel" \
     "photo (unedited)"
 for dir in "${scenes[@]}"; do
@@ -25,7 +26,7 @@ for dir in "${scenes[@]}"; do
         for mode in ratio confidence pixel; do
             out="$work/$name-$edit-$mode.exr"
             if "$relight" render "$dir" --edit "$file" -o "$out" --display "$mode" \
-                --cache "$work/$name-$mode.bin" >"$work/log" 2>&1; then
+                --cache "$work/$name-$mode.bin" "${extra[@]}" >"$work/log" 2>&1; then
                 row+=("$("$relight" eval "$dir" "$edit" "$out" |
                     awk '/^rel_rmse/ {r = $2} /^changed_rel_rmse/ {c = $2} END {print r " / " c}')")
             else

@@ -85,11 +85,24 @@ void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, Dynam
     const uint64_t raysBefore = transfer_->counters.rays.load();
     parallelFor(cut.size(), 8, [&](size_t i) { transfer_->visibility(links_.mutableAt(cut[i])); });
     report.linksCut += static_cast<int>(cut.size());
+    // The leaf elements under each cut light link's receiver: a link may end above the
+    // leaves (an element subdivided for other links, a cluster far from the lamp); every
+    // leaf below it may have lost or regained the lamp's direct light.
+    std::vector<int> stack;
     for (int a : cut) {
         const Link& l = links_[a];
-        const Node& R = h_.nodes[l.receiver];
-        if (lightOfNode(l.source) >= 0 && !R.isCluster() && R.isLeaf())
-            report.shadowLeaves.push_back(l.receiver);
+        if (lightOfNode(l.source) < 0) continue;
+        stack.assign(1, l.receiver);
+        while (!stack.empty()) {
+            const int n = stack.back();
+            stack.pop_back();
+            const Node& R = h_.nodes[n];
+            if (!R.isCluster() && R.isLeaf()) {
+                report.shadowLeaves.push_back(n);
+                continue;
+            }
+            for (int c = 0; c < R.childCount; ++c) stack.push_back(R.firstChild + c);
+        }
     }
     // Erasing keeps the receiver order; the revived links go after it.
     if (report.linksReactivated > 0) {

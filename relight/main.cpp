@@ -6,7 +6,7 @@
 //                   [--display ratio|confidence|pixel]
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
 //                        --max-links N, --max-memory MiB, --display-pixels P,
-//                        --no-pixel-light
+//                        --no-pixel-light, --all-photos
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
 // Errors print one clear line naming the file (and the line or key); the exit code says
 // which kind (relight/errors.h): 2 the input is wrong (the command line's options too), 3
@@ -55,6 +55,10 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
                   "measure the direct light per pixel too (default), for render --display "
                   "pixel; --no-pixel-light for the vertex displays only (less time and "
                   "memory on large photos)");
+    app->add_flag("--all-photos", p.allPhotos,
+                  "read the light the first photo did not hold with the reflectance merged "
+                  "from all of the scene's photos (Loscos et al. 1999, Eq. (3); with the "
+                  "per-pixel light)");
 }
 
 CLI::App* addSolveCommand(CLI::App& app, cli::SolveArgs& sa) {

@@ -98,7 +98,7 @@ void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& ou
             throw std::invalid_argument(
                 "renderEdit: the per-pixel display needs a preparation with per-pixel light");
         renderPixelLight(p.display, p.photo, p.pixelDirect, p.vertexIndirect, radiance,
-                         p.photoRadiance, ratioFloor(p.D), out);
+                         p.photoRadiance, ratioFloor(p.D), out, {}, p.pixelReflectance);
         return;
     }
     const VertexDisplay d = vertexDisplay(p, splitIrradiance(p, radiance), mode);

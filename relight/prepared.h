@@ -69,6 +69,10 @@ struct PreparedImage {
     /// each vertex's response per light. Empty otherwise.
     std::vector<float> pixelDirect;
     std::vector<radiosity::Rgb> vertexIndirect;
+    /// The reflectance merged from all of the scene's photos, 3 floats per pixel
+    /// (pipeline/photo_merge.h), when it has more than one and RelightOptions::mergePhotos;
+    /// empty otherwise (the per-pixel display then reads the first photo alone).
+    std::vector<float> pixelReflectance;
     std::vector<radiosity::Rgb> modelReflectance;  ///< per vertex: the polygon's rho
     // Counts for reports.
     int leaves = 0, links = 0;

@@ -11,6 +11,7 @@
 #include "relight/io/json_reader.h"
 #include "relight/pipeline/confidence.h"
 #include "relight/pipeline/lighting_buffer.h"
+#include "relight/pipeline/photo_merge.h"
 #include "relight/pipeline/pixel_light.h"
 #include "relight/pipeline/reflectance.h"
 
@@ -26,10 +27,17 @@ constexpr auto& since = radiosity::secondsSince;  // seconds since t0 (radiosity
 }  // namespace
 
 Image loadFirstPhoto(const SceneFile& sf) {
+    return loadPhoto(sf, 0);
+}
+
+Image loadPhoto(const SceneFile& sf, size_t index) {
     if (sf.photos.empty())
         throw InputError((sf.dir / "scene.json").string() +
                          ": key \"photos\": the scene has no photo to relight");
-    const PhotoSpec& ph = sf.photos.front();
+    if (index >= sf.photos.size())
+        throw std::invalid_argument("loadPhoto: photo " + std::to_string(index) + " of " +
+                                    std::to_string(sf.photos.size()));
+    const PhotoSpec& ph = sf.photos[index];
     Image photo = readImage(ph.file, ph.encoding == PhotoSpec::Encoding::srgb);
     if (photo.width != sf.camera.width || photo.height != sf.camera.height)
         throw InputError(ph.file.string() + ": photo is " + std::to_string(photo.width) + "x" +
@@ -290,6 +298,42 @@ void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
         vertexModelReflectance(*r.mesh, r.solver->scene(), r.surface, P.confidence);
 }
 
+/// Step 6b, with the per-pixel light and more than one photo: the reflectance of all of
+/// them merged per pixel (Loscos et al. 1999, Eq. (3); pipeline/photo_merge.h).
+void mergeAllPhotos(Relighting& r, const RelightOptions& o) {
+    PreparedImage& P = r.prepared;
+    if (!o.pixelLight || !o.mergePhotos || r.scene.photos.size() < 2 || P.pixelDirect.empty())
+        return;
+    const auto t0 = Clock::now();
+    say(o, "reflectance merged from " + std::to_string(r.scene.photos.size()) + " photos");
+    std::vector<Image> images;
+    images.reserve(r.scene.photos.size());
+    images.push_back(P.photo);
+    for (size_t i = 1; i < r.scene.photos.size(); ++i) images.push_back(loadPhoto(r.scene, i));
+    std::vector<MergePhoto> photos(images.size());
+    const auto& lights = r.scene.scene.lights;
+    for (size_t i = 0; i < images.size(); ++i) {
+        photos[i].image = &images[i];
+        photos[i].radiance.assign(lights.size(), Rgb{});
+        for (size_t l = 0; l < lights.size(); ++l) {
+            const auto& on = r.scene.photos[i].lightsOn;
+            if (std::find(on.begin(), on.end(), lights[l].name) == on.end()) continue;
+            // An "estimate" lamp (on in the first photo) at its estimate.
+            photos[i].radiance[l] =
+                r.scene.estimateRadiance[l] ? P.photoRadiance[l] : r.scene.nominalRadiance[l];
+        }
+    }
+    photos[0].radiance = P.photoRadiance;  // the display's own photo radiances
+    const PhotoMerge m =
+        mergePhotos(P.display, photos, P.pixelDirect, P.vertexIndirect, ratioFloor(P.D));
+    P.pixelReflectance = m.reflectance;
+    char line[160];
+    std::snprintf(line, sizeof line, "  %d pixels, the first photo's share of the confidence %.2f",
+                  m.pixels, m.firstPhotoShare);
+    say(o, line);
+    P.times.displayMap += since(t0);
+}
+
 /// Step 6: the display map, and the solver's figures for the report.
 void mapDisplay(Relighting& r, const RelightOptions& o) {
     PreparedImage& P = r.prepared;
@@ -335,6 +379,7 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     lightPixels(*r, o);                  // 4b, Loscos et al. 1999 §4.1, when asked
     removeShadowsForDisplay(*r, o);      // 5, §4.3-4.4
     mapDisplay(*r, o);                   // 6
+    mergeAllPhotos(*r, o);               // 6b, Loscos et al. 1999 Eq. (3), when asked
     return r;
 }
 

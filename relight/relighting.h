@@ -82,6 +82,11 @@ struct RelightOptions {
     /// Measure the direct light per pixel as well (pipeline/pixel_light.h), for the
     /// per-pixel display: shadow rays at every sample of every pixel.
     bool pixelLight = false;
+    /// With pixelLight, merge the reflectance of all of the scene's photos per pixel for the
+    /// light the first photo did not hold (pipeline/photo_merge.h; Loscos et al. 1999,
+    /// Eq. (3)); off: the first photo alone (better on the bundled scenes but for a lamp
+    /// photographed alone).
+    bool mergePhotos = false;
     std::function<void(const std::string&)> progress;  ///< one line per step (may be empty)
 };
 
@@ -139,6 +144,8 @@ std::vector<std::string> virtualLightReachWarnings(const EditFile& edit,
 /// the camera's size; a non-finite pixel is an error naming it (it would spread through
 /// every ratio that touches it). Throws InputError naming the file; also without photos.
 Image loadFirstPhoto(const SceneFile& scene);
+/// The same for photo `index` of scene.json's "photos".
+Image loadPhoto(const SceneFile& scene, size_t index);
 
 /// Runs the pipeline above on a loaded scene (loadScene). Throws InputError for bad
 /// input (photo missing, unreadable, of the wrong size, with NaN/Inf pixels; no photo at

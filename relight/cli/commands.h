@@ -55,6 +55,8 @@ struct PrepareOptionArgs {
     /// Measure the direct light per pixel too (the default display needs it; off with
     /// --no-pixel-light for the vertex displays only).
     bool pixelLight = true;
+    /// Merge the reflectance of all of the scene's photos per pixel (default: the first).
+    bool allPhotos = false;
 
     /// The pipeline's options, with progress lines on stderr.
     RelightOptions relightOptions() const;

@@ -39,6 +39,7 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     o.shadowRemoval = shadowRemoval;
     o.displayPiecePixels = displayPixels;
     o.pixelLight = pixelLight;
+    o.mergePhotos = allPhotos;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     return o;
 }

@@ -12,6 +12,7 @@
 #include <bit>
 #include <cerrno>
 #include <climits>
+#include <cmath>
 #include <concepts>
 #include <cstring>
 #include <fstream>
@@ -107,6 +108,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     hashOptions(h, o.removal);
     h.f64(o.displayPiecePixels);
     h.i64(o.pixelLight ? 1 : 0);
+    h.i64(o.mergePhotos ? 1 : 0);
 }
 
 // ---- the two directions ------------------------------------------------------------------
@@ -260,6 +262,7 @@ void serialize(A& a, T& x) {
     a(x.modelReflectance);
     a(x.pixelDirect);
     a(x.vertexIndirect);
+    a(x.pixelReflectance);
     a(x.leaves);
     a(x.links);
     a(x.budgetReached);
@@ -397,6 +400,12 @@ std::string checkPrepared(const PreparedImage& p) {
                " pixels x " + n(lights) + " lights";
     if (p.vertexIndirect.size() != (p.pixelDirect.empty() ? 0 : vertices * lights))
         return "vertexIndirect has " + n(p.vertexIndirect.size()) + " entries";
+    if (!p.pixelReflectance.empty() &&
+        (p.pixelDirect.empty() || p.pixelReflectance.size() != pixels * 3))
+        return "pixelReflectance has " + n(p.pixelReflectance.size()) + " entries, not " +
+               n(pixels) + " pixels x 3";
+    for (const float f : p.pixelReflectance)
+        if (!std::isfinite(f)) return "pixelReflectance holds a value that is not finite";
     if (p.modelReflectance.size() != vertices)
         return "modelReflectance has " + n(p.modelReflectance.size()) + " entries, not " +
                n(vertices);

@@ -32,7 +32,7 @@ namespace relight {
 /// removed from or reordered in any serialize() in prepared_cache.cpp (PreparedImage,
 /// Image, DisplayMap, VertexLighting, PrepareTimes), or an encoding changed. Files of
 /// another version are rebuilt, never read.
-constexpr uint32_t kPreparedFormatVersion = 4;
+constexpr uint32_t kPreparedFormatVersion = 5;
 
 /// Version of the preparation itself, part of the preparation key. Bump it whenever
 /// prepareRelighting() gives a different PreparedImage for the same inputs and options

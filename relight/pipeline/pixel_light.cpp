@@ -57,7 +57,7 @@ std::vector<Rgb> vertexIndirect(const VertexLighting& lighting, const VertexDire
 void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
                       std::span<const Rgb> indirect, std::span<const Rgb> radianceNow,
                       std::span<const Rgb> radianceInPhoto, const Rgb& delta, Image& out,
-                      PixelLightChange change) {
+                      PixelLightChange change, std::span<const float> reflectance) {
     const size_t L = radianceInPhoto.size();  // the photo's lights
     const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
     const std::span<const float> directNow = change.direct.empty() ? pixelDirect : change.direct;
@@ -66,7 +66,8 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
     if (Lnow < L || pixelDirect.size() != pixels * L || directNow.size() != pixels * Lnow ||
         (L > 0 && indirect.size() % L != 0) ||
         (!change.indirect.empty() && change.indirect.size() != vertices) ||
-        out.width != map.width || out.height != map.height)
+        (!reflectance.empty() && reflectance.size() != pixels * 3) || out.width != map.width ||
+        out.height != map.height)
         throw std::invalid_argument("renderPixelLight: sizes do not match (" +
                                     std::to_string(pixelDirect.size()) + " direct values for " +
                                     std::to_string(pixels) + " pixels x " + std::to_string(L) +
@@ -87,21 +88,38 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
                        (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
             return sum;
         };
-        // h_l(p) once per light, weighed by the edit's radiances and the photo's.
-        Rgb now, before;
+        // h_l(p) once per light, weighed by the edit's radiances and the photo's. The light
+        // of the photo's lamps (kept) and the light the photo did not hold (fresh: lamps off
+        // in it, virtual lamps, what virtual objects change) apart, for a merged reflectance.
+        Rgb kept, fresh, before;
         for (size_t l = 0; l < L; ++l) {
             const Rgb ind = interpolate([&](size_t v) { return indirect[v * L + l]; });
-            now +=
+            const Rgb h =
                 radianceNow[l] * (Rgb::gray(static_cast<double>(directNow[px * Lnow + l])) + ind);
+            (radianceInPhoto[l].maxComponent() > 0 ? kept : fresh) += h;
             before += radianceInPhoto[l] *
                       (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
         }
         for (size_t l = L; l < Lnow; ++l)
-            now += radianceNow[l] * static_cast<double>(directNow[px * Lnow + l]);
+            fresh += radianceNow[l] * static_cast<double>(directNow[px * Lnow + l]);
         if (!change.indirect.empty())
-            now += interpolate([&](size_t v) { return change.indirect[v]; });
+            fresh += interpolate([&](size_t v) { return change.indirect[v]; });
         const float* t = photo.rgb.data() + px * 3;
         float* o = out.rgb.data() + px * 3;
+        if (!reflectance.empty()) {
+            // The photo's lamps through the photo, T H_kept / H_photo, as below: the photo's
+            // noise scales with its light. The fresh light read with the reflectance merged
+            // from all photos (photo_merge.h).
+            const float* R = reflectance.data() + px * 3;
+            for (int c = 0; c < 3; ++c) {
+                const double r = guardedRatio(kept[c], before[c], delta[c]);
+                o[c] = std::max(static_cast<float>(static_cast<double>(t[c]) * r +
+                                                   static_cast<double>(R[c]) * fresh[c]),
+                                0.0f);
+            }
+            return;
+        }
+        const Rgb now = kept + fresh;
         for (int c = 0; c < 3; ++c) {
             const double r = guardedRatio(now[c], before[c], delta[c]);
             o[c] = std::max(static_cast<float>(static_cast<double>(t[c]) * r), 0.0f);

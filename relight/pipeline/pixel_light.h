@@ -61,10 +61,14 @@ struct PixelLightChange {
 /// `radianceInPhoto` one per light of the photo, `radianceNow` one per light now (the
 /// photo's, then the virtual lights of `change`); `delta` the ratio display's floor
 /// (ratioFloor of D), so that both displays guard a vanishing photo irradiance alike.
+/// `reflectance` (empty, or 3 floats per pixel): the reflectance merged from all of the
+/// scene's photos (pipeline/photo_merge.h); the pixel is then
+/// T (H_kept + delta) / (H_photo + delta) + R H_fresh.
 void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
                       std::span<const radiosity::Rgb> indirect,
                       std::span<const radiosity::Rgb> radianceNow,
                       std::span<const radiosity::Rgb> radianceInPhoto, const radiosity::Rgb& delta,
-                      Image& out, PixelLightChange change = {});
+                      Image& out, PixelLightChange change = {},
+                      std::span<const float> reflectance = {});
 
 }  // namespace relight

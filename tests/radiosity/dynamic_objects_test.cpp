@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstring>
 
+#include <algorithm>
+
+#include "radiosity/direct_light.h"
 #include "radiosity/solver.h"
 #include "radiosity/visibility.h"
 
@@ -239,4 +242,57 @@ TEST(DynamicObjects, OnlyTheLinksWhoseShaftsTheObjectCutsAreVisited) {
                         &report);
     EXPECT_LT(static_cast<size_t>(report.shaftTests), all / 2);
     EXPECT_LT(static_cast<size_t>(report.linksCut), solver.links().size() / 4);
+}
+
+TEST(DynamicObjects, EveryLeafWhoseDirectLightTheBoxChangesIsAShadowLeaf) {
+    // Without light links pushed to the leaves, the lamp's links end where refinement
+    // stopped, above some leaves. Every leaf whose direct light the box changes (at its
+    // centre, exact form factor and shadow rays) must still be reported, so that the display
+    // measures it again.
+    // A second, small lamp low over a corner of the floor subdivides the floor there
+    // finely; the ceiling lamp's links to that corner stop higher. The box stands between
+    // the ceiling lamp and the corner.
+    Scene scene = room();
+    Polygon corner = makePolygon(
+        {{1.3, -1.7, 0.3}, {1.3, -1.3, 0.3}, {1.7, -1.3, 0.3}, {1.7, -1.7, 0.3}}, 2, Rgb{});
+    corner.light = 1;
+    scene.lights.push_back({"corner", {static_cast<int>(scene.polygons.size())}, Rgb::gray(6)});
+    scene.polygons.push_back(corner);
+    SolverOptions o = options();
+    o.forceLightLinksToLeaves = false;
+    o.epsilon = 1e-2;
+    HierarchicalSolver s(std::move(scene), o);
+    s.solve();
+    const auto& h = s.hierarchy();
+    int aboveLeaves = 0;  // the case under test: light links that end above the leaves
+    for (const Link& l : s.links())
+        if (h.nodes[l.source].emitting && !h.nodes[l.receiver].isCluster() &&
+            !h.nodes[l.receiver].isLeaf())
+            ++aboveLeaves;
+    EXPECT_GT(aboveLeaves, 0);
+    auto directAtLeaves = [&] {
+        const DirectLight dl(s);
+        std::vector<double> g(h.nodes.size(), -1.0);
+        for (size_t n = 0; n < h.nodes.size(); ++n) {
+            const Node& N = h.nodes[n];
+            if (N.isCluster() || !N.isLeaf() || N.polygon != 0) continue;  // floor leaves
+            double G = 0;
+            dl.geometry(N.polygon, N.centre, n, &G);
+            g[n] = G;
+        }
+        return g;
+    };
+    const std::vector<double> before = directAtLeaves();
+    DynamicUpdate u;
+    s.insertObject("box", box({0.8, -1.2, 0.6}, {1.2, -0.8, 1.0}, Rgb::gray(0.5)), nullptr, &u);
+    const std::vector<double> after = directAtLeaves();
+    int changed = 0;
+    for (size_t n = 0; n < before.size() && n < after.size(); ++n) {
+        if (before[n] < 0 || !(std::abs(after[n] - before[n]) > 1e-9)) continue;
+        ++changed;
+        EXPECT_NE(std::find(u.shadowLeaves.begin(), u.shadowLeaves.end(), static_cast<int>(n)),
+                  u.shadowLeaves.end())
+            << "floor leaf " << n << ": direct light " << before[n] << " -> " << after[n];
+    }
+    EXPECT_GT(changed, 0);  // the box does shadow the floor
 }

@@ -349,6 +349,11 @@ TEST(PreparedCache, KeyFollowsTheInputsAndOptions) {
     RelightOptions noRemoval = o;
     noRemoval.shadowRemoval = !o.shadowRemoval;
     EXPECT_NE(preparationKey(loadScene(dir.path()), noRemoval), key);
+    for (bool RelightOptions::*flag : {&RelightOptions::pixelLight, &RelightOptions::mergePhotos}) {
+        RelightOptions changed = o;
+        changed.*flag = !(o.*flag);
+        EXPECT_NE(preparationKey(loadScene(dir.path()), changed), key);
+    }
     for (double ShadowRemovalOptions::*field :
          {&ShadowRemovalOptions::colourThreshold, &ShadowRemovalOptions::umbraThreshold,
           &ShadowRemovalOptions::minShare}) {
@@ -421,7 +426,7 @@ TEST(PreparedCache, LayoutGuard) {
     EXPECT_EQ(sizeof(VertexLighting), 40u)
         << "VertexLighting changed: update serialize(VertexLighting)";
     EXPECT_EQ(sizeof(PrepareTimes), 64u) << "PrepareTimes changed: update serialize(PrepareTimes)";
-    EXPECT_EQ(sizeof(PreparedImage), 592u)
+    EXPECT_EQ(sizeof(PreparedImage), 616u)
         << "PreparedImage changed: update serialize(PreparedImage)";
     EXPECT_EQ(sizeof(ShadowRefinementOptions), 64u)
         << "ShadowRefinementOptions changed: hash the new option in hashOptions()";

@@ -1,0 +1,144 @@
+#include "relight/pipeline/photo_merge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "radiosity/parallel.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+
+namespace {
+
+/// Whether the per-pixel display shows pixel px (renderPixelLight: no lamp's face, no sample
+/// that sees nothing, at least one leaf vertex).
+bool shownPerPixel(const DisplayMap& map, size_t px) {
+    return map.emitterStart[px] == map.emitterStart[px + 1] && !(map.unshaded[px] > 0) &&
+           map.start[px] != map.start[px + 1];
+}
+
+double luminance(const Rgb& c) {
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
+
+/// A photo's irradiance at a shown pixel: its direct part and the whole.
+struct Irradiance {
+    Rgb direct, total;
+};
+Irradiance irradianceAt(const DisplayMap& map, size_t px, std::span<const float> pixelDirect,
+                        std::span<const Rgb> indirect, std::span<const Rgb> radiance) {
+    const size_t L = radiance.size();
+    const int k0 = map.start[px], k1 = map.start[px + 1];
+    double wsum = 0;
+    for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+    Irradiance h;
+    for (size_t l = 0; l < L; ++l) {
+        if (!(radiance[l].maxComponent() > 0)) continue;  // off in this photo
+        Rgb ind;
+        for (int k = k0; k < k1; ++k)
+            ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
+                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+        const Rgb direct = radiance[l] * static_cast<double>(pixelDirect[px * L + l]);
+        h.direct += direct;
+        h.total += direct + radiance[l] * ind;
+    }
+    return h;
+}
+
+}  // namespace
+
+PhotoMerge mergePhotos(const DisplayMap& map, std::span<const MergePhoto> photos,
+                       std::span<const float> pixelDirect, std::span<const Rgb> indirect,
+                       const Rgb& delta) {
+    const size_t W = static_cast<size_t>(map.width), Hgt = static_cast<size_t>(map.height);
+    const size_t pixels = W * Hgt;
+    if (photos.empty()) throw std::invalid_argument("mergePhotos: no photo");
+    const size_t L = photos[0].radiance.size();
+    if (pixelDirect.size() != pixels * L || (L > 0 && indirect.size() % L != 0))
+        throw std::invalid_argument("mergePhotos: " + std::to_string(pixelDirect.size()) +
+                                    " direct values for " + std::to_string(pixels) + " pixels x " +
+                                    std::to_string(L) + " lights");
+    for (const MergePhoto& ph : photos)
+        if (!ph.image || ph.image->width != map.width || ph.image->height != map.height ||
+            ph.radiance.size() != L)
+            throw std::invalid_argument("mergePhotos: a photo of another size or light count");
+
+    std::vector<float> num(pixels * 3, 0.0f), den(pixels, 0.0f), first(pixels, 0.0f);
+    std::vector<float> first0(pixels * 3, 0.0f);  // T_0 / (H_0 + delta): the fallback
+    std::vector<float> dirLum(pixels);
+    std::vector<Rgb> total(pixels);
+    // Per pixel of the current photo: its confidence K and reading.
+    std::vector<float> conf(pixels), read(pixels * 3);
+    PhotoMerge m;
+    for (size_t i = 0; i < photos.size(); ++i) {
+        const Image& T = *photos[i].image;
+        std::fill(conf.begin(), conf.end(), 0.0f);
+        radiosity::parallelFor(pixels, 256, [&](size_t px) {
+            if (!shownPerPixel(map, px)) {
+                dirLum[px] = -1.0f;
+                return;
+            }
+            const Irradiance h = irradianceAt(map, px, pixelDirect, indirect, photos[i].radiance);
+            dirLum[px] = static_cast<float>(luminance(h.direct));
+            total[px] = h.total;
+        });
+        radiosity::parallelFor(pixels, 256, [&](size_t px) {
+            const float d = dirLum[px];
+            if (d < 0) return;
+            const float* t = T.rgb.data() + px * 3;
+            Rgb reading;
+            for (int c = 0; c < 3; ++c)
+                reading[c] = static_cast<double>(t[c]) / (std::max(total[px][c], 0.0) + delta[c]);
+            if (i == 0)
+                for (int c = 0; c < 3; ++c) first0[px * 3 + c] = static_cast<float>(reading[c]);
+            // Pixel value: a reading from a value that is not finite or negative says nothing.
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(t[c]) || t[c] < 0) return;
+            // Shadow boundary: a neighbour's direct light more than kBoundaryContrast apart.
+            const size_t x = px % W, y = px / W;
+            const size_t nb[4] = {x > 0 ? px - 1 : px, x + 1 < W ? px + 1 : px, y > 0 ? px - W : px,
+                                  y + 1 < Hgt ? px + W : px};
+            for (size_t q : nb) {
+                const float e = dirLum[q];
+                if (e < 0) continue;
+                if (std::abs(static_cast<double>(d - e)) >
+                    kBoundaryContrast * static_cast<double>(std::max(d, e)))
+                    return;
+            }
+            // Light ratio: the photo counts as its lamps' direct light at the pixel, and
+            // more where that is most of its light.
+            const double tot = luminance(total[px]);
+            const double K = tot > 0 ? static_cast<double>(d) * (static_cast<double>(d) / tot) : 0;
+            if (!(K > 0)) return;
+            conf[px] = static_cast<float>(K);
+            for (int c = 0; c < 3; ++c) read[px * 3 + c] = static_cast<float>(reading[c]);
+        });
+        for (size_t px = 0; px < pixels; ++px) {
+            if (!(conf[px] > 0)) continue;
+            for (int c = 0; c < 3; ++c) num[px * 3 + c] += conf[px] * read[px * 3 + c];
+            den[px] += conf[px];
+            if (i == 0) first[px] = conf[px];
+        }
+    }
+    m.reflectance.assign(pixels * 3, 0.0f);
+    double share = 0;
+    for (size_t px = 0; px < pixels; ++px) {
+        if (!shownPerPixel(map, px)) continue;
+        ++m.pixels;
+        if (den[px] > 0) {
+            for (int c = 0; c < 3; ++c) m.reflectance[px * 3 + c] = num[px * 3 + c] / den[px];
+            share += static_cast<double>(first[px] / den[px]);
+        } else {
+            // No photo says anything with confidence: the first photo's own reading.
+            for (int c = 0; c < 3; ++c) m.reflectance[px * 3 + c] = first0[px * 3 + c];
+            share += 1;
+        }
+    }
+    m.firstPhotoShare = m.pixels > 0 ? share / m.pixels : 1.0;
+    return m;
+}
+
+}  // namespace relight
