@@ -170,6 +170,10 @@ void App::displayPanel() {
     ImGui::SameLine();
     ImGui::RadioButton("multipass 8-bit", &fb, 1);
     frame_.framebuffer = fb == 0 ? Framebuffer::float32 : Framebuffer::multipass8;
+    // The per-pixel display when the preparation measured the light per pixel (--display
+    // pixel): drawn on the CPU, the ratio display on the GPU.
+    if (!session_.prepared().pixelDirect.empty())
+        ImGui::Checkbox("per-pixel display (CPU)", &frame_.perPixel);
     float exposure = static_cast<float>(frame_.exposure);
     if (ImGui::SliderFloat("exposure (stops)", &exposure, -4.0f, 4.0f, "%.1f"))
         frame_.exposure = exposure;

@@ -56,13 +56,18 @@ const DebugViews& FrameRenderer::debugViews() {
 FrameStats FrameRenderer::render() {
     const bool valuesChanged = session_.generation() != generation_;
     const bool viewChanged = view != lastView_ || generation_ < 0;
-    drew_ = valuesChanged || viewChanged || framebuffer != lastFramebuffer_ ||
+    const bool modeChanged = perPixel != lastPerPixel_;
+    drew_ = valuesChanged || viewChanged || modeChanged || framebuffer != lastFramebuffer_ ||
             exposure != lastExposure_;
     if (!drew_) return last_;
     FrameStats s;
     const auto t0 = Clock::now();
     double gain = std::exp2(exposure);
-    if (view == ViewKind::relit || view == ViewKind::B) {
+    const bool cpuRelit = view == ViewKind::relit && perPixel;
+    if (cpuRelit) {
+        if (valuesChanged || viewChanged || modeChanged)
+            display_.setImage(session_.relitPerPixel());
+    } else if (view == ViewKind::relit || view == ViewKind::B) {
         if (valuesChanged || viewChanged) {
             display_.setVertexValues(view == ViewKind::B ? session_.vertexIrradiance()
                                                          : session_.vertexRatios());
@@ -73,7 +78,7 @@ FrameStats FrameRenderer::render() {
             if (viewChanged) display_.setBFactor(debugViews().bFactor);
             gain *= debugViews().bdScale;
         }
-    } else if (viewChanged) {
+    } else if (viewChanged || modeChanged) {
         const DebugViews& v = debugViews();
         const Image* img = nullptr;
         switch (view) {
@@ -104,8 +109,10 @@ FrameStats FrameRenderer::render() {
     glFinish();
     s.upload = secondsSince(t0);
     const auto t1 = Clock::now();
-    const View gpuView =
-        view == ViewKind::relit ? View::relit : (view == ViewKind::B ? View::B : View::image);
+    const View gpuView = cpuRelit                  ? View::image
+                         : view == ViewKind::relit ? View::relit
+                         : view == ViewKind::B     ? View::B
+                                                   : View::image;
     s.passes = display_.draw(gpuView, framebuffer, static_cast<float>(gain));
     glFinish();
     s.draw = secondsSince(t1);
@@ -113,6 +120,7 @@ FrameStats FrameRenderer::render() {
     lastView_ = view;
     lastFramebuffer_ = framebuffer;
     lastExposure_ = exposure;
+    lastPerPixel_ = perPixel;
     last_ = s;
     return s;
 }

@@ -36,6 +36,9 @@ class FrameRenderer {
     ViewKind view = ViewKind::relit;
     Framebuffer framebuffer = Framebuffer::float32;
     double exposure = 0;  ///< stops
+    /// The relit view in the per-pixel display (Session::relitPerPixel, drawn on the CPU and
+    /// shown as an image) rather than the ratio display on the GPU.
+    bool perPixel = false;
 
     /// Uploads what changed since the last call and draws the photo area into the display's
     /// offscreen target. Returns the times.
@@ -57,6 +60,7 @@ class FrameRenderer {
     ViewKind lastView_ = ViewKind::relit;
     Framebuffer lastFramebuffer_ = Framebuffer::float32;
     double lastExposure_ = 0;
+    bool lastPerPixel_ = false;
     bool drew_ = false;
     FrameStats last_;
 };

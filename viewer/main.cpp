@@ -37,6 +37,7 @@ namespace {
 
 struct Args {
     std::string scene, edit, screenshot, saveEdit, framebuffer = "float", view = "relit";
+    std::string display = "ratio";
     std::vector<std::string> actions;
     std::string windowShot;
     double exposure = 0, epsilon = RelightOptions{}.epsilon;
@@ -130,6 +131,7 @@ int run(const Args& a) {
     RelightOptions o;
     o.epsilon = a.epsilon;
     o.spp = a.spp;
+    o.pixelLight = a.display == "pixel";
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     std::fprintf(stderr, "relight-viewer: preparing %s\n", a.scene.c_str());
     const std::unique_ptr<Relighting> prepared = prepareRelighting(sf, o);
@@ -144,6 +146,7 @@ int run(const Args& a) {
     frame.view = view;
     frame.framebuffer = a.framebuffer == "float" ? Framebuffer::float32 : Framebuffer::multipass8;
     frame.exposure = a.exposure;
+    frame.perPixel = a.display == "pixel";
     // The first frame, refused when not finite before it is shown or anything is written
     // (the session refuses a radiance that overflows; a finite one may overflow the floats).
     const FrameStats s = frame.render();
@@ -185,6 +188,12 @@ int main(int argc, char** argv) {
     app.add_option("--framebuffer", a.framebuffer,
                    "float (one pass) or multipass (8-bit, the paper's §5.3 passes)");
     app.add_option("--view", a.view, "relit, mesh, B, D, T_orig, T_final, reflectance or frontier");
+    app.add_option("--display", a.display,
+                   "the relit view: ratio (Loscos et al. 2000, on the GPU) or pixel (the "
+                   "direct light per pixel, Loscos et al. 1999, drawn on the CPU as relight "
+                   "render's default; prepares the per-pixel light)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"ratio", "pixel"}));
     app.add_option("--do", a.actions, "light:U,V | box:U,V | drag:U0,V0:U1,V1 (in order)");
     app.add_option("--save-edit", a.saveEdit,
                    "with --screenshot: write the session's edit here; else the panel's default");

@@ -363,6 +363,11 @@ std::vector<Rgb> Session::vertexRatios() const {
     return vertexRatio(r_->prepared, relight::vertexIrradiance(r_->prepared, realRadiance()));
 }
 
+Image Session::relitPerPixel() {
+    if (dyn_) return dyn_->render(DisplayMode::pixel);
+    return renderEdit(r_->prepared, realRadiance(), DisplayMode::pixel);
+}
+
 VirtualOverlay Session::overlay() {
     return dyn_ ? dyn_->overlay() : VirtualOverlay{};
 }

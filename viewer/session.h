@@ -110,6 +110,10 @@ class Session {
     std::vector<Rgb> realRadiance() const;
     /// The virtual parts' overlay box (empty without virtual parts); casts rays.
     VirtualOverlay overlay();
+    /// The relit photo in the per-pixel display (relight/pipeline/pixel_light.h), drawn on
+    /// the CPU as `relight render --display pixel` draws it; needs a preparation with
+    /// per-pixel light (std::invalid_argument otherwise).
+    Image relitPerPixel();
 
     /// The edit as it stands, to be written to `editFile`: every real light by radiance
     /// (off: scale 0), the virtual lights, the objects (the viewer's boxes refer to the unit

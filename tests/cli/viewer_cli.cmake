@@ -73,6 +73,25 @@ relight(o 0 render "${SCENE}" --edit "${saved}" -o "${WORK}/session_render.png" 
 expect("${o}" "inserted object box1" "render of the saved session")
 same_within_one_step("${WORK}/session_viewer.png" "${WORK}/session_render.png" "saved session")
 
+# The per-pixel display (--display pixel: the direct light per pixel, drawn on the CPU) is
+# render's default display: a light edit, and a session by clicks (a lamp, a box dragged)
+# whose saved edit render draws with its virtual parts per pixel.
+relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/back_off.json" -o "${WORK}/pixel_render.png"
+        --cache "${WORK}/pixel.bin")
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --display pixel
+       --screenshot "${WORK}/pixel_viewer.png")
+same_within_one_step("${WORK}/pixel_viewer.png" "${WORK}/pixel_render.png" "per-pixel display")
+file(MAKE_DIRECTORY "${WORK}/pixel_saved")
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --display pixel --do light:200,20
+       --do box:90,200 --do drag:90,195:150,210 --save-edit "${WORK}/pixel_saved/session.json"
+       --screenshot "${WORK}/pixel_session_viewer.png")
+relight(o 0 render "${SCENE}" --edit "${WORK}/pixel_saved/session.json"
+        -o "${WORK}/pixel_session_render.png" --cache "${WORK}/pixel.bin")
+same_within_one_step("${WORK}/pixel_session_viewer.png" "${WORK}/pixel_session_render.png"
+                     "per-pixel display, saved session")
+viewer(o 2 "${SCENE}" --display vertex --screenshot "${WORK}/never.png")
+expect("${o}" "--display" "a display that does not exist")
+
 # The window itself, panel included.
 viewer(o 0 "${SCENE}" --window-screenshot "${WORK}/window.png")
 expect("${o}" "wrote .*window.png \\([0-9]+x[0-9]+\\)" "window screenshot")
