@@ -119,14 +119,12 @@ TEST(PhotoMerge, OnRoomMultiTheLampPhotographedAloneIsNearerTheTruth) {
 
     const EditFile e = loadEdit(dir + "/edits/lamp_M3_on.json", all->scene);
     const auto radiance = editRadiance(all->scene, e, all->prepared.photoRadiance);
-    int w = all->prepared.photo.width, h = all->prepared.photo.height;
-    const Image truth = readImage(dir + "/truth/lamp_M3_on.exr");
-    const auto maskT = readMask(dir + "/truth/lamp_M3_on.mask.png", w, h);
-    const auto maskP = readMask(dir + "/photo.mask.png", w, h);
-    const Score sFirst = scoreImage(renderEdit(first->prepared, radiance, DisplayMode::pixel),
-                                    truth, first->prepared.photo, maskT, maskP);
-    const Score sAll = scoreImage(renderEdit(all->prepared, radiance, DisplayMode::pixel), truth,
-                                  all->prepared.photo, maskT, maskP);
+    const Score sFirst = test::scoreAgainstTruth(
+        dir, "lamp_M3_on", renderEdit(first->prepared, radiance, DisplayMode::pixel),
+        first->prepared.photo);
+    const Score sAll = test::scoreAgainstTruth(
+        dir, "lamp_M3_on", renderEdit(all->prepared, radiance, DisplayMode::pixel),
+        all->prepared.photo);
     std::printf("lamp_M3_on: first photo %.4f, all photos %.4f\n", sFirst.relRmse, sAll.relRmse);
     EXPECT_LT(sAll.relRmse, sFirst.relRmse);
     EXPECT_LE(sAll.relRmse, 0.05);

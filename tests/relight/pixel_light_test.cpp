@@ -121,12 +121,8 @@ TEST(PixelLight, TheCornellBoxsVirtualBoxCastsItsShadowPerPixel) {
         ratio = dyn.render(DisplayMode::ratio);
         pixel = dyn.render(DisplayMode::pixel);
     }
-    int w = ratio.width, h = ratio.height;
-    const Image truth = readImage(dir + "/truth/virtual_box.exr");
-    const auto maskT = readMask(dir + "/truth/virtual_box.mask.png", w, h);
-    const auto maskP = readMask(dir + "/photo.mask.png", w, h);
-    const Score sr = scoreImage(ratio, truth, r->prepared.photo, maskT, maskP);
-    const Score sp = scoreImage(pixel, truth, r->prepared.photo, maskT, maskP);
+    const Score sr = test::scoreAgainstTruth(dir, "virtual_box", ratio, r->prepared.photo);
+    const Score sp = test::scoreAgainstTruth(dir, "virtual_box", pixel, r->prepared.photo);
     std::printf("virtual_box: ratio %.4f / %.4f, pixel %.4f / %.4f\n", sr.relRmse,
                 sr.changedRelRmse, sp.relRmse, sp.changedRelRmse);
     ASSERT_TRUE(sp.hasChanged);

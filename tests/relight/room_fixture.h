@@ -1,6 +1,10 @@
 // Test helper: the room of data/ prepared with coarse settings, shared by the test files.
 #pragma once
 
+#include <string>
+
+#include "relight/display/metric.h"
+#include "relight/io/image.h"
 #include "relight/relighting.h"
 
 namespace relight::test {
@@ -18,6 +22,16 @@ inline RelightOptions coarseOptions() {
 inline const Relighting& coarseRoom() {
     static const auto r = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), coarseOptions());
     return *r;
+}
+
+/// The spec's score (relight/display/metric.h) of `image`, relit for the edit `edit` of the
+/// scene in `dir`, against its path-traced truth, with the truth's and the photo's masks.
+inline Score scoreAgainstTruth(const std::string& dir, const std::string& edit, const Image& image,
+                               const Image& photo) {
+    int w = image.width, h = image.height;
+    return scoreImage(image, readImage(dir + "/truth/" + edit + ".exr"), photo,
+                      readMask(dir + "/truth/" + edit + ".mask.png", w, h),
+                      readMask(dir + "/photo.mask.png", w, h));
 }
 
 }  // namespace relight::test

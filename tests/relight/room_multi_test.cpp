@@ -52,13 +52,9 @@ TEST(RoomMulti, ALampOffInThePhotoTurnedOnMatchesTheTruth) {
     const auto r = prepareRelighting(loadScene(kMulti), test::coarseOptions());
     const EditFile e = loadEdit(kMulti + "/edits/lamp_M3_on.json", r->scene);
     const auto radiance = editRadiance(r->scene, e, r->prepared.photoRadiance);
-    int w = r->prepared.photo.width, h = r->prepared.photo.height;
-    const Image truth = readImage(kMulti + "/truth/lamp_M3_on.exr");
-    const auto maskT = readMask(kMulti + "/truth/lamp_M3_on.mask.png", w, h);
-    const auto maskP = readMask(kMulti + "/photo.mask.png", w, h);
     for (const DisplayMode mode : {DisplayMode::ratio, DisplayMode::confidence}) {
-        const Score s = scoreImage(renderEdit(r->prepared, radiance, mode), truth,
-                                   r->prepared.photo, maskT, maskP);
+        const Score s = test::scoreAgainstTruth(
+            kMulti, "lamp_M3_on", renderEdit(r->prepared, radiance, mode), r->prepared.photo);
         std::printf("lamp_M3_on, %s display: rel_rmse %.4f, changed %.4f\n", displayModeName(mode),
                     s.relRmse, s.changedRelRmse);
         EXPECT_LE(s.relRmse, 0.05) << displayModeName(mode);
