@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
     std::string data;
     RelightOptions o;
     o.epsilon = 5e-5;
+    o.pixelLight = true;  // for the per-pixel display's frames below
     if (!bench::parseDataAndEpsilon(argc, argv, data, o.epsilon)) return 2;
     try {
         tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
@@ -124,6 +125,33 @@ int main(int argc, char** argv) {
             std::printf("  frames per second (median): %.1f\n", 1.0 / quantile(frame, 0.5));
             std::printf("  shafts tested per frame %.0f, links cut %.0f (of %zu active)\n",
                         quantile(testsD, 0.5), quantile(cutD, 0.5), r->solver->links().size());
+        }
+        // The same path in the per-pixel display (relight render's default): the direct light
+        // measured again at the pixels of the leaves the box's shafts cut, at each frame.
+        {
+            DynamicRelighting dyn(*r, photo);
+            dyn.addObject(box);
+            dyn.render(DisplayMode::pixel);
+            std::vector<double> frame;
+            Image end;
+            for (int i = 1; i <= kSteps; ++i) {
+                const double t = static_cast<double>(i) / kSteps;
+                const auto t0 = Clock::now();
+                dyn.moveLastObject(placeBox(local, box.reflectance, t * angle1, x0 + t * (x1 - x0),
+                                            y0 + t * (y1 - y0)));
+                end = dyn.render(DisplayMode::pixel);
+                frame.push_back(secondsSince(t0));
+            }
+            int w = end.width, h = end.height;
+            const Score s =
+                scoreImage(end, readImage(dir + "/truth/virtual_box_moved.exr"), r->prepared.photo,
+                           readMask(dir + "/truth/virtual_box_moved.mask.png", w, h),
+                           readMask(dir + "/photo.mask.png", w, h));
+            std::printf(
+                "per-pixel display, the same path: frame %.4f s median (%.4f), %.1f frames per "
+                "second; after it rel_rmse %.4f, changed_rel_rmse %.4f\n",
+                quantile(frame, 0.5), quantile(frame, 0.9), 1.0 / quantile(frame, 0.5), s.relRmse,
+                s.changedRelRmse);
         }
         // The end of the path is virtual_box_moved: against the truth and a fresh insertion.
         int w = last.width, h = last.height;
