@@ -276,9 +276,9 @@ TEST(DynamicObjects, EveryLeafWhoseDirectLightTheBoxChangesIsAShadowLeaf) {
         for (size_t n = 0; n < h.nodes.size(); ++n) {
             const Node& N = h.nodes[n];
             if (N.isCluster() || !N.isLeaf() || N.polygon != 0) continue;  // floor leaves
-            double G = 0;
-            dl.geometry(N.polygon, N.centre, n, &G);
-            g[n] = G;
+            std::vector<double> G(s.scene().lights.size(), 0.0);           // every light's
+            dl.geometry(N.polygon, N.centre, n, G.data());
+            g[n] = G[0];  // the ceiling lamp's
         }
         return g;
     };
