@@ -50,6 +50,8 @@ struct Rgb {
     constexpr double maxComponent() const { return std::max(r, std::max(g, b)); }
     constexpr double minComponent() const { return std::min(r, std::min(g, b)); }
     constexpr double average() const { return (r + g + b) / 3.0; }
+    /// Rec. 709 luminance of linear RGB.
+    constexpr double luminance() const { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
     bool isFinite() const { return std::isfinite(r) && std::isfinite(g) && std::isfinite(b); }
 };
 

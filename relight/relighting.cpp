@@ -350,7 +350,7 @@ void mapDisplay(Relighting& r, const RelightOptions& o) {
     std::vector<double> shown(Bphoto.size());
     for (size_t v = 0; v < shown.size(); ++v) {
         const Rgb s = rho ? P.modelReflectance[v] * Bphoto[v] : Bphoto[v];
-        shown[v] = 0.2126 * s[0] + 0.7152 * s[1] + 0.0722 * s[2];  // Rec. 709 luminance
+        shown[v] = s.luminance();
     }
     weighByPhotoRadiance(P.display, shown);
     P.times.displayMap = since(t0);

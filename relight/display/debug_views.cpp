@@ -27,10 +27,6 @@ constexpr double kMinSurface = 1e-6;
 /// The photo under the overlays (mesh, frontier), dimmed so that the marks stand out.
 constexpr double kDim = 0.4;
 
-double luminance(const Rgb& c) {
-    return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;  // Rec. 709
-}
-
 Rgb pixel(const Image& img, int px) {
     const float* p = &img.rgb[static_cast<size_t>(px) * 3];
     return {p[0], p[1], p[2]};
@@ -116,7 +112,7 @@ Image texture(const PreparedImage& P, std::span<const Rgb> k) {
 double robustScale(const Image& img, const std::vector<int>& pixels) {
     std::vector<double> lum;
     lum.reserve(pixels.size());
-    for (int px : pixels) lum.push_back(luminance(pixel(img, px)));
+    for (int px : pixels) lum.push_back(pixel(img, px).luminance());
     if (lum.empty()) return 1;
     const auto nth = lum.begin() + static_cast<std::ptrdiff_t>(0.99 * (lum.size() - 1));
     std::nth_element(lum.begin(), nth, lum.end());

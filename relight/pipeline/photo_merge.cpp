@@ -6,23 +6,13 @@
 #include <string>
 
 #include "radiosity/parallel.h"
+#include "relight/pipeline/pixel_light.h"
 
 namespace relight {
 
 using radiosity::Rgb;
 
 namespace {
-
-/// Whether the per-pixel display shows pixel px (renderPixelLight: no lamp's face, no sample
-/// that sees nothing, at least one leaf vertex).
-bool shownPerPixel(const DisplayMap& map, size_t px) {
-    return map.emitterStart[px] == map.emitterStart[px + 1] && !(map.unshaded[px] > 0) &&
-           map.start[px] != map.start[px + 1];
-}
-
-double luminance(const Rgb& c) {
-    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-}
 
 /// A photo's irradiance at a shown pixel: its direct part and the whole.
 struct Irradiance {
@@ -82,7 +72,7 @@ PhotoMerge mergePhotos(const DisplayMap& map, std::span<const MergePhoto> photos
                 return;
             }
             const Irradiance h = irradianceAt(map, px, pixelDirect, indirect, photos[i].radiance);
-            dirLum[px] = static_cast<float>(luminance(h.direct));
+            dirLum[px] = static_cast<float>(h.direct.luminance());
             total[px] = h.total;
         });
         radiosity::parallelFor(pixels, 256, [&](size_t px) {
@@ -110,7 +100,7 @@ PhotoMerge mergePhotos(const DisplayMap& map, std::span<const MergePhoto> photos
             }
             // Light ratio: the photo counts as its lamps' direct light at the pixel, and
             // more where that is most of its light.
-            const double tot = luminance(total[px]);
+            const double tot = total[px].luminance();
             const double K = tot > 0 ? static_cast<double>(d) * (static_cast<double>(d) / tot) : 0;
             if (!(K > 0)) return;
             conf[px] = static_cast<float>(K);

@@ -74,10 +74,9 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
                                     " lights, " + std::to_string(directNow.size()) + " for " +
                                     std::to_string(Lnow) + " lights now)");
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
-        const int k0 = map.start[px], k1 = map.start[px + 1];
         // A lamp's face, samples that see nothing, or no leaf: the ratio display's value.
-        if (map.emitterStart[px] != map.emitterStart[px + 1] || map.unshaded[px] > 0 || k0 == k1)
-            return;
+        if (!shownPerPixel(map, px)) return;
+        const int k0 = map.start[px], k1 = map.start[px + 1];
         double wsum = 0;
         for (int k = k0; k < k1; ++k)
             wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);

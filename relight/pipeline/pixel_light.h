@@ -45,6 +45,13 @@ std::vector<float> measurePixelDirect(const ItemBuffer& items,
 std::vector<radiosity::Rgb> vertexIndirect(const VertexLighting& lighting,
                                            const VertexDirect& direct);
 
+/// Whether the per-pixel display draws pixel px: no sample on a lamp's face, none that sees
+/// nothing, at least one leaf vertex. The others keep the ratio display's value.
+inline bool shownPerPixel(const DisplayMap& map, size_t px) {
+    return map.emitterStart[px] == map.emitterStart[px + 1] && !(map.unshaded[px] > 0) &&
+           map.start[px] != map.start[px + 1];
+}
+
 /// What changed since the photo besides the lamps' radiances (virtual lights and objects,
 /// relight/dynamic/dynamic_relighting.h): the direct light per pixel as it is now, for the
 /// real lights, then the virtual ones ([pixel * lights + l], pi Gbar per unit radiance),

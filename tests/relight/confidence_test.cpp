@@ -127,19 +127,11 @@ TEST(ConfidenceDisplay, TheCornellBoxsVirtualLampNearerTheTruthThanTheRatio) {
     const std::string dir = RELIGHT_DATA_DIR "/cornell";
     RelightOptions o = test::coarseOptions();
     o.epsilon = RelightOptions{}.epsilon;
-    const auto r = prepareRelighting(loadScene(dir), o);
-    const EditFile e = loadEdit(dir + "/edits/virtual_light_only.json", r->scene);
-    const auto radiance = editRadiance(r->scene, e, r->prepared.photoRadiance);
-    Image ratio, confident;
-    {
-        DynamicRelighting dyn(*r, radiance);
-        for (const auto& l : e.addLights) dyn.addLight(l);
-        ratio = dyn.render(DisplayMode::ratio);
-        confident = dyn.render(DisplayMode::confidence);
-    }
-    const Score sr = test::scoreAgainstTruth(dir, "virtual_light_only", ratio, r->prepared.photo);
-    const Score sc =
-        test::scoreAgainstTruth(dir, "virtual_light_only", confident, r->prepared.photo);
+    const auto run = test::renderEditIn(dir, "virtual_light_only", o,
+                                        {DisplayMode::ratio, DisplayMode::confidence});
+    const Image& photo = run.relighting->prepared.photo;
+    const Score sr = test::scoreAgainstTruth(dir, "virtual_light_only", run.images[0], photo);
+    const Score sc = test::scoreAgainstTruth(dir, "virtual_light_only", run.images[1], photo);
     std::printf("virtual_light_only: ratio %.4f, confidence %.4f\n", sr.relRmse, sc.relRmse);
     EXPECT_LT(sc.relRmse, 0.8 * sr.relRmse);
     EXPECT_LT(sc.relRmse, 0.11);

@@ -111,18 +111,11 @@ TEST(PixelLight, TheCornellBoxsVirtualBoxCastsItsShadowPerPixel) {
     RelightOptions o = test::coarseOptions();
     o.epsilon = RelightOptions{}.epsilon;
     o.pixelLight = true;
-    const auto r = prepareRelighting(loadScene(dir), o);
-    const EditFile e = loadEdit(dir + "/edits/virtual_box.json", r->scene);
-    const auto radiance = editRadiance(r->scene, e, r->prepared.photoRadiance);
-    Image ratio, pixel;
-    {
-        DynamicRelighting dyn(*r, radiance);
-        for (const auto& obj : e.addObjects) dyn.addObject(obj);
-        ratio = dyn.render(DisplayMode::ratio);
-        pixel = dyn.render(DisplayMode::pixel);
-    }
-    const Score sr = test::scoreAgainstTruth(dir, "virtual_box", ratio, r->prepared.photo);
-    const Score sp = test::scoreAgainstTruth(dir, "virtual_box", pixel, r->prepared.photo);
+    const auto run =
+        test::renderEditIn(dir, "virtual_box", o, {DisplayMode::ratio, DisplayMode::pixel});
+    const Image& photo = run.relighting->prepared.photo;
+    const Score sr = test::scoreAgainstTruth(dir, "virtual_box", run.images[0], photo);
+    const Score sp = test::scoreAgainstTruth(dir, "virtual_box", run.images[1], photo);
     std::printf("virtual_box: ratio %.4f / %.4f, pixel %.4f / %.4f\n", sr.relRmse,
                 sr.changedRelRmse, sp.relRmse, sp.changedRelRmse);
     ASSERT_TRUE(sp.hasChanged);

@@ -1,9 +1,13 @@
 // Test helper: the room of data/ prepared with coarse settings, shared by the test files.
 #pragma once
 
+#include <initializer_list>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "relight/display/metric.h"
+#include "relight/dynamic/dynamic_relighting.h"
 #include "relight/io/image.h"
 #include "relight/relighting.h"
 
@@ -32,6 +36,25 @@ inline Score scoreAgainstTruth(const std::string& dir, const std::string& edit, 
     return scoreImage(image, readImage(dir + "/truth/" + edit + ".exr"), photo,
                       readMask(dir + "/truth/" + edit + ".mask.png", w, h),
                       readMask(dir + "/photo.mask.png", w, h));
+}
+
+/// The scene in `dir` prepared with `o`, and its edit `edit` (virtual parts inserted)
+/// rendered in each display of `modes`, in that order.
+struct EditRenders {
+    std::unique_ptr<Relighting> relighting;
+    std::vector<Image> images;
+};
+inline EditRenders renderEditIn(const std::string& dir, const std::string& edit,
+                                const RelightOptions& o, std::initializer_list<DisplayMode> modes) {
+    EditRenders out;
+    out.relighting = prepareRelighting(loadScene(dir), o);
+    Relighting& r = *out.relighting;
+    const EditFile e = loadEdit(dir + "/edits/" + edit + ".json", r.scene);
+    DynamicRelighting dyn(r, editRadiance(r.scene, e, r.prepared.photoRadiance));
+    for (const auto& l : e.addLights) dyn.addLight(l);
+    for (const auto& obj : e.addObjects) dyn.addObject(obj);
+    for (const DisplayMode mode : modes) out.images.push_back(dyn.render(mode));
+    return out;
 }
 
 }  // namespace relight::test
