@@ -72,9 +72,10 @@ struct LinkTree {
 
 }  // namespace
 
-void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report) {
+void HierarchicalSolver::cutLinks(const Bounds3& box, int object, DynamicUpdate& report,
+                                  bool revive) {
     auto t0 = Clock::now();
-    CutLinks found = findCutLinks(box, objectPolyBegin, report);
+    CutLinks found = findCutLinks(box, object, report, revive);
     report.timeShafts += secondsSince(t0) - found.timeVisibility;
 
     // Visibility of the cut links again, in parallel (each link's rays are seeded by its
@@ -117,9 +118,8 @@ void HierarchicalSolver::cutLinks(const Bounds3& box, int objectPolyBegin, Dynam
     report.timeVisibility += secondsSince(t0) + found.timeVisibility;
 }
 
-HierarchicalSolver::CutLinks HierarchicalSolver::findCutLinks(const Bounds3& box,
-                                                              int objectPolyBegin,
-                                                              DynamicUpdate& report) {
+HierarchicalSolver::CutLinks HierarchicalSolver::findCutLinks(const Bounds3& box, int object,
+                                                              DynamicUpdate& report, bool revive) {
     // The link tree walked from its roots: a link whose shaft misses the object's box
     // keeps its whole subtree as it is (Drettakis & Sillion 1997).
     const LinkTree tree(passive_, links_);
@@ -127,7 +127,7 @@ HierarchicalSolver::CutLinks HierarchicalSolver::findCutLinks(const Bounds3& box
     out.erased.assign(links_.size(), 0);
     const auto isObjectNode = [&](int node) {
         const Node& n = h_.nodes[node];
-        return n.isCluster() ? false : n.polygon >= objectPolyBegin;
+        return !n.isCluster() && scene_.polygons[static_cast<size_t>(n.polygon)].object == object;
     };
     std::vector<int> stack(tree.roots.rbegin(), tree.roots.rend());
     while (!stack.empty()) {
@@ -149,7 +149,7 @@ HierarchicalSolver::CutLinks HierarchicalSolver::findCutLinks(const Bounds3& box
         // 1997: passive links are reactivated at no cost, F is kept).
         const Node& R = h_.nodes[L.receiver];
         const Node& S = h_.nodes[L.source];
-        if (!R.isCluster() && !S.isCluster() && L.receiver != L.source && !S.emitting) {
+        if (revive && !R.isCluster() && !S.isCluster() && L.receiver != L.source && !S.emitting) {
             const auto tv = Clock::now();
             Link c = L;
             transfer_->visibility(c, /*thorough=*/true);
@@ -195,12 +195,7 @@ void HierarchicalSolver::linkObject(int cluster, int oldRoot, DynamicUpdate& rep
     report.timeLinks += secondsSince(t0);
 }
 
-int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygon> polygons,
-                                     const Rgb* lightRadiance, DynamicUpdate* reportOut) {
-    if (!started_) throw std::logic_error("insertObject: solve() first");
-    if (polygons.empty()) throw std::invalid_argument("insertObject: the object has no polygon");
-    links_.index();
-    DynamicUpdate report;
+HierarchicalSolver::Insertion HierarchicalSolver::snapshot() const {
     Insertion rec;
     rec.links = links_.all();
     rec.passive = passive_.size();
@@ -212,6 +207,7 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     rec.scales.reserve(h_.nodes.size());
     rec.H.reserve(h_.nodes.size());
     rec.Hv.reserve(h_.nodes.size());
+    rec.Hd.reserve(h_.nodes.size());
     for (const Node& n : h_.nodes) {
         rec.B.push_back(n.B);
         rec.Bsent.push_back(n.Bsent);
@@ -220,10 +216,20 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
         rec.Hv.push_back(n.Hv);
         rec.Hd.push_back(n.Hd);
     }
+    rec.frozenNodes = frozenNodes_;
+    return rec;
+}
+
+int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygon> polygons,
+                                     const Rgb* lightRadiance, DynamicUpdate* reportOut) {
+    if (!started_) throw std::logic_error("insertObject: solve() first");
+    if (polygons.empty()) throw std::invalid_argument("insertObject: the object has no polygon");
+    links_.index();
+    DynamicUpdate report;
+    Insertion rec = snapshot();
     rec.name = name;
     rec.light = lightRadiance != nullptr;
     if (lightRadiance) rec.radiance = *lightRadiance;
-    rec.frozenNodes = frozenNodes_;
     if (frozenNodes_ == 0) frozenNodes_ = h_.nodes.size();
 
     // The scene: a new object, maybe a new light.
@@ -268,7 +274,7 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
         if (l.source == Hierarchy::kRoot) l.source = oldRoot;
     }
 
-    cutLinks(box, first, report);
+    cutLinks(box, object, report);
     const size_t firstNode = static_cast<size_t>(oldRoot);
     linkObject(cluster, oldRoot, report);
     links_.index();
@@ -291,19 +297,25 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
 }
 
 std::vector<int> HierarchicalSolver::remeasureSeenNear(int cluster, size_t firstNode) {
+    const Node& obj = h_.nodes[cluster];
+    return remeasureSeenNear(obj.centre, obj.radius, firstNode, -1);
+}
+
+std::vector<int> HierarchicalSolver::remeasureSeenNear(const Vec3& c, double r, size_t firstNode,
+                                                       int object) {
     // The object's bounding sphere (centre c, radius r) covers at most r^2 / (r^2 + g^2) of
     // a leaf's cosine-weighted hemisphere, g the gap between the sphere and the leaf's own
     // bounding sphere (a disc facing the leaf squarely bounds the sphere's silhouette).
     // Leaves where that can exceed kSeenChange, with the sphere not wholly behind them,
     // are measured again. A leaf that saw a surface in every direction (seen 1, closed
-    // rooms) keeps its measure: a closed object only hides fronts behind its own fronts.
-    const Node& obj = h_.nodes[cluster];
-    const Vec3 c = obj.centre;
-    const double r = obj.radius;
+    // rooms) keeps its measure: a closed object only hides fronts behind its own fronts,
+    // and taking one out shows what it hid.
     std::vector<int> leaves;
     for (size_t n = 0; n < firstNode; ++n) {
         const Node& e = h_.nodes[n];
         if (e.isCluster() || !e.isLeaf() || !(e.seen >= 0) || e.seen >= 1) continue;
+        if (object >= 0 && scene_.polygons[static_cast<size_t>(e.polygon)].object == object)
+            continue;
         const Vec3 d = c - e.centre;
         if (glm::dot(e.normal, d) < -r) continue;  // behind the leaf's plane
         const double gap = std::max(0.0, glm::length(d) - r - e.radius);
@@ -319,14 +331,22 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
     if (inserted_.empty()) throw std::logic_error("removeLastObject: no object inserted");
     Insertion rec = std::move(inserted_.back());
     inserted_.pop_back();
-    vis_->removePolygons(rec.visGroup);
-    h_.detachLastObject();
-    const int oldRoot = static_cast<int>(rec.B.size());  // the root's copy was the next node
+    if (rec.removed >= 0) {
+        // A real object taken out: it occludes and reflects again.
+        vis_->showPolygons(rec.hidden);
+        for (size_t n = 0; n < rec.rho.size(); ++n) h_.nodes[n].rho = rec.rho[n];
+    } else {
+        vis_->removePolygons(rec.visGroup);
+        h_.detachLastObject();
+    }
     links_.replace(std::move(rec.links));
     passive_.resize(rec.passive);
-    for (Link& l : passive_) {
-        if (l.receiver == oldRoot) l.receiver = Hierarchy::kRoot;
-        if (l.source == oldRoot) l.source = Hierarchy::kRoot;
+    if (rec.removed < 0) {
+        const int oldRoot = static_cast<int>(rec.B.size());  // the root's copy: the next node
+        for (Link& l : passive_) {
+            if (l.receiver == oldRoot) l.receiver = Hierarchy::kRoot;
+            if (l.source == oldRoot) l.source = Hierarchy::kRoot;
+        }
     }
     for (int p : rec.retired) passive_[p].retired = false;
     scene_.polygons.resize(rec.polygons);
@@ -351,7 +371,8 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
 }
 
 void HierarchicalSolver::moveLastObject(std::vector<Polygon> polygons, DynamicUpdate* report) {
-    if (inserted_.empty()) throw std::logic_error("moveLastObject: no object inserted");
+    if (inserted_.empty() || lastIsRemoval())
+        throw std::logic_error("moveLastObject: no object inserted last");
     const std::string name = inserted_.back().name;
     const bool light = inserted_.back().light;
     const Rgb radiance = inserted_.back().radiance;

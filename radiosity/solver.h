@@ -214,8 +214,29 @@ class HierarchicalSolver {
     /// removal as above, then insertion at the new place; only links whose shafts the old
     /// or the new box cuts have their visibility evaluated again.
     void moveLastObject(std::vector<Polygon> polygons, DynamicUpdate* report = nullptr);
-    /// Objects inserted and not removed.
+    /// Objects inserted and not removed (real objects taken out count as well).
     int insertedObjects() const { return static_cast<int>(inserted_.size()); }
+
+    /// Real-object removal (Loscos et al. 1999, §4.4 and §5.3: "we delete every link ... of
+    /// the removed object"): takes the scene's object `object` (an index of
+    /// scene().objects; its polygons, none of them a lamp's face) out of the solution, as
+    /// the last dynamic change. Steps:
+    ///  1. its polygons stop occluding (Visibility::hidePolygons); its elements reflect
+    ///     and send nothing (rho = B = 0) and every link to or from them goes;
+    ///  2. the links whose shafts its box cuts get their visibility again, as for an
+    ///     insertion (the light it blocked comes back); DynamicUpdate::shadowLeaves are the
+    ///     leaves under the cut links from lights;
+    ///  3. `seen` is measured again where the object filled much of a leaf's view, and the
+    ///     energy bound is set again for those leaves and the receivers of the changed links;
+    ///  4. gather/push-pull, warm-started.
+    /// removeLastObject() brings it back, bit for bit. Throws std::invalid_argument for an
+    /// index out of range, an object with no polygon or with a lamp's face, or one taken out
+    /// already; std::logic_error before solve().
+    void removeRealObject(int object, DynamicUpdate* report = nullptr);
+    /// Whether the last dynamic change is a real object taken out (removeRealObject).
+    bool lastIsRemoval() const { return !inserted_.empty() && inserted_.back().removed >= 0; }
+    /// The scene's objects taken out and not brought back.
+    std::vector<int> removedObjects() const;
 
     /// B at point x of polygon (radiosity units): the value of the leaf containing it.
     Rgb radiosityAt(int polygon, const Vec3& x) const;
@@ -329,6 +350,11 @@ class HierarchicalSolver {
     /// object `cluster` may change by more than kSeenChange; returns them (the insertion
     /// record keeps their old measures).
     std::vector<int> remeasureSeenNear(int cluster, size_t firstNode);
+    /// The same for an object bounded by the sphere (c, r), its own leaves left out.
+    std::vector<int> remeasureSeenNear(const Vec3& c, double r, size_t firstNode, int object);
+    /// The snapshot removeLastObject() restores (per node B, Bsent, H, scales; links).
+    struct Insertion;
+    Insertion snapshot() const;
     /// The row half of the energy bound: gatherScale of the leaves with id >= firstNode
     /// and those in `also`.
     void boundRows(size_t firstNode, const std::vector<Rgb>& Gd, const std::vector<int>* also);
@@ -354,7 +380,10 @@ class HierarchicalSolver {
     /// One refinement pass over the active links; returns how many were refined.
     size_t refineAll();
     void pushLightLinksToLeaves(size_t from = 0);
-    void cutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report);
+    /// The links whose shafts `box` cuts get their visibility again; links with an end on
+    /// `object`'s polygons are left out. With `revive`, passive links the box now blocks
+    /// entirely become active again (an insertion; a removal only opens links).
+    void cutLinks(const Bounds3& box, int object, DynamicUpdate& report, bool revive = true);
     /// What an object in `box` changes in the link tree: the active links whose shafts it
     /// cuts, the passive links it blocks entirely (revived in place of their subtrees, whose
     /// active links are marked erased), and the time spent on their visibility.
@@ -364,7 +393,7 @@ class HierarchicalSolver {
         std::vector<char> erased;  ///< per active link
         double timeVisibility = 0;
     };
-    CutLinks findCutLinks(const Bounds3& box, int objectPolyBegin, DynamicUpdate& report);
+    CutLinks findCutLinks(const Bounds3& box, int object, DynamicUpdate& report, bool revive);
     void linkObject(int cluster, int oldRoot, DynamicUpdate& report);
     int lightOfNode(int node) const;
     void addLinksFromSource(int node);
@@ -439,6 +468,11 @@ class HierarchicalSolver {
         Rgb radiance;
         int visGroup = -1;
         size_t frozenNodes = 0;
+        /// A real object taken out (removeRealObject): its index, its polygons, and every
+        /// node's reflectance before; -1 for an insertion.
+        int removed = -1;
+        std::vector<int> hidden;
+        std::vector<Rgb> rho;
     };
     std::vector<Insertion> inserted_;
     size_t frozenNodes_ = 0;  ///< leaves below this id are not split (0: no limit)

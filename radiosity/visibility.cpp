@@ -12,6 +12,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -54,6 +55,11 @@ struct Visibility::Impl {
     std::vector<int> geomFirst;
     std::vector<unsigned> groupGeom;  // by group id: its geomID, or RTC_INVALID_GEOMETRY_ID
     std::vector<size_t> groupCount;   // by group id: its number of polygons
+    // hidePolygons(): the 12 floats of each hidden scene polygon (geometry 0) as they were.
+    size_t scenePolygons = 0;
+    std::vector<std::array<float, 12>> hiddenVertices;
+    std::vector<char> isHidden;  // per scene polygon, sized at the first hide
+    void setHidden(std::span<const int> polygons, bool hide);
     unsigned groupGeometry(int group) const;
 
     int polygonOf(unsigned geomID, unsigned primID) const {
@@ -234,6 +240,7 @@ Visibility::Visibility(const Scene& scene) : impl_(std::make_unique<Impl>()) {
         impl_->origin = scene.bounds().centre();
         impl_->attachQuads(scene.polygons, 0);  // geomID 0
     }
+    impl_->scenePolygons = n;
     rtcCommitScene(impl_->scene);
     impl_->check("committing the scene");
 }
@@ -276,6 +283,50 @@ void Visibility::removePolygons(int group) {
     impl_->check("removing polygons");
     impl_->geomFirst[id] = -1;
     impl_->groupGeom[group] = RTC_INVALID_GEOMETRY_ID;
+}
+
+void Visibility::Impl::setHidden(std::span<const int> polygons, bool hide) {
+    for (int p : polygons)
+        if (p < 0 || static_cast<size_t>(p) >= scenePolygons)
+            throw std::invalid_argument("Visibility: cannot hide polygon " + std::to_string(p) +
+                                        ": the scene has " + std::to_string(scenePolygons));
+    if (polygons.empty()) return;
+    if (isHidden.empty()) {
+        isHidden.assign(scenePolygons, 0);
+        hiddenVertices.resize(scenePolygons);
+    }
+    RTCGeometry g = rtcGetGeometry(scene, 0);
+    auto* v = static_cast<float*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));
+    for (int p : polygons) {
+        const auto i = static_cast<size_t>(p);
+        if ((isHidden[i] != 0) == hide) continue;
+        float* quad = v + 12 * i;
+        if (hide) {
+            std::copy_n(quad, 12, hiddenVertices[i].begin());
+            // Every corner on the first: a point, which no ray hits.
+            for (int k = 1; k < 4; ++k) std::copy_n(quad, 3, quad + 3 * k);
+        } else {
+            std::copy_n(hiddenVertices[i].begin(), 12, quad);
+        }
+        isHidden[i] = hide ? 1 : 0;
+    }
+    rtcUpdateGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(g);
+    rtcCommitScene(scene);
+    check(hide ? "hiding polygons" : "showing polygons");
+}
+
+void Visibility::hidePolygons(std::span<const int> polygons) {
+    impl_->setHidden(polygons, true);
+}
+
+void Visibility::showPolygons(std::span<const int> polygons) {
+    impl_->setHidden(polygons, false);
+}
+
+bool Visibility::hidden(int polygon) const {
+    return polygon >= 0 && static_cast<size_t>(polygon) < impl_->isHidden.size() &&
+           impl_->isHidden[static_cast<size_t>(polygon)] != 0;
 }
 
 Visibility::~Visibility() = default;

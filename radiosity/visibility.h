@@ -100,6 +100,17 @@ class Visibility {
     /// Takes the group out of the scene.
     void removePolygons(int group);
 
+    /// Real-object removal (Loscos et al. 1999, §5.3): the scene's own polygons at these
+    /// indices (Scene::polygons, not a group's) stop occluding and being hit until
+    /// showPolygons() puts them back; the BVH is refitted. Each is collapsed to a point
+    /// (a quad of zero area, which Embree's ray-quad test never reports), its vertices kept
+    /// aside. Hiding a hidden polygon or showing a shown one changes nothing. Throws
+    /// std::invalid_argument for an index outside the scene's polygons. Not thread safe.
+    void hidePolygons(std::span<const int> polygons);
+    void showPolygons(std::span<const int> polygons);
+    /// Whether the scene's polygon is hidden.
+    bool hidden(int polygon) const;
+
     /// Number of occlusion rays cast so far by visible() and visibleBatch(), all threads
     /// together (intersect() rays are not counted). Counter "Visibility/Rays".
     uint64_t raysCast() const;

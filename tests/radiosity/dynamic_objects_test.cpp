@@ -296,3 +296,114 @@ TEST(DynamicObjects, EveryLeafWhoseDirectLightTheBoxChangesIsAShadowLeaf) {
     }
     EXPECT_GT(changed, 0);  // the box does shadow the floor
 }
+
+namespace {
+
+/// room() with the floating box as a real object of the scene ("table", object 3).
+Scene roomWithRealBox() {
+    Scene s = room();
+    s.objects.push_back("table");
+    for (Polygon p : floatingBox(0)) {
+        p.object = 3;
+        s.polygons.push_back(p);
+    }
+    return s;
+}
+
+}  // namespace
+
+TEST(RealObjectRemoval, AgreesWithASolutionOfTheSceneWithoutTheObject) {
+    // Loscos et al. 1999, §5.3: a real object taken out of the solution. Against a solution
+    // of the scene that never had it, with the tolerances of the virtual box's comparison
+    // above (the same kind of incremental update, in the other direction).
+    HierarchicalSolver solver(roomWithRealBox(), options());
+    solver.solve();
+    const double shadowed = floorIrradiance(solver, 0, 0).maxComponent();
+    DynamicUpdate report;
+    solver.removeRealObject(3, &report);
+    EXPECT_GT(report.linksCut, 0);
+    EXPECT_EQ(report.linksReactivated, 0);
+    EXPECT_FALSE(report.shadowLeaves.empty());
+    EXPECT_TRUE(solver.lastIsRemoval());
+    EXPECT_EQ(solver.removedObjects(), std::vector<int>{3});
+    EXPECT_TRUE(solver.visibility().hidden(3));
+
+    HierarchicalSolver plain(room(), options());
+    plain.solve();
+    const double open = floorIrradiance(plain, 0, 0).maxComponent();
+    // The umbra under the box gets its lamp back (the box hid all of it: see
+    // ABoxBetweenTheLampAndTheFloorShadowsIt).
+    ASSERT_LT(shadowed, 0.15 * open);
+    for (double x : {0.0, 1.0, -1.2})
+        for (double y : {0.0, -1.0, 1.2}) {
+            const Rgb ha = floorIrradiance(solver, x, y), hb = floorIrradiance(plain, x, y);
+            EXPECT_NEAR(ha.maxComponent(), hb.maxComponent(), 0.1 * hb.maxComponent() + 0.03 * open)
+                << "at (" << x << ", " << y << ")";
+        }
+    const auto a = polygonMeans(solver), b = polygonMeans(plain);
+    for (size_t p = 0; p < b.size(); ++p)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(a[p][c], b[p][c], 0.03 * b[p].maxComponent() + 1e-9)
+                << "polygon " << p << ", channel " << c;
+    // The object's own polygons reflect nothing now.
+    for (size_t p = 3; p < a.size(); ++p) EXPECT_EQ(a[p].maxComponent(), 0.0) << p;
+    // Nothing gathers from it or sends to it.
+    for (const Link& l : solver.links()) {
+        const Node& R = solver.hierarchy().nodes[l.receiver];
+        const Node& S = solver.hierarchy().nodes[l.source];
+        EXPECT_FALSE(!R.isCluster() && R.polygon >= 3);
+        EXPECT_FALSE(!S.isCluster() && S.polygon >= 3);
+    }
+}
+
+TEST(RealObjectRemoval, BringingItBackRestoresTheSolutionBitForBit) {
+    HierarchicalSolver solver(roomWithRealBox(), options());
+    solver.solve();
+    const std::vector<Link> links = solver.links();
+    const std::vector<Node> nodes = solver.hierarchy().nodes;
+    const Vec3 under{0, 0, 0.1}, lamp{0, 0, 1.9};
+    ASSERT_FALSE(solver.visibility().visible(under, lamp));
+    solver.removeRealObject(3);
+    EXPECT_TRUE(solver.visibility().visible(under, lamp));
+    solver.removeLastObject();
+    EXPECT_FALSE(solver.visibility().visible(under, lamp));
+    EXPECT_FALSE(solver.lastIsRemoval());
+    EXPECT_TRUE(solver.removedObjects().empty());
+    ASSERT_EQ(solver.links().size(), links.size());
+    for (size_t i = 0; i < links.size(); ++i) {
+        const Link &a = solver.links()[i], &b = links[i];
+        ASSERT_EQ(a.receiver, b.receiver) << i;
+        ASSERT_EQ(a.source, b.source) << i;
+        ASSERT_EQ(std::memcmp(&a.V, &b.V, sizeof a.V), 0) << i;
+    }
+    ASSERT_EQ(solver.hierarchy().nodes.size(), nodes.size());
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        const Node &a = solver.hierarchy().nodes[n], &b = nodes[n];
+        ASSERT_TRUE(sameBits(a.B, b.B)) << n;
+        ASSERT_TRUE(sameBits(a.H, b.H)) << n;
+        ASSERT_TRUE(sameBits(a.rho, b.rho)) << n;
+        ASSERT_TRUE(sameBits(a.Bsent, b.Bsent)) << n;
+        ASSERT_EQ(std::memcmp(&a.gatherScale, &b.gatherScale, sizeof a.gatherScale), 0) << n;
+        ASSERT_EQ(std::memcmp(&a.seen, &b.seen, sizeof a.seen), 0) << n;
+    }
+}
+
+TEST(RealObjectRemoval, RefusesWhatCannotBeTakenOut) {
+    HierarchicalSolver unsolved(roomWithRealBox(), options());
+    EXPECT_THROW(unsolved.removeRealObject(3), std::logic_error);
+    HierarchicalSolver solver(roomWithRealBox(), options());
+    solver.solve();
+    EXPECT_THROW(solver.removeRealObject(-1), std::invalid_argument);
+    EXPECT_THROW(solver.removeRealObject(4), std::invalid_argument);
+    EXPECT_THROW(solver.removeRealObject(2), std::invalid_argument);  // the lamp's face
+    solver.removeRealObject(3);
+    EXPECT_THROW(solver.removeRealObject(3), std::invalid_argument);  // out already
+    EXPECT_THROW(solver.moveLastObject(floatingBox(0.5)), std::logic_error);
+    // A virtual object on top of the removal, then both undone in turn.
+    solver.insertObject("box", floatingBox(1.0));
+    EXPECT_FALSE(solver.lastIsRemoval());
+    solver.removeLastObject();
+    EXPECT_TRUE(solver.lastIsRemoval());
+    solver.removeLastObject();
+    EXPECT_EQ(solver.insertedObjects(), 0);
+}

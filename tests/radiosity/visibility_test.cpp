@@ -348,3 +348,38 @@ TEST(Visibility, AddedPolygonsBlockMoveAndGoAway) {
     EXPECT_THROW(vis.movePolygons(vis.addPolygons(extra.polygons, 1), two.polygons),
                  std::invalid_argument);
 }
+
+TEST(Visibility, HiddenScenePolygonsNeitherBlockNorAreHitUntilShown) {
+    // Real-object removal: a blocker of the scene itself (geometry 0) is hidden and shown.
+    Scene scene = baseScene();
+    addSquareZ(scene, -5, -5, 10, 0, true);  // floor, polygon 0
+    addSquareZ(scene, 0, 0, 1, 1, true);     // blocker, polygon 1
+    addSquareZ(scene, 0, 0, 1, 2, false);    // ceiling over it, polygon 2
+    Visibility vis(scene);
+    const Vec3 a{0.5, 0.5, 0.1}, b{0.5, 0.5, 1.9};
+    ASSERT_FALSE(vis.visible(a, b));
+    const std::vector<int> blocker{1};
+    vis.hidePolygons(blocker);
+    EXPECT_TRUE(vis.hidden(1));
+    EXPECT_FALSE(vis.hidden(0));
+    EXPECT_TRUE(vis.visible(a, b));
+    // Rays through every part of the hidden square, its edges and corners included, go on
+    // to the ceiling: the collapsed quad is hit nowhere.
+    for (double x : {0.0, 1e-4, 0.25, 0.5, 0.9999, 1.0})
+        for (double y : {0.0, 1e-4, 0.5, 1.0}) {
+            const Visibility::Hit hit = vis.intersect({x, y, 0.1}, {0, 0, 1});
+            EXPECT_EQ(hit.polygon, 2) << x << " " << y;
+        }
+    bool batch[2] = {false, false};
+    const Vec3 from[2] = {a, {0.2, 0.8, 0.1}}, to[2] = {b, {0.3, 0.7, 1.9}};
+    EXPECT_EQ(vis.visibleBatch(from, to, 2, batch), 2);
+    vis.hidePolygons(blocker);  // twice: nothing more
+    vis.showPolygons(blocker);
+    EXPECT_FALSE(vis.hidden(1));
+    EXPECT_FALSE(vis.visible(a, b));
+    const Visibility::Hit back = vis.intersect({0.5, 0.5, 0.1}, {0, 0, 1});
+    EXPECT_EQ(back.polygon, 1);
+    EXPECT_NEAR(back.t, 0.9, 1e-6);
+    const std::vector<int> outside{3};
+    EXPECT_THROW(vis.hidePolygons(outside), std::invalid_argument);
+}

@@ -1,0 +1,129 @@
+// Real objects taken out of the solution (Loscos et al. 1999, §4.4 and §5.3): "When
+// removing an object ... we delete every link and all corresponding shaft structures of the
+// removed object", and the links it blocked see through its place again. The object stays
+// in the scene and the hierarchy (node ids do not move, so the display's leaf mesh and the
+// insertion stack stay valid); it is hidden from the visibility BVH and its elements
+// neither reflect nor send. removeLastObject() restores the snapshot taken here.
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
+
+namespace radiosity {
+
+std::vector<int> HierarchicalSolver::removedObjects() const {
+    std::vector<int> out;
+    for (const Insertion& rec : inserted_)
+        if (rec.removed >= 0) out.push_back(rec.removed);
+    return out;
+}
+
+void HierarchicalSolver::removeRealObject(int object, DynamicUpdate* reportOut) {
+    if (!started_) throw std::logic_error("removeRealObject: solve() first");
+    // The scene's own polygons: those before the first insertion.
+    const size_t scenePolygons =
+        inserted_.empty() ? scene_.polygons.size() : inserted_.front().polygons;
+    const int sceneObjects =
+        static_cast<int>(inserted_.empty() ? scene_.objects.size() : inserted_.front().objects);
+    if (object < 0 || object >= sceneObjects)
+        throw std::invalid_argument("removeRealObject: no object " + std::to_string(object) +
+                                    " in the scene (it has " + std::to_string(sceneObjects) + ")");
+    const std::string& name = scene_.objects[static_cast<size_t>(object)];
+    std::vector<int> polygons;
+    Bounds3 box;
+    for (size_t p = 0; p < scenePolygons; ++p) {
+        const Polygon& poly = scene_.polygons[p];
+        if (poly.object != object) continue;
+        if (poly.light >= 0)
+            throw std::invalid_argument("removeRealObject: object \"" + name +
+                                        "\" holds a lamp's emitting face");
+        polygons.push_back(static_cast<int>(p));
+        box.extend(poly.bounds());
+    }
+    if (polygons.empty())
+        throw std::invalid_argument("removeRealObject: object \"" + name + "\" has no polygon");
+    if (vis_->hidden(polygons.front()))
+        throw std::invalid_argument("removeRealObject: object \"" + name +
+                                    "\" is taken out already");
+
+    links_.index();
+    DynamicUpdate report;
+    Insertion rec = snapshot();
+    rec.name = name;
+    rec.removed = object;
+    rec.hidden = polygons;
+    rec.rho.reserve(h_.nodes.size());
+    for (const Node& n : h_.nodes) rec.rho.push_back(n.rho);
+    if (frozenNodes_ == 0) frozenNodes_ = h_.nodes.size();
+    inserted_.push_back(std::move(rec));
+
+    // 1. Out of the BVH; its elements reflect and send nothing; its links go.
+    const auto t0 = Clock::now();
+    vis_->hidePolygons(polygons);
+    std::vector<char> gone(h_.nodes.size(), 0);
+    for (size_t n = 0; n < h_.nodes.size(); ++n) {
+        Node& e = h_.nodes[n];
+        if (e.isCluster() || scene_.polygons[static_cast<size_t>(e.polygon)].object != object)
+            continue;
+        gone[n] = 1;
+        e.rho = Rgb{};
+        e.B = e.Bsent = e.H = e.Hd = Rgb{};
+    }
+    h_.pullAverages(Hierarchy::kRoot);
+    // The receivers that gathered from it: their gather is bounded again below.
+    std::vector<int> changed;
+    std::vector<Link> kept;
+    kept.reserve(links_.size());
+    for (const Link& l : links_.all()) {
+        if (!gone[l.receiver] && !gone[l.source]) {
+            kept.push_back(l);
+            continue;
+        }
+        if (!gone[l.receiver]) changed.push_back(l.receiver);
+    }
+    links_.replace(std::move(kept));
+    report.timeLinks += secondsSince(t0);
+
+    // 2. The links its box cut see through it now.
+    cutLinks(box, object, report, /*revive=*/false);
+    links_.index();
+
+    // 3. What the leaves around it see, and the energy bound of the leaves whose links
+    //    changed: the receivers of the cut links and of the links from the object, and the
+    //    leaves under them (element receivers; a cluster receiver hands its gather on by
+    //    orientation and is not bounded per leaf).
+    const auto t1 = Clock::now();
+    for (int leaf : report.shadowLeaves) changed.push_back(leaf);
+    std::vector<int> also =
+        remeasureSeenNear(box.centre(), 0.5 * glm::length(box.diagonal()), h_.nodes.size(), object);
+    std::vector<int> stack;
+    for (int r : changed) {
+        stack.assign(1, r);
+        while (!stack.empty()) {
+            const int n = stack.back();
+            stack.pop_back();
+            const Node& R = h_.nodes[n];
+            if (R.isCluster()) continue;
+            if (R.isLeaf()) {
+                also.push_back(n);
+                continue;
+            }
+            for (int c = 0; c < R.childCount; ++c) stack.push_back(R.firstChild + c);
+        }
+    }
+    std::sort(also.begin(), also.end());
+    also.erase(std::unique(also.begin(), also.end()), also.end());
+    boundGather(h_.nodes.size(), /*balance=*/true, &also);
+    inserted_.back().shadowLeaves = report.shadowLeaves;
+    report.timeLinks += secondsSince(t1);
+
+    // 4. Gather/push-pull from the solution as it was.
+    const auto t2 = Clock::now();
+    report.sweeps = gatherPushPull();
+    report.timeGather += secondsSince(t2);
+    if (reportOut) *reportOut = std::move(report);
+}
+
+}  // namespace radiosity
