@@ -72,16 +72,10 @@ void HierarchicalSolver::removeRealObject(int object, DynamicUpdate* reportOut) 
         e.B = e.Bsent = e.H = e.Hd = Rgb{};
     }
     h_.pullAverages(Hierarchy::kRoot);
-    // The receivers that gathered from it: their gather is bounded again below.
-    std::vector<int> changed;
     std::vector<Link> kept;
     kept.reserve(links_.size());
     for (const Link& l : links_.all()) {
-        if (!gone[l.receiver] && !gone[l.source]) {
-            kept.push_back(l);
-            continue;
-        }
-        if (!gone[l.receiver]) changed.push_back(l.receiver);
+        if (!gone[l.receiver] && !gone[l.source]) kept.push_back(l);
     }
     links_.replace(std::move(kept));
     report.timeLinks += secondsSince(t0);
@@ -90,31 +84,16 @@ void HierarchicalSolver::removeRealObject(int object, DynamicUpdate* reportOut) 
     cutLinks(box, object, report, /*revive=*/false);
     links_.index();
 
-    // 3. What the leaves around it see, and the energy bound of the leaves whose links
-    //    changed: the receivers of the cut links and of the links from the object, and the
-    //    leaves under them (element receivers; a cluster receiver hands its gather on by
-    //    orientation and is not bounded per leaf).
+    // 3. What the leaves around it see, measured again where it filled much of their view,
+    //    and their energy bound set again. The other leaves keep their gather scales: a
+    //    leaf that gathered from the object now gathers, through the links the object cut,
+    //    from what lay behind it in the same directions, so its sum of form factors G
+    //    stays about what the bound made it. (Bounding them again would also read the
+    //    real-shadow removal's light-link corrections, V above 1 on purpose, as lamps seen
+    //    beyond the hemisphere, and zero their gather.)
     const auto t1 = Clock::now();
-    for (int leaf : report.shadowLeaves) changed.push_back(leaf);
-    std::vector<int> also =
+    const std::vector<int> also =
         remeasureSeenNear(box.centre(), 0.5 * glm::length(box.diagonal()), h_.nodes.size(), object);
-    std::vector<int> stack;
-    for (int r : changed) {
-        stack.assign(1, r);
-        while (!stack.empty()) {
-            const int n = stack.back();
-            stack.pop_back();
-            const Node& R = h_.nodes[n];
-            if (R.isCluster()) continue;
-            if (R.isLeaf()) {
-                also.push_back(n);
-                continue;
-            }
-            for (int c = 0; c < R.childCount; ++c) stack.push_back(R.firstChild + c);
-        }
-    }
-    std::sort(also.begin(), also.end());
-    also.erase(std::unique(also.begin(), also.end()), also.end());
     boundGather(h_.nodes.size(), /*balance=*/true, &also);
     inserted_.back().shadowLeaves = report.shadowLeaves;
     report.timeLinks += secondsSince(t1);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # README command 1: install, build, and run the main job on the bundled room: relight its
-# photo for each of its edits (light changes, virtual lights and objects) and score each against the path-traced truth.
+# photo for each of its edits (light changes, virtual lights and objects, a real object removed) and score each against the path-traced truth.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -9,7 +9,7 @@ mkdir -p out
 relight=./build/relight/relight
 printf '%-24s %9s %9s\n' edit rel_rmse "(photo)" >out/room-scores.txt
 for edit in identity back_off left_off_right_double right_off_left_double colours \
-    virtual_light_only virtual_box virtual_box_moved virtual_light_and_box; do
+    virtual_light_only virtual_box virtual_box_moved virtual_light_and_box remove_table; do
     echo "== relight render data/room --edit data/room/edits/$edit.json"
     "$relight" render data/room --edit "data/room/edits/$edit.json" -o "out/room-$edit.exr" \
         --report "out/room-$edit.json" 2>/dev/null

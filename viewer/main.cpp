@@ -112,7 +112,6 @@ int run(const Args& a) {
     EditFile edit;
     if (!a.edit.empty()) {
         edit = loadEdit(a.edit, sf);
-        requireRenderable(edit);
     }
     for (const std::string& w : edit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::vector<Action> actions;

@@ -32,8 +32,14 @@ nlohmann::json insertionReport(const DynamicRelighting& dyn, const std::string& 
                                const std::string& name) {
     const FrameTimes& ft = dyn.times();
     const radiosity::DynamicUpdate& u = dyn.lastUpdate();
-    std::printf("inserted %s %s: %d links cut, %d new, %d reactivated, %.4f s\n", kind.c_str(),
-                name.c_str(), u.linksCut, u.linksNew, u.linksReactivated, ft.total());
+    if (kind == "removed object")
+        std::printf("removed object %s: %d links cut, %d pixels filled (%d from the model), "
+                    "%.4f s (%.4f s of it the fill)\n",
+                    name.c_str(), u.linksCut, dyn.removedRegion().filled,
+                    dyn.removedRegion().modelled, ft.total(), ft.fill);
+    else
+        std::printf("inserted %s %s: %d links cut, %d new, %d reactivated, %.4f s\n", kind.c_str(),
+                    name.c_str(), u.linksCut, u.linksNew, u.linksReactivated, ft.total());
     return {{"kind", kind},
             {"name", name},
             {"links_cut", u.linksCut},
@@ -46,7 +52,8 @@ nlohmann::json insertionReport(const DynamicRelighting& dyn, const std::string& 
               {"visibility", ft.visibility},
               {"links", ft.links},
               {"radiosity", ft.radiosity},
-              {"vertices", ft.vertices}}}};
+              {"vertices", ft.vertices},
+              {"fill", ft.fill}}}};
 }
 
 /// The relit image of an edit with virtual lights or objects: each is inserted into the
@@ -55,6 +62,11 @@ Image renderWithVirtualParts(Relighting& full, const EditFile& edit,
                              std::span<const radiosity::Rgb> radiance, DisplayMode mode,
                              nlohmann::json& report) {
     DynamicRelighting dyn(full, radiance);
+    // Real objects out first: the virtual parts then light and shade the room without them.
+    for (const std::string& name : edit.removeObjects) {
+        dyn.removeObject(name);
+        report.push_back(insertionReport(dyn, "removed object", name));
+    }
     for (const VirtualLight& l : edit.addLights) {
         dyn.addLight(l);
         report.push_back(insertionReport(dyn, "light", l.name));
@@ -154,13 +166,13 @@ int runRender(const RenderArgs& a) {
     EditFile edit;
     if (!a.edit.empty()) {
         edit = loadEdit(a.edit, sf);
-        requireRenderable(edit);
     }
     for (const std::string& w : edit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // A folder that cannot be made fails at once too, not after the preparation.
     if (!a.debugViews.empty()) createDebugViewsFolder(a.debugViews);
     std::unique_ptr<Relighting> full;
-    const bool virtualParts = !edit.addLights.empty() || !edit.addObjects.empty();
+    const bool virtualParts =
+        !edit.addLights.empty() || !edit.addObjects.empty() || !edit.removeObjects.empty();
     const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false,
                                           a.debugViews.empty() && !virtualParts ? nullptr : &full);
     RenderTimes t;

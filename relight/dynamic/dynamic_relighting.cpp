@@ -50,6 +50,7 @@ DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radianc
     virtualDirect_.assign(nv, Rgb{});
     indirect_.assign(nv, Rgb{});
     indirect0_ = indirectPerNode();
+    maskGrowth_ = defaultMaskGrowth(r.items.width, r.items.height);
 }
 
 DynamicRelighting::~DynamicRelighting() {
@@ -112,13 +113,74 @@ void DynamicRelighting::moveLastObject(std::vector<radiosity::Polygon> polygons)
     afterUpdate(u, false);
 }
 
+void DynamicRelighting::removeObject(const std::string& name) {
+    const auto& scene = solver_.scene();
+    const int object = scene.findObject(name);
+    if (object < 0 || name.starts_with("light:") ||
+        static_cast<size_t>(object) >= r_.scene.scene.objects.size())
+        throw std::invalid_argument("the scene has no object \"" + name + "\"");
+    radiosity::DynamicUpdate u;
+    solver_.removeRealObject(object, &u);
+    afterUpdate(u, false);
+}
+
 void DynamicRelighting::removeLast() {
-    const bool light = static_cast<int>(solver_.scene().lights.size()) > realLights_ &&
+    const bool removal = solver_.lastIsRemoval();
+    const bool light = !removal && static_cast<int>(solver_.scene().lights.size()) > realLights_ &&
                        solver_.scene().polygons.back().light >= 0;
     radiosity::DynamicUpdate u;
     solver_.removeLastObject(&u);
     if (light) radiance_.pop_back();
     afterUpdate(u, light);
+}
+
+void DynamicRelighting::refreshRemoved(const radiosity::DynamicUpdate& u, bool allLights) {
+    const auto t0 = Clock::now();
+    const std::vector<int> removed = solver_.removedObjects();
+    if (removed.empty()) {
+        removed_ = RemovedRegion{};
+        regionObjects_.clear();
+        times_.fill = secondsSince(t0);
+        return;
+    }
+    // A removal (or its undoing) builds the region again; other changes measure its direct
+    // light again where they may have changed it.
+    const bool fresh = removed != regionObjects_;
+    if (fresh) {
+        removed_ = buildRemovedRegion(r_, removed, realNodes_, maskGrowth_);
+        regionObjects_ = removed;
+    }
+    if (fresh || allLights) {
+        measureRegionDirect(removed_, r_, radiance_);
+    } else {
+        std::vector<char> changed(realNodes_, 0);
+        for (int leaf : u.shadowLeaves) {
+            while (leaf >= 0 && static_cast<size_t>(leaf) >= realNodes_)
+                leaf = solver_.hierarchy().nodes[leaf].parent;
+            if (leaf >= 0) changed[static_cast<size_t>(leaf)] = 1;
+        }
+        measureRegionDirect(removed_, r_, radiance_, &changed);
+    }
+    times_.fill = secondsSince(t0);
+}
+
+radiosity::Rgb DynamicRelighting::indirectAt(int leaf, const Vec3& x) const {
+    const PreparedImage& P = r_.prepared;
+    const size_t L = static_cast<size_t>(realLights_);
+    const auto st = r_.mesh->stencil(leaf, x);
+    Rgb sum;
+    for (int i = 0; i < st.count; ++i) {
+        const auto v = static_cast<size_t>(st.vertex[static_cast<size_t>(i)]);
+        Rgb ind = indirect_[v];
+        for (size_t l = 0; l < L; ++l) {
+            const Rgb part = P.vertexIndirect.empty() ? P.lighting.response[v * L + l] -
+                                                            Rgb::gray(r_.direct.visible[v * L + l])
+                                                      : P.vertexIndirect[v * L + l];
+            ind += radiance_[l] * part;
+        }
+        sum += ind * st.weight[static_cast<size_t>(i)];
+    }
+    return sum;
 }
 
 void DynamicRelighting::markChangedLeaves(const std::vector<int>& leaves) {
@@ -232,6 +294,7 @@ void DynamicRelighting::afterUpdate(const radiosity::DynamicUpdate& u, bool allV
     refreshDirect(vertices, /*virtualOnly=*/allVertices);
     refreshIndirect(allVertices);
     times_.vertices = secondsSince(t0);
+    refreshRemoved(u, allVertices);
 }
 
 void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool virtualOnly) {
@@ -400,6 +463,14 @@ VirtualOverlay DynamicRelighting::overlay() {
             y1 = std::max(y1, static_cast<int>(std::ceil(v)));
         }
     }
+    // The pixels of the real objects taken out.
+    const RemovedRegion& gone = removed_;
+    if (!gone.empty()) {
+        x0 = std::min(x0, gone.x0);
+        y0 = std::min(y0, gone.y0);
+        x1 = std::max(x1, gone.x0 + gone.width - 1);
+        y1 = std::max(y1, gone.y0 + gone.height - 1);
+    }
     VirtualOverlay o;
     o.x0 = std::max(x0, 0);
     o.y0 = std::max(y0, 0);
@@ -422,11 +493,32 @@ VirtualOverlay DynamicRelighting::overlay() {
             const int x = o.x0 + bx, y = o.y0 + by;
             double realShare = 0;
             Rgb added;
+            // A pixel of a removed object: replaced whole, its real samples by the fill.
+            const bool filled = !gone.empty() && gone.inMask(x, y);
+            const size_t g =
+                filled ? static_cast<size_t>((y - gone.y0) * gone.width + x - gone.x0) : 0;
             for (int s = 0; s < k * k; ++s) {
                 const double u = x - 0.5 + ((s % k) + 0.5) / k;
                 const double v = y - 0.5 + ((s / k) + 0.5) / k;
                 const Vec3 dir = camera.rayDirection(u, v);
                 const auto hit = vis.intersect(eye, dir);
+                if (hit.polygon < static_cast<int>(realPolygons_) && filled) {
+                    const size_t i = g * static_cast<size_t>(k * k) + static_cast<size_t>(s);
+                    const int p = gone.polygon[i];
+                    if (p < 0) continue;
+                    const int light = scene.polygons[static_cast<size_t>(p)].light;
+                    if (light >= 0) {
+                        added += radiance_[static_cast<size_t>(light)];
+                        continue;
+                    }
+                    if (gone.leaf[i] < 0) continue;
+                    const Rgb Hs = gone.direct[i] + indirectAt(gone.leaf[i], gone.point[i]);
+                    for (int c = 0; c < 3; ++c)
+                        added[c] +=
+                            static_cast<double>(gone.reflectance[3 * g + static_cast<size_t>(c)]) *
+                            Hs[c];
+                    continue;
+                }
                 if (hit.polygon < static_cast<int>(realPolygons_)) {
                     realShare += 1;  // the photo's sample, as the ratio display shows
                     continue;

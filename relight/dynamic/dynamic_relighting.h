@@ -31,6 +31,7 @@
 
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/solver.h"
+#include "relight/dynamic/object_removal.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/image.h"
 #include "relight/relighting.h"
@@ -45,7 +46,10 @@ struct FrameTimes {
     double radiosity = 0;   ///< gather/push-pull
     double vertices = 0;    ///< direct light at the changed vertices, indirect change
     double display = 0;     ///< item buffer in the boxes, ratio display, virtual surfaces
-    double total() const { return shafts + visibility + links + radiosity + vertices + display; }
+    double fill = 0;        ///< a removed object's pixels: rays, texture synthesis, direct light
+    double total() const {
+        return shafts + visibility + links + radiosity + vertices + display + fill;
+    }
 };
 
 /// What the virtual parts show in their projected bounding box, per pixel of the box: the
@@ -78,8 +82,17 @@ class DynamicRelighting {
     void addObject(const VirtualObject& object);
     /// Moves the object added last to new world-space polygons (same faces).
     void moveLastObject(std::vector<radiosity::Polygon> polygons);
-    /// Removes the virtual part added last (object or light).
+    /// Takes the scene's object `name` out (Loscos et al. 1999, §5.3): out of the solver
+    /// (radiosity::HierarchicalSolver::removeRealObject), its shadows gone through the display
+    /// as any change of light, and its pixels filled (relight/dynamic/object_removal.h; the
+    /// overlay replaces them). Throws std::invalid_argument when the scene has no such
+    /// object or it is out already.
+    void removeObject(const std::string& name);
+    /// Undoes the last change: removes the virtual part added last (object or light), or
+    /// brings back the real object taken out last.
     void removeLast();
+    /// The pixels of the objects taken out, as the overlay fills them (empty: none).
+    const RemovedRegion& removedRegion() const { return removed_; }
 
     /// The relit photo as it stands: the display of vertexDisplay(mode) with overlay(); for
     /// DisplayMode::pixel, the per-pixel display (relight/pipeline/pixel_light.h) with the
@@ -144,6 +157,13 @@ class DynamicRelighting {
     std::vector<char> leafPending_, leafEver_;
     std::vector<float> pixelDirect_;
     size_t pixelLights_ = 0;
+    /// The real objects taken out: their pixels (object_removal.h), and the mask's growth.
+    RemovedRegion removed_;
+    std::vector<int> regionObjects_;  ///< the objects removed_ was built for
+    int maskGrowth_ = 1;
+    void refreshRemoved(const radiosity::DynamicUpdate& u, bool allLights);
+    /// The indirect irradiance at a point of a scene leaf, as the edit stands.
+    Rgb indirectAt(int leaf, const radiosity::Vec3& x) const;
     FrameTimes times_;
     radiosity::DynamicUpdate last_;
 };

@@ -266,11 +266,4 @@ std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
     return out;
 }
 
-void requireRenderable(const EditFile& edit) {
-    if (edit.removeObjects.empty()) return;
-    throw InputError(edit.file.string() +
-                     ": \"remove_objects\" is not supported yet (this version changes real "
-                     "lights and adds virtual lights and objects)");
-}
-
 }  // namespace relight

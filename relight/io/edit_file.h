@@ -6,8 +6,7 @@
 // Every part is read and checked here: real-light changes, virtual lights (their emitting
 // face checked like a scene light's), virtual objects (OBJ, PLY or glTF read relative to the edit
 // file, faces checked and repaired like the scene's, placed by the transform) and removals
-// (removable objects of the scene). Rendering applies all but the removals so far:
-// requireRenderable() refuses those with a clear message.
+// (removable objects of the scene).
 #pragma once
 
 #include <array>
@@ -87,9 +86,5 @@ std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
 /// repairs' messages go to `warnings`. The viewer places its boxes with it, so that a
 /// saved edit loads to the same polygons.
 void placeObject(VirtualObject& v, ObjFile obj, std::vector<std::string>& warnings);
-
-/// Throws InputError("<file>: \"remove_objects\" is not supported yet ...") when the edit
-/// removes real objects, which this version cannot render; returns otherwise.
-void requireRenderable(const EditFile& edit);
 
 }  // namespace relight

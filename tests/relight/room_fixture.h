@@ -38,7 +38,8 @@ inline Score scoreAgainstTruth(const std::string& dir, const std::string& edit, 
                       readMask(dir + "/photo.mask.png", w, h));
 }
 
-/// The scene in `dir` prepared with `o`, and its edit `edit` (virtual parts inserted)
+/// The scene in `dir` prepared with `o`, and its edit `edit` (real objects taken out, then
+/// virtual parts inserted, as relight render does)
 /// rendered in each display of `modes`, in that order.
 struct EditRenders {
     std::unique_ptr<Relighting> relighting;
@@ -51,6 +52,7 @@ inline EditRenders renderEditIn(const std::string& dir, const std::string& edit,
     Relighting& r = *out.relighting;
     const EditFile e = loadEdit(dir + "/edits/" + edit + ".json", r.scene);
     DynamicRelighting dyn(r, editRadiance(r.scene, e, r.prepared.photoRadiance));
+    for (const auto& name : e.removeObjects) dyn.removeObject(name);
     for (const auto& l : e.addLights) dyn.addLight(l);
     for (const auto& obj : e.addObjects) dyn.addObject(obj);
     for (const DisplayMode mode : modes) out.images.push_back(dyn.render(mode));

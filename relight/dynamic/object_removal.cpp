@@ -1,0 +1,331 @@
+#include "relight/dynamic/object_removal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+#include "radiosity/direct_light.h"
+#include "radiosity/parallel.h"
+#include "radiosity/stopwatch.h"
+#include "relight/pipeline/pixel_light.h"
+#include "relight/pipeline/texture_fill.h"
+
+namespace relight {
+
+using radiosity::Rgb;
+using radiosity::Vec3;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// Seeds of the shadow rays of the region's samples, apart from the scene's and the objects'.
+constexpr uint64_t kRegionSeed = 0x4e30e5ull << 28;
+/// Sources whose photo irradiance is below this fraction of their surface's median are
+/// left out of the texture sample: deep in a shadow, T / H is the photo's noise over a
+/// small, less certain H (the 1999 paper's confidence, §4.2).
+constexpr double kDarkSource = 0.1;
+/// The texture sample: the photo's pixels within this many pixels of the mask's box, or
+/// its own size if larger (a wide hole needs a wide sample).
+constexpr int kSampleMargin = 48;
+
+/// The photo's irradiance at pixel px: the per-pixel display's denominator (per-pixel
+/// direct light and interpolated indirect light), or the vertex irradiance interpolated
+/// without per-pixel light.
+Rgb photoIrradiance(const PreparedImage& P, size_t px) {
+    const DisplayMap& map = P.display;
+    const int k0 = map.start[px], k1 = map.start[px + 1];
+    double wsum = 0;
+    for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+    if (!(wsum > 0)) return Rgb{};
+    const size_t L = P.photoRadiance.size();
+    Rgb H;
+    for (int k = k0; k < k1; ++k) {
+        const auto v = static_cast<size_t>(map.vertex[static_cast<size_t>(k)]);
+        const double w = static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum;
+        if (!P.pixelDirect.empty())
+            for (size_t l = 0; l < L; ++l)
+                H += P.photoRadiance[l] * P.vertexIndirect[v * L + l] * w;
+        else
+            H += P.lighting.irradiance(static_cast<int>(v), P.photoRadiance) * w;
+    }
+    if (!P.pixelDirect.empty())
+        for (size_t l = 0; l < L; ++l)
+            H += P.photoRadiance[l] * static_cast<double>(P.pixelDirect[px * L + l]);
+    return H;
+}
+
+/// Max filter of radius g over a w x h mask, separable (rows, then columns).
+std::vector<char> dilate(const std::vector<char>& m, int w, int h, int g) {
+    std::vector<char> rows(m.size(), 0), out(m.size(), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!m[static_cast<size_t>(y * w + x)]) continue;
+            for (int d = std::max(0, x - g); d <= std::min(w - 1, x + g); ++d)
+                rows[static_cast<size_t>(y * w + d)] = 1;
+        }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!rows[static_cast<size_t>(y * w + x)]) continue;
+            for (int d = std::max(0, y - g); d <= std::min(h - 1, y + g); ++d)
+                out[static_cast<size_t>(d * w + x)] = 1;
+        }
+    return out;
+}
+
+}  // namespace
+
+int defaultMaskGrowth(int width, int height) {
+    const double diagonal = std::hypot(static_cast<double>(width), static_cast<double>(height));
+    return std::max(1, static_cast<int>(std::lround(diagonal / 400.0)));
+}
+
+RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& removed,
+                                 size_t realNodes, int grow) {
+    const auto t0 = radiosity::Clock::now();
+    RemovedRegion region;
+    const ItemBuffer& items = r.items;
+    const PreparedImage& P = r.prepared;
+    const auto& solver = *r.solver;
+    const auto& scene = solver.scene();
+    const auto& h = solver.hierarchy();
+    const auto& vis = solver.visibility();
+    const int W = items.width, H = items.height;
+    const size_t realPolygons = r.surface.size();
+    std::vector<char> isRemoved(scene.polygons.size(), 0);
+    for (size_t p = 0; p < realPolygons; ++p)
+        isRemoved[p] =
+            std::find(removed.begin(), removed.end(), scene.polygons[p].object) != removed.end();
+    const auto surfaceOf = [&](int p) {
+        return p >= 0 && static_cast<size_t>(p) < realPolygons && !isRemoved[p] &&
+                       scene.polygons[static_cast<size_t>(p)].light < 0
+                   ? r.surface[static_cast<size_t>(p)]
+                   : -1;
+    };
+
+    // 1. The pixels the objects covered in the photo, and their box grown.
+    std::vector<char> core(static_cast<size_t>(W) * static_cast<size_t>(H), 0);
+    int cx0 = W, cy0 = H, cx1 = -1, cy1 = -1;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            for (int s = 0; s < items.spp; ++s) {
+                const int p = items.polygon[static_cast<size_t>(items.sampleIndex(x, y, s))];
+                if (p < 0 || static_cast<size_t>(p) >= realPolygons || !isRemoved[p]) continue;
+                core[static_cast<size_t>(y * W + x)] = 1;
+                cx0 = std::min(cx0, x);
+                cy0 = std::min(cy0, y);
+                cx1 = std::max(cx1, x);
+                cy1 = std::max(cy1, y);
+                break;
+            }
+    if (cx1 < 0) return region;
+    const int bx0 = std::max(0, cx0 - grow), by0 = std::max(0, cy0 - grow);
+    const int bw = std::min(W - 1, cx1 + grow) - bx0 + 1,
+              bh = std::min(H - 1, cy1 + grow) - by0 + 1;
+    const size_t boxPixels = static_cast<size_t>(bw) * static_cast<size_t>(bh);
+
+    // 2. The camera's samples in the box again, the objects hidden; virtual parts in front
+    //    are passed through (the overlay draws them over the fill at each frame).
+    const int k =
+        std::max(1, static_cast<int>(std::floor(std::sqrt(static_cast<double>(items.spp)))));
+    const size_t kk = static_cast<size_t>(k * k);
+    region.k = k;
+    region.polygon.assign(boxPixels * kk, -1);
+    region.leaf.assign(boxPixels * kk, -1);
+    region.point.assign(boxPixels * kk, Vec3{0, 0, 0});
+    region.direct.assign(boxPixels * kk, Rgb{});
+    const Camera& camera = r.scene.camera;
+    const Vec3 eye = camera.position();
+    const double diag = glm::length(h.nodes[0].bounds.diagonal());
+    std::vector<int> nowSurface(boxPixels, -1);
+    radiosity::parallelFor(static_cast<size_t>(bh), 1, [&](size_t row) {
+        std::unordered_map<int, int> votes;
+        for (int bx = 0; bx < bw; ++bx) {
+            const int x = bx0 + bx, y = by0 + static_cast<int>(row);
+            const size_t b = row * static_cast<size_t>(bw) + static_cast<size_t>(bx);
+            votes.clear();
+            for (size_t s = 0; s < kk; ++s) {
+                const double u =
+                    x - 0.5 + (static_cast<double>(s % static_cast<size_t>(k)) + 0.5) / k;
+                const double v =
+                    y - 0.5 + (static_cast<double>(s / static_cast<size_t>(k)) + 0.5) / k;
+                const Vec3 dir = camera.rayDirection(u, v);
+                double tMin = 0;
+                radiosity::Visibility::Hit hit;
+                for (int pass = 0; pass < 8; ++pass) {
+                    hit = vis.intersect(eye, dir, tMin);
+                    if (hit.polygon < 0 || static_cast<size_t>(hit.polygon) < realPolygons) break;
+                    tMin = hit.t + 1e-6 * diag;  // a virtual part: what lies behind it
+                }
+                if (hit.polygon < 0 || static_cast<size_t>(hit.polygon) >= realPolygons) continue;
+                const size_t i = b * kk + s;
+                const Vec3 point = eye + hit.t * dir;
+                region.polygon[i] = hit.polygon;
+                region.point[i] = point;
+                if (scene.polygons[static_cast<size_t>(hit.polygon)].light >= 0) continue;
+                if (glm::dot(scene.polygons[static_cast<size_t>(hit.polygon)].normal, dir) >= 0) {
+                    region.polygon[i] = -1;  // a back face: black, as the display shows it
+                    continue;
+                }
+                int leaf = h.locateLeaf(hit.polygon, point);
+                while (leaf >= 0 && static_cast<size_t>(leaf) >= realNodes)
+                    leaf = h.nodes[leaf].parent;
+                region.leaf[i] = leaf;
+                ++votes[surfaceOf(hit.polygon)];
+            }
+            int best = -1, most = 0;
+            for (const auto& [s, n] : votes)
+                if (n > most || (n == most && s < best)) {
+                    best = s;
+                    most = n;
+                }
+            nowSurface[b] = best;
+        }
+    });
+
+    // The mask: the covered pixels, and the ring around them on the surfaces they revealed.
+    std::vector<char> boxCore(boxPixels, 0);
+    std::vector<int> revealed;
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+            const size_t b = static_cast<size_t>(by * bw + bx);
+            boxCore[b] = core[static_cast<size_t>((by0 + by) * W + bx0 + bx)];
+            if (boxCore[b] && nowSurface[b] >= 0) revealed.push_back(nowSurface[b]);
+        }
+    std::sort(revealed.begin(), revealed.end());
+    revealed.erase(std::unique(revealed.begin(), revealed.end()), revealed.end());
+    const std::vector<char> grown = dilate(boxCore, bw, bh, grow);
+    std::vector<char> mask(boxPixels, 0);
+    for (size_t b = 0; b < boxPixels; ++b)
+        mask[b] = boxCore[b] ||
+                  (grown[b] && std::binary_search(revealed.begin(), revealed.end(), nowSurface[b]));
+
+    // 3. The reflectance image around the mask, and the fill.
+    const int margin = std::max({kSampleMargin, bw, bh});
+    const int wx0 = std::max(0, bx0 - margin), wy0 = std::max(0, by0 - margin);
+    const int ww = std::min(W - 1, bx0 + bw - 1 + margin) - wx0 + 1;
+    const int wh = std::min(H - 1, by0 + bh - 1 + margin) - wy0 + 1;
+    const size_t windowPixels = static_cast<size_t>(ww) * static_cast<size_t>(wh);
+    std::vector<float> value(3 * windowPixels, 0.0f);
+    std::vector<int> regionId(windowPixels, -1);
+    std::vector<FillRole> role(windowPixels, FillRole::none);
+    std::vector<double> light(windowPixels, 0.0);
+    const auto inBoxMask = [&](int x, int y) {
+        return x >= bx0 && y >= by0 && x < bx0 + bw && y < by0 + bh &&
+               (mask[static_cast<size_t>((y - by0) * bw + x - bx0)] ||
+                boxCore[static_cast<size_t>((y - by0) * bw + x - bx0)]);
+    };
+    radiosity::parallelFor(static_cast<size_t>(wh), 4, [&](size_t row) {
+        for (int wx = 0; wx < ww; ++wx) {
+            const int x = wx0 + wx, y = wy0 + static_cast<int>(row);
+            const size_t w = row * static_cast<size_t>(ww) + static_cast<size_t>(wx);
+            if (inBoxMask(x, y)) {
+                const size_t b = static_cast<size_t>((y - by0) * bw + x - bx0);
+                if (mask[b] && nowSurface[b] >= 0) {
+                    role[w] = FillRole::fill;
+                    regionId[w] = nowSurface[b];
+                }
+                continue;
+            }
+            const size_t px =
+                static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x);
+            if (!shownPerPixel(P.display, px)) continue;
+            int s0 = -2;
+            bool one = true;
+            for (int s = 0; s < items.spp && one; ++s) {
+                const int sf =
+                    surfaceOf(items.polygon[static_cast<size_t>(items.sampleIndex(x, y, s))]);
+                one = sf >= 0 && (s0 == -2 || sf == s0);
+                s0 = sf;
+            }
+            if (!one) continue;
+            const Rgb Hp = photoIrradiance(P, px);
+            if (!(Hp.minComponent() > 0)) continue;
+            const float* t = P.photo.rgb.data() + px * 3;
+            for (int c = 0; c < 3; ++c)
+                value[3 * w + static_cast<size_t>(c)] =
+                    static_cast<float>(static_cast<double>(t[c]) / Hp[c]);
+            light[w] = Hp.luminance();
+            role[w] = FillRole::source;
+            regionId[w] = s0;
+        }
+    });
+    // Dark sources out, against their surface's median light.
+    std::unordered_map<int, std::vector<double>> lights;
+    for (size_t w = 0; w < windowPixels; ++w)
+        if (role[w] == FillRole::source) lights[regionId[w]].push_back(light[w]);
+    std::unordered_map<int, double> median;
+    for (auto& [s, l] : lights) {
+        std::nth_element(l.begin(), l.begin() + static_cast<std::ptrdiff_t>(l.size() / 2), l.end());
+        median[s] = l[l.size() / 2];
+    }
+    for (size_t w = 0; w < windowPixels; ++w)
+        if (role[w] == FillRole::source && light[w] < kDarkSource * median[regionId[w]])
+            role[w] = FillRole::none;
+    const TextureFillResult fill = fillTexture({ww, wh, value, regionId, role});
+
+    // The region: the box, the fill's reflectance; the leaf's model where the photo shows
+    // none of the surface.
+    region.x0 = bx0;
+    region.y0 = by0;
+    region.width = bw;
+    region.height = bh;
+    region.mask = mask;
+    region.reflectance.assign(3 * boxPixels, 0.0f);
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+            const size_t b = static_cast<size_t>(by * bw + bx);
+            if (!mask[b] || nowSurface[b] < 0) continue;
+            const size_t w = static_cast<size_t>(by0 + by - wy0) * static_cast<size_t>(ww) +
+                             static_cast<size_t>(bx0 + bx - wx0);
+            if (!fill.unfilled[w]) {
+                for (int c = 0; c < 3; ++c)
+                    region.reflectance[3 * b + static_cast<size_t>(c)] =
+                        fill.value[3 * w + static_cast<size_t>(c)];
+                ++region.filled;
+                continue;
+            }
+            for (size_t s = 0; s < kk; ++s) {
+                const int leaf = region.leaf[b * kk + s];
+                if (leaf < 0) continue;
+                for (int c = 0; c < 3; ++c)
+                    region.reflectance[3 * b + static_cast<size_t>(c)] =
+                        static_cast<float>(h.nodes[static_cast<size_t>(leaf)].rho[c] / kPi);
+                break;
+            }
+            ++region.modelled;
+        }
+    region.seconds = radiosity::secondsSince(t0);
+    return region;
+}
+
+void measureRegionDirect(RemovedRegion& region, const Relighting& r, std::span<const Rgb> radiance,
+                         const std::vector<char>* changedLeaves) {
+    if (region.empty()) return;
+    const auto& solver = *r.solver;
+    const auto& scene = solver.scene();
+    const size_t L = scene.lights.size();
+    const radiosity::DirectLight direct(solver, r.directOptions);
+    const size_t kk = static_cast<size_t>(region.k * region.k);
+    radiosity::parallelForChunks(region.mask.size(), 16, [&](size_t first, size_t last) {
+        std::vector<double> G(L);
+        for (size_t b = first; b != last; ++b) {
+            if (!region.mask[b]) continue;
+            for (size_t s = 0; s < kk; ++s) {
+                const size_t i = b * kk + s;
+                const int leaf = region.leaf[i];
+                if (leaf < 0) continue;
+                if (changedLeaves && !(static_cast<size_t>(leaf) < changedLeaves->size() &&
+                                       (*changedLeaves)[static_cast<size_t>(leaf)]))
+                    continue;
+                direct.geometry(region.polygon[i], region.point[i], kRegionSeed + i, G.data());
+                Rgb d;
+                for (size_t l = 0; l < L && l < radiance.size(); ++l)
+                    d += radiance[l] * (kPi * G[l]);
+                region.direct[i] = d;
+            }
+        }
+    });
+}
+
+}  // namespace relight
