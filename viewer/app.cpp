@@ -16,7 +16,7 @@ namespace {
 
 constexpr float kPanelWidth = 360.0f;  ///< window pixels
 
-enum class Tool { select, light, box };
+enum class Tool { select, light, box, remove };
 
 /// Where the photo is drawn in the window (window coordinates, y down): the area left of
 /// the panel, at the photo's aspect, centred.
@@ -138,9 +138,11 @@ void App::objectsPanel() {
     if (ImGui::RadioButton("add light", tool_ == Tool::light)) tool_ = Tool::light;
     ImGui::SameLine();
     if (ImGui::RadioButton("add box", tool_ == Tool::box)) tool_ = Tool::box;
+    if (ImGui::RadioButton("remove real objects", tool_ == Tool::remove)) tool_ = Tool::remove;
     ImGui::TextDisabled(tool_ == Tool::select  ? "drag an object over the surface it stands on"
                         : tool_ == Tool::light ? "click a surface: a lamp on it"
-                                               : "click a surface: a box standing on it");
+                        : tool_ == Tool::box   ? "click a surface: a box standing on it"
+                                               : "click an object marked removable: it goes");
     const auto& objects = session_.objects();
     int remove = -1;
     for (size_t i = 0; i < objects.size(); ++i) {
@@ -161,6 +163,17 @@ void App::objectsPanel() {
         ImGui::PopID();
     }
     if (remove >= 0) act("removing the object", [&] { session_.removeObject(remove); });
+    // The real objects taken out, each with a button that brings it back.
+    std::string restore;
+    for (const std::string& name : session_.removedObjects()) {
+        ImGui::PushID(name.c_str());
+        ImGui::Text("%s (taken out)", name.c_str());
+        ImGui::SameLine();
+        if (ImGui::SmallButton("bring back")) restore = name;
+        ImGui::PopID();
+    }
+    if (!restore.empty())
+        act("bringing the object back", [&] { session_.restoreRealObject(restore); });
 }
 
 void App::displayPanel() {
@@ -250,6 +263,10 @@ void App::mouse(const PhotoRect& r) {
             act("adding a light", [&] { session_.addLightAt(pick); });
         else if (tool_ == Tool::box)
             act("adding a box", [&] { session_.addBoxAt(pick); });
+        else if (tool_ == Tool::remove && pick.realObject.empty())
+            status_ = "no removable object there (scene.json marks which are)";
+        else if (tool_ == Tool::remove)
+            act("removing the object", [&] { session_.removeRealObject(pick.realObject); });
         else if (pick.object >= 0)
             act("picking the object", [&] { session_.beginDrag(pick.object, pick); });
     }

@@ -8,6 +8,8 @@
 //   light:U,V          a virtual light on the surface under photo pixel (U, V)
 //   box:U,V            a box standing on the surface under (U, V)
 //   drag:U0,V0:U1,V1   grabs the object under (U0, V0) and drags it to (U1, V1)
+//   remove:U,V         takes out the removable real object under (U, V)
+//   restore:NAME       brings back the real object NAME
 // Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option, a
 // screenshot that cannot be written) print one clear line and exit with 2 for bad input, 3
 // for an output that cannot be written, 1 otherwise (relight/errors.h).
@@ -55,8 +57,9 @@ void parsePoint(const std::string& text, const std::string& action, double& u, d
 /// One --do action, parsed before the preparation so that a typo fails at once.
 struct Action {
     std::string text;  ///< as given, for messages
-    enum class Kind { light, box, drag } kind = Kind::light;
+    enum class Kind { light, box, drag, remove, restore } kind = Kind::light;
     double u = 0, v = 0, u1 = 0, v1 = 0;  ///< pixel; drag: from (u, v) to (u1, v1)
+    std::string name;                     ///< restore: the object
 };
 
 Action parseAction(const std::string& text) {
@@ -65,9 +68,14 @@ Action parseAction(const std::string& text) {
     const auto colon = text.find(':');
     const std::string kind = text.substr(0, colon);
     const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
-    if (kind == "light" || kind == "box") {
-        a.kind = kind == "light" ? Action::Kind::light : Action::Kind::box;
+    if (kind == "light" || kind == "box" || kind == "remove") {
+        a.kind = kind == "light" ? Action::Kind::light
+                 : kind == "box" ? Action::Kind::box
+                                 : Action::Kind::remove;
         parsePoint(rest, text, a.u, a.v);
+    } else if (kind == "restore" && !rest.empty()) {
+        a.kind = Action::Kind::restore;
+        a.name = rest;
     } else if (kind == "drag") {
         a.kind = Action::Kind::drag;
         const auto sep = rest.find(':');
@@ -77,14 +85,28 @@ Action parseAction(const std::string& text) {
         parsePoint(rest.substr(sep + 1), text, a.u1, a.v1);
     } else {
         throw std::invalid_argument("--do " + text +
-                                    ": unknown action (light:U,V, box:U,V, drag:U0,V0:U1,V1)");
+                                    ": unknown action (light:U,V, box:U,V, drag:U0,V0:U1,V1, "
+                                    "remove:U,V, restore:NAME)");
     }
     return a;
 }
 
 /// Does what the click (or the drag) would do in the window.
 void runAction(Session& s, const Action& a) {
+    if (a.kind == Action::Kind::restore) {
+        if (std::find(s.removedObjects().begin(), s.removedObjects().end(), a.name) ==
+            s.removedObjects().end())
+            throw InputError("--do " + a.text + ": \"" + a.name + "\" is not taken out");
+        s.restoreRealObject(a.name);
+        return;
+    }
     const Pick p = s.pick(a.u, a.v);
+    if (a.kind == Action::Kind::remove) {
+        if (p.realObject.empty())
+            throw InputError("--do " + a.text + ": no removable real object at that pixel");
+        s.removeRealObject(p.realObject);
+        return;
+    }
     if (a.kind != Action::Kind::drag) {
         if (!p.hit) throw std::invalid_argument("--do " + a.text + ": no surface at that pixel");
         if (a.kind == Action::Kind::light)

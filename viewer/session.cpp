@@ -77,6 +77,7 @@ Session::Session(Relighting& r, const EditFile& edit) : r_(&r) {
         c.setRadiance(v.radiance);
         lights_.push_back(c);
     }
+    removed_ = edit.removeObjects;
     for (const VirtualObject& o : edit.addObjects) {
         ObjectControl c;
         c.object = o;
@@ -97,6 +98,7 @@ void Session::rebuild() {
     const std::vector<Rgb> real = realRadiance();
     if (hasVirtualParts()) {
         dyn_ = std::make_unique<DynamicRelighting>(*r_, real);
+        for (const std::string& name : removed_) dyn_->removeObject(name);
         for (size_t l = static_cast<size_t>(realLights_); l < lights_.size(); ++l) {
             VirtualLight v = lights_[l].face;
             v.radiance = lights_[l].radiance();
@@ -188,7 +190,34 @@ Pick Session::pick(double u, double v) const {
         if (static_cast<size_t>(hit.polygon) >= objectPolygons_[i].first &&
             static_cast<size_t>(hit.polygon) < objectPolygons_[i].second)
             p.object = static_cast<int>(i);
+    const auto& scene = r_->scene;
+    if (static_cast<size_t>(hit.polygon) < scene.scene.polygons.size()) {
+        const int object = polygons[static_cast<size_t>(hit.polygon)].object;
+        const std::string& name = scene.scene.objects[static_cast<size_t>(object)];
+        const auto settings = scene.objectSettings.find(name);
+        if (settings != scene.objectSettings.end() && settings->second.removable)
+            p.realObject = name;
+    }
     return p;
+}
+
+void Session::removeRealObject(const std::string& name) {
+    const auto settings = r_->scene.objectSettings.find(name);
+    if (settings == r_->scene.objectSettings.end() || !settings->second.removable)
+        throw std::invalid_argument("object \"" + name +
+                                    "\" is not marked \"removable\" in scene.json");
+    if (std::find(removed_.begin(), removed_.end(), name) != removed_.end()) return;
+    removed_.push_back(name);
+    stale_ = true;
+    update();
+}
+
+void Session::restoreRealObject(const std::string& name) {
+    const auto it = std::find(removed_.begin(), removed_.end(), name);
+    if (it == removed_.end()) return;
+    removed_.erase(it);
+    stale_ = true;
+    update();
 }
 
 void Session::addLightAt(const Pick& p) {
@@ -398,6 +427,7 @@ EditFile Session::edit(const fs::path& editFile) const {
         if (o.viewerBox) v.file = boxObjFile(editFile);
         e.addObjects.push_back(v);
     }
+    e.removeObjects = removed_;
     return e;
 }
 

@@ -49,16 +49,16 @@ struct ObjectControl {
 struct Pick {
     bool hit = false;
     Vec3 point{0, 0, 0};
-    Vec3 normal{0, 0, 1};  ///< of the face hit, turned towards the camera
-    int object = -1;       ///< the virtual object hit, or -1
+    Vec3 normal{0, 0, 1};    ///< of the face hit, turned towards the camera
+    int object = -1;         ///< the virtual object hit, or -1
+    std::string realObject;  ///< the scene's object hit when scene.json marks it removable
 };
 
 class Session {
   public:
     /// `r` from prepareRelighting(), which must outlive the session (the session inserts
     /// its virtual parts into r's solver and takes them out again when it ends); `edit`
-    /// loaded against r.scene (its removals refused before: requireRenderable). The edit's
-    /// parts are inserted at once.
+    /// loaded against r.scene. The edit's removals and parts are made at once.
     Session(Relighting& r, const EditFile& edit);
     ~Session();
     Session(const Session&) = delete;
@@ -101,6 +101,14 @@ class Session {
     int dragging() const { return dragging_; }
     void removeLight(int i);  ///< a virtual light (index into lights())
     void removeObject(int i);
+    /// Takes the scene's removable object `name` out (Loscos et al. 1999, §5.3: its pixels
+    /// filled, its shadows gone; relight/dynamic/object_removal.h), or brings it back. The
+    /// parts are inserted again in render's order (removals first). Throws
+    /// std::invalid_argument for an object that scene.json does not mark removable.
+    void removeRealObject(const std::string& name);
+    void restoreRealObject(const std::string& name);
+    /// The scene's objects taken out, in the order they went.
+    const std::vector<std::string>& removedObjects() const { return removed_; }
 
     /// Changes whenever what the display shows changes.
     int generation() const { return generation_; }
@@ -136,13 +144,15 @@ class Session {
     /// naming the lights that changed.
     [[noreturn]] void undo(const std::vector<Rgb>& before);
     bool hasVirtualParts() const {
-        return lights_.size() > static_cast<size_t>(realLights_) || !objects_.empty();
+        return lights_.size() > static_cast<size_t>(realLights_) || !objects_.empty() ||
+               !removed_.empty();
     }
 
     Relighting* r_;
     std::unique_ptr<DynamicRelighting> dyn_;
     std::vector<LightControl> lights_;
     std::vector<ObjectControl> objects_;
+    std::vector<std::string> removed_;                       ///< real objects taken out
     std::vector<std::pair<size_t, size_t>> objectPolygons_;  ///< per object: its polygons
     std::vector<Rgb> applied_;  ///< radiances the solution was computed for
     bool stale_ = false;        ///< the parts changed in a way only rebuild() follows

@@ -4,6 +4,7 @@
 #    rounding boundary change, by one step; tests/viewer/viewer_test.cpp bounds the rest);
 #  - a session built by clicks (a light, a box, a drag) saved as an edit renders through
 #    `relight render` to the viewer's screenshot within the same step;
+#  - a real object removed by a click, saved, renders the same; brought back, the photo;
 #  - the window with its panel opens and draws;
 #  - clear messages and no output for a missing display, an OpenGL older than 3.3, a scene
 #    or edit that does not load, an edit whose display is not finite, a bad option or --do.
@@ -89,6 +90,30 @@ relight(o 0 render "${SCENE}" --edit "${WORK}/pixel_saved/session.json"
         -o "${WORK}/pixel_session_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_session_viewer.png" "${WORK}/pixel_session_render.png"
                      "per-pixel display, saved session")
+# Real-object removal (Loscos et al. 1999, §5.3) by a click on the table: the saved edit
+# names it and renders to the screenshot, in the ratio display (the GPU's) and per pixel;
+# brought back from the panel, the photo's display again.
+file(MAKE_DIRECTORY "${WORK}/removal")
+viewer(o 0 "${SCENE}" --do remove:180,155 --save-edit "${WORK}/removal/edit.json"
+       --screenshot "${WORK}/removal_viewer.png")
+file(READ "${WORK}/removal/edit.json" json)
+expect("${json}" "\"remove_objects\": \\[[^]]*\"table\"" "saved removal")
+relight(o 0 render "${SCENE}" --edit "${WORK}/removal/edit.json" -o "${WORK}/removal_render.png"
+        --cache "${cache}" ${as_viewer})
+expect("${o}" "removed object table: [0-9]+ links cut, [0-9]+ pixels filled" "render of the removal")
+same_within_one_step("${WORK}/removal_viewer.png" "${WORK}/removal_render.png" "removal")
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/remove_table.json" --display pixel
+       --screenshot "${WORK}/pixel_removal_viewer.png")
+relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/remove_table.json"
+        -o "${WORK}/pixel_removal_render.png" --cache "${WORK}/pixel.bin")
+same_within_one_step("${WORK}/pixel_removal_viewer.png" "${WORK}/pixel_removal_render.png"
+                     "per-pixel display, removal")
+viewer(o 0 "${SCENE}" --do remove:180,155 --do restore:table --screenshot "${WORK}/restored.png")
+same_within_one_step("${WORK}/restored.png" "${WORK}/identity_render.png" "table brought back")
+viewer(o 2 "${SCENE}" --do remove:250,60 --screenshot "${WORK}/never.png")
+expect("${o}" "remove:250,60: no removable real object at that pixel" "removal of a wall")
+viewer(o 2 "${SCENE}" --do restore:table --screenshot "${WORK}/never.png")
+expect("${o}" "\"table\" is not taken out" "restoring what is there")
 viewer(o 2 "${SCENE}" --display vertex --screenshot "${WORK}/never.png")
 expect("${o}" "--display" "a display that does not exist")
 
