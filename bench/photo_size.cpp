@@ -19,6 +19,8 @@
 //     median of the same rendered into a fresh image (renderEdit's returning form); the
 //     same edits in the per-pixel display (relight render's default, DisplayMode::pixel),
 //     so that the preparation measures the direct light per pixel too;
+//   - the time of taking the table out (relight/dynamic/object_removal.h) and of bringing it
+//     back, and the per-pixel frame after it;
 //   - the peak resident memory of the child.
 #include <sys/resource.h>
 #include <tbb/global_control.h>
@@ -40,6 +42,7 @@
 
 #include "bench/bench_util.h"
 #include "radiosity/stopwatch.h"
+#include "relight/dynamic/dynamic_relighting.h"
 #include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 
@@ -155,6 +158,33 @@ int runOne(const std::string& dir, int edits, double epsilon) {
     std::printf("   edit in the per-pixel display (image reused): median %.1f ms, p90 %.1f ms\n",
                 bench::quantile(perPixel, 0.5) * 1e3, bench::quantile(perPixel, 0.9) * 1e3);
     std::printf("   peak memory after the edits: %.0f MiB\n", maxRssMiB());
+
+    // Taking the table out (Loscos et al. 1999, §5.3; their 0.7-2.9 s) and bringing it back,
+    // 3 times: the solver's update, the fill (rays, texture synthesis, direct light at the
+    // revealed samples) and the per-pixel display's first frame.
+    std::vector<double> removal, fill, frame, back;
+    int filled = 0;
+    {
+        DynamicRelighting dyn(*r, P.photoRadiance);
+        for (int k = 0; k < 3; ++k) {
+            const auto t1 = Clock::now();
+            dyn.removeObject("table");
+            removal.push_back(secondsSince(t1));
+            fill.push_back(dyn.times().fill);
+            filled = dyn.removedRegion().filled + dyn.removedRegion().modelled;
+            const auto t2 = Clock::now();
+            const Image img = dyn.render(DisplayMode::pixel);
+            frame.push_back(secondsSince(t2));
+            const auto t3 = Clock::now();
+            dyn.removeLast();
+            back.push_back(secondsSince(t3));
+        }
+    }
+    std::printf(
+        "   removing the table (%d pixels filled): median %.3f s (the fill %.3f s), then the "
+        "per-pixel frame %.3f s; bringing it back %.3f s\n",
+        filled, bench::quantile(removal, 0.5), bench::quantile(fill, 0.5),
+        bench::quantile(frame, 0.5), bench::quantile(back, 0.5));
     std::fflush(stdout);
     return 0;
 }

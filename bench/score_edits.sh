@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # Every edit of the bundled scenes (and of any scene folders given), relit with each
 # display mode (ratio, confidence, pixel: relight/prepared.h) and scored against the path-traced truth (spec metric, `relight eval`):
-# rel_rmse and changed_rel_rmse side by side. Edits the engine refuses (remove_objects) are
-# listed as refused.
+# rel_rmse and changed_rel_rmse side by side. An edit the engine refuses is listed as refused.
 # Prepares each scene once per mode (a cache per scene and mode in the work folder).
 #   bash bench/score_edits.sh [SCENE_DIR ...]      (default: data/room data/cornell data/room-multi)
 # A scene folder without truth/ (a tessellated copy) may link its original's truth/.

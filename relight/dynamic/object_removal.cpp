@@ -262,7 +262,9 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
     for (size_t w = 0; w < windowPixels; ++w)
         if (role[w] == FillRole::source && light[w] < kDarkSource * median[regionId[w]])
             role[w] = FillRole::none;
-    const TextureFillResult fill = fillTexture({ww, wh, value, regionId, role});
+    TextureFillOptions fillOptions;
+    fillOptions.block = defaultFillBlock(W, H);
+    const TextureFillResult fill = fillTexture({ww, wh, value, regionId, role}, fillOptions);
 
     // The region: the box, the fill's reflectance; the leaf's model where the photo shows
     // none of the surface.

@@ -27,16 +27,12 @@ struct SplitMix {
 /// Half-width of the window the local random candidates are drawn from, pixels.
 constexpr int kLocalWindow = 24;
 
-}  // namespace
-
-TextureFillResult fillTexture(const TextureFillInput& in, const TextureFillOptions& options) {
+/// The fill, pixel by pixel (the header's algorithm); `origin` gets the source each fill
+/// pixel copied (-1: none).
+TextureFillResult fillPixels(const TextureFillInput& in, const TextureFillOptions& options,
+                             std::vector<int>& origin) {
     const int W = in.width, H = in.height;
-    const size_t n = W > 0 && H > 0 ? static_cast<size_t>(W) * static_cast<size_t>(H) : 0;
-    if (in.value.size() != 3 * n || in.region.size() != n || in.role.size() != n)
-        throw std::invalid_argument("fillTexture: " + std::to_string(in.value.size()) +
-                                    " values, " + std::to_string(in.region.size()) +
-                                    " regions and " + std::to_string(in.role.size()) +
-                                    " roles for " + std::to_string(n) + " pixels");
+    const size_t n = static_cast<size_t>(W) * static_cast<size_t>(H);
     TextureFillResult out;
     out.value.assign(in.value.begin(), in.value.end());
     out.unfilled.assign(n, 0);
@@ -103,7 +99,7 @@ TextureFillResult fillTexture(const TextureFillInput& in, const TextureFillOptio
                 std::exp(-(dx * dx + dy * dy) / (2 * sigma * sigma));
 
     std::vector<char> known(n, 0);
-    std::vector<int> origin(n, -1);
+    origin.assign(n, -1);
     for (size_t i = 0; i < n; ++i) known[i] = in.role[i] == FillRole::source ? 1 : 0;
     std::vector<int> candidates;
     for (int p : order) {
@@ -179,6 +175,100 @@ TextureFillResult fillTexture(const TextureFillInput& in, const TextureFillOptio
         for (int ch = 0; ch < 3; ++ch) out.value[3 * pi + ch] = in.value[3 * b + ch];
         origin[pi] = bestC;
         known[pi] = 1;
+        ++out.filled;
+    }
+    return out;
+}
+
+}  // namespace
+
+int defaultFillBlock(int width, int height) {
+    const double diagonal = std::hypot(static_cast<double>(width), static_cast<double>(height));
+    return std::max(1, static_cast<int>(std::lround(diagonal / 800.0)));
+}
+
+TextureFillResult fillTexture(const TextureFillInput& in, const TextureFillOptions& options) {
+    const int W = in.width, H = in.height;
+    const size_t n = W > 0 && H > 0 ? static_cast<size_t>(W) * static_cast<size_t>(H) : 0;
+    if (in.value.size() != 3 * n || in.region.size() != n || in.role.size() != n)
+        throw std::invalid_argument("fillTexture: " + std::to_string(in.value.size()) +
+                                    " values, " + std::to_string(in.region.size()) +
+                                    " regions and " + std::to_string(in.role.size()) +
+                                    " roles for " + std::to_string(n) + " pixels");
+    std::vector<int> origin;
+    const int s = std::max(1, options.block);
+    if (s == 1) return fillPixels(in, options, origin);
+
+    // Blocks of s x s pixels: a source block is s^2 sources of one region (its value their
+    // mean), a fill block any block with a fill pixel (its region their majority's).
+    const int CW = (W + s - 1) / s, CH = (H + s - 1) / s;
+    const size_t cn = static_cast<size_t>(CW) * static_cast<size_t>(CH);
+    std::vector<float> cvalue(3 * cn, 0.0f);
+    std::vector<int> cregion(cn, -1);
+    std::vector<FillRole> crole(cn, FillRole::none);
+    std::unordered_map<int, int> votes;
+    for (int cy = 0; cy < CH; ++cy)
+        for (int cx = 0; cx < CW; ++cx) {
+            const size_t c =
+                static_cast<size_t>(cy) * static_cast<size_t>(CW) + static_cast<size_t>(cx);
+            votes.clear();
+            int sources = 0, pixels = 0, sourceRegion = -1;
+            bool oneRegion = true;
+            double sum[3] = {0, 0, 0};
+            for (int y = cy * s; y < std::min(H, cy * s + s); ++y)
+                for (int x = cx * s; x < std::min(W, cx * s + s); ++x) {
+                    const size_t i =
+                        static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x);
+                    ++pixels;
+                    if (in.role[i] == FillRole::fill) ++votes[in.region[i]];
+                    if (in.role[i] != FillRole::source) continue;
+                    if (sources > 0 && in.region[i] != sourceRegion) oneRegion = false;
+                    sourceRegion = in.region[i];
+                    ++sources;
+                    for (int ch = 0; ch < 3; ++ch)
+                        sum[ch] += static_cast<double>(in.value[3 * i + ch]);
+                }
+            if (!votes.empty()) {
+                int most = 0;
+                for (const auto& [region, count] : votes)
+                    if (count > most || (count == most && region < cregion[c])) {
+                        most = count;
+                        cregion[c] = region;
+                    }
+                crole[c] = FillRole::fill;
+            } else if (sources == s * s && pixels == s * s && oneRegion) {
+                crole[c] = FillRole::source;
+                cregion[c] = sourceRegion;
+                for (int ch = 0; ch < 3; ++ch)
+                    cvalue[3 * c + static_cast<size_t>(ch)] = static_cast<float>(sum[ch] / sources);
+            }
+        }
+    const TextureFillResult coarse = fillPixels({CW, CH, cvalue, cregion, crole}, options, origin);
+
+    // Each fill pixel copies the pixel at its place in the block its block copied.
+    TextureFillResult out;
+    out.value.assign(in.value.begin(), in.value.end());
+    out.unfilled.assign(n, 0);
+    for (size_t i = 0; i < n; ++i) {
+        if (in.role[i] != FillRole::fill) continue;
+        const int x = static_cast<int>(i % static_cast<size_t>(W));
+        const int y = static_cast<int>(i / static_cast<size_t>(W));
+        const size_t c =
+            static_cast<size_t>(y / s) * static_cast<size_t>(CW) + static_cast<size_t>(x / s);
+        const int o = origin[c];
+        if (o < 0) {
+            out.unfilled[i] = 1;
+            ++out.withoutSource;
+            continue;
+        }
+        const int sx = (o % CW) * s + x % s, sy = (o / CW) * s + y % s;
+        const size_t j = static_cast<size_t>(sy) * static_cast<size_t>(W) + static_cast<size_t>(sx);
+        const bool exact =
+            sx < W && sy < H && in.role[j] == FillRole::source && in.region[j] == in.region[i];
+        for (int ch = 0; ch < 3; ++ch)
+            out.value[3 * i + static_cast<size_t>(ch)] =
+                exact ? in.value[3 * j + static_cast<size_t>(ch)]
+                      : coarse.value[3 * static_cast<size_t>(o) + static_cast<size_t>(ch)];
         ++out.filled;
     }
     return out;

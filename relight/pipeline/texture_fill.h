@@ -30,7 +30,17 @@ struct TextureFillOptions {
     int radius = 3;             ///< neighbourhood half-width, pixels (7 x 7)
     int randomCandidates = 48;  ///< random source pixels tried per pixel
     uint64_t seed = 0x7e47u;    ///< the random draws (the fill is reproducible)
+    /// Pixels per side of the blocks the synthesis works on (1: pixels). A block copies
+    /// whole blocks of the sample, at full resolution: on a large photo a texture spans
+    /// more pixels, and the window must grow with it (defaultFillBlock).
+    int block = 1;
 };
+
+/// The block size for a photo of this size: one pixel per 800 pixels of its diagonal, at
+/// least 1 (1 at 320 x 240, 2 at 1280 x 960, 6 at 4000 x 3000), so that the window covers
+/// the same part of the scene at any resolution, and the work grows as the hole's area over
+/// the block's, not as the pixel count.
+int defaultFillBlock(int width, int height);
 
 /// What each pixel is to the fill.
 enum class FillRole : uint8_t {

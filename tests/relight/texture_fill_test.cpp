@@ -109,3 +109,32 @@ TEST(TextureFill, MismatchedSizesAreRefused) {
     in.width = 5;
     EXPECT_THROW(fillTexture(in), std::invalid_argument);
 }
+
+TEST(TextureFill, BlocksCopyWholeBlocksOfTheSample) {
+    // The boards at twice the scale (each pixel of AStructuredTextureGoesOnThroughTheHole a
+    // 2 x 2 block), filled with blocks of 2: the same structure, and every filled value one of
+    // the texture's (copied, never averaged, where the copied pixel is a source).
+    Canvas c(128, 96);
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) c.set(x, y, boards(x / 2, y / 2));
+    for (int y = 36; y < 60; ++y)
+        for (int x = 50; x < 78; ++x) {
+            c.role[c.at(x, y)] = FillRole::fill;
+            c.set(x, y, -1.0f);
+        }
+    TextureFillOptions o;
+    o.block = 2;
+    const TextureFillResult r = fillTexture(c.input(), o);
+    EXPECT_EQ(r.filled, 28 * 24);
+    int right = 0;
+    for (int y = 36; y < 60; ++y)
+        for (int x = 50; x < 78; ++x) {
+            const float v = r.value[3 * c.at(x, y)];
+            right += (v > 0.4f) == ((x / 6) % 2 == 1) ? 1 : 0;
+            EXPECT_TRUE(v == 0.2f || v == 0.2f + 0.1f || v == 0.6f || v == 0.6f + 0.1f)
+                << x << " " << y << " " << v;
+        }
+    EXPECT_GE(right, 28 * 24 * 95 / 100);
+    EXPECT_EQ(defaultFillBlock(320, 240), 1);
+    EXPECT_EQ(defaultFillBlock(4000, 3000), 6);
+}
