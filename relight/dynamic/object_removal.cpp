@@ -215,6 +215,16 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
                (mask[static_cast<size_t>((y - by0) * bw + x - bx0)] ||
                 boxCore[static_cast<size_t>((y - by0) * bw + x - bx0)]);
     };
+    // No sample from the band around the object as wide again as the mask's growth: the
+    // photo's pixels there may still hold some of its colour (the camera's pixel filter, a
+    // calibration off by a pixel), and the onion peel copies its nearest sources most.
+    std::vector<char> windowCore(windowPixels, 0);
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx)
+            if (boxCore[static_cast<size_t>(by * bw + bx)])
+                windowCore[static_cast<size_t>(by0 + by - wy0) * static_cast<size_t>(ww) +
+                           static_cast<size_t>(bx0 + bx - wx0)] = 1;
+    const std::vector<char> guard = dilate(windowCore, ww, wh, 2 * grow + 1);
     radiosity::parallelFor(static_cast<size_t>(wh), 4, [&](size_t row) {
         for (int wx = 0; wx < ww; ++wx) {
             const int x = wx0 + wx, y = wy0 + static_cast<int>(row);
@@ -229,7 +239,7 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             }
             const size_t px =
                 static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x);
-            if (!shownPerPixel(P.display, px)) continue;
+            if (guard[w] || !shownPerPixel(P.display, px)) continue;
             int s0 = -2;
             bool one = true;
             for (int s = 0; s < items.spp && one; ++s) {
