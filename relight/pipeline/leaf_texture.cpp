@@ -92,6 +92,17 @@ int LeafTexture::samples(int node) const {
     return node < static_cast<int>(samples_.size()) ? static_cast<int>(samples_[node].size()) : 0;
 }
 
+std::span<const int> LeafTexture::sampleIndices(int node) const {
+    if (node < 0 || node >= static_cast<int>(samples_.size())) return {};
+    return samples_[static_cast<size_t>(node)];
+}
+
+Rgb LeafTexture::sampleColour(int idx) const {
+    const int px = idx / items_.spp;
+    const float* c = photo_.at(px % items_.width, px / items_.width);
+    return Rgb{c[0], c[1], c[2]};
+}
+
 Rgb LeafTexture::colour(int node) const {
     Rgb sum;
     if (samples(node) == 0) return sum;

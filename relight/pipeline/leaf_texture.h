@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "radiosity/hierarchy.h"
@@ -38,6 +39,13 @@ class LeafTexture {
     /// Mean photo colour of the leaf's samples (photo units), and their number.
     radiosity::Rgb colour(int node) const;
     int samples(int node) const;
+    /// The leaf's samples: item-buffer sample indices (empty for a node with none).
+    std::span<const int> sampleIndices(int node) const;
+    /// A sample's photo colour and the point it sees.
+    radiosity::Rgb sampleColour(int idx) const;
+    const radiosity::Vec3& samplePoint(int idx) const {
+        return items_.point[static_cast<size_t>(idx)];
+    }
 
   private:
     void ensure(int node);

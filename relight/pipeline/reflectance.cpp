@@ -251,12 +251,23 @@ bool leafReflectanceFromTexture(const radiosity::Hierarchy& h, const radiosity::
                                 const LeafTexture& texture, std::span<const Rgb> H, int leaf,
                                 int minSamples, Rgb* rho) {
     if (texture.samples(leaf) < minSamples) return false;
-    const int k = h.nodes[leaf].vertexCount;
-    Rgb Hn;
-    for (int i = 0; i < k; ++i) Hn += H[mesh.corners(leaf)[i]];
-    Hn = Hn * (1.0 / k);
+    // The ratio of the sums over the leaf's samples, each sample's H interpolated where it
+    // lies (over the display piece that holds it, as the display does): a shadow edge
+    // inside the leaf then weighs its lit and shadowed samples as the photo does, where the
+    // mean of the leaf's corners would count the whole leaf at their average.
+    (void)h;
+    Rgb c, Hn;
+    for (int idx : texture.sampleIndices(leaf)) {
+        const radiosity::Vec3& x = texture.samplePoint(idx);
+        const auto st = mesh.stencil(leaf, x);
+        Rgb Hs;
+        for (int i = 0; i < st.count; ++i)
+            Hs += H[static_cast<size_t>(st.vertex[static_cast<size_t>(i)])] *
+                  st.weight[static_cast<size_t>(i)];
+        Hn += Hs;
+        c += texture.sampleColour(idx);
+    }
     if (!(Hn.minComponent() > 0)) return false;
-    const Rgb c = texture.colour(leaf);
     for (int ch = 0; ch < 3; ++ch) (*rho)[ch] = std::numbers::pi * c[ch] / Hn[ch];
     return true;
 }
