@@ -73,6 +73,8 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
                                     std::to_string(pixels) + " pixels x " + std::to_string(L) +
                                     " lights, " + std::to_string(directNow.size()) + " for " +
                                     std::to_string(Lnow) + " lights now)");
+    // Per pixel: the photo's irradiance and the edit's, for the pooled reflectance below.
+    std::vector<Rgb> photoH(reflectance.empty() ? pixels : 0), nowH(photoH.size());
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
         // A lamp's face, samples that see nothing, or no leaf: the ratio display's value.
         if (!shownPerPixel(map, px)) return;
@@ -119,9 +121,63 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
             return;
         }
         const Rgb now = kept + fresh;
+        photoH[px] = before;
+        nowH[px] = now;
         for (int c = 0; c < 3; ++c) {
             const double r = guardedRatio(now[c], before[c], delta[c]);
             o[c] = std::max(static_cast<float>(static_cast<double>(t[c]) * r), 0.0f);
+        }
+    });
+    if (photoH.empty()) return;
+    poolDimReflectance(map, photo, photoH, nowH, delta, out);
+}
+
+void poolDimReflectance(const DisplayMap& map, const Image& photo, std::span<const Rgb> photoH,
+                        std::span<const Rgb> nowH, const Rgb& delta, Image& out) {
+    const int W = map.width, H = map.height;
+    const auto reflectanceAt = [&](size_t q, int c) {
+        return static_cast<double>(photo.rgb[3 * q + static_cast<size_t>(c)]) /
+               (std::max(photoH[q][c], 0.0) + delta[c]);
+    };
+    radiosity::parallelFor(static_cast<size_t>(H), 4, [&](size_t row) {
+        const int y = static_cast<int>(row);
+        for (int x = 0; x < W; ++x) {
+            const size_t px =
+                static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x);
+            if (!shownPerPixel(map, px)) continue;
+            // The photo's confidence at the pixel against the light shown now: 1 where the
+            // edit darkens or keeps the light (the photo's own noise, at its own level).
+            const double a = nowH[px].luminance(), b = photoH[px].luminance();
+            if (!(a > b * kPoolAbove) || !(b > 0)) continue;
+            const double w = kPoolAbove * b / a;  // 1 at the threshold: no step
+            Rgb sumT, sumH;
+            for (int dy = -kPoolRadius; dy <= kPoolRadius; ++dy)
+                for (int dx = -kPoolRadius; dx <= kPoolRadius; ++dx) {
+                    const int qx = x + dx, qy = y + dy;
+                    if (qx < 0 || qy < 0 || qx >= W || qy >= H) continue;
+                    const size_t q =
+                        static_cast<size_t>(qy) * static_cast<size_t>(W) + static_cast<size_t>(qx);
+                    if (q != px && !shownPerPixel(map, q)) continue;
+                    // Only pixels of about the same reflectance: another surface, or a
+                    // texture's other colour, stays out.
+                    bool alike = true;
+                    for (int c = 0; c < 3 && alike; ++c) {
+                        const double rp = reflectanceAt(px, c), rq = reflectanceAt(q, c);
+                        alike = std::abs(rp - rq) <= kPoolTolerance * std::max(rp, rq);
+                    }
+                    if (!alike) continue;
+                    for (int c = 0; c < 3; ++c) {
+                        sumT[c] += static_cast<double>(photo.rgb[3 * q + static_cast<size_t>(c)]);
+                        sumH[c] += std::max(photoH[q][c], 0.0) + delta[c];
+                    }
+                }
+            float* o = out.rgb.data() + px * 3;
+            for (int c = 0; c < 3; ++c) {
+                const double pooled = sumH[c] > 0 ? sumT[c] / sumH[c] : reflectanceAt(px, c);
+                const double R = w * reflectanceAt(px, c) + (1 - w) * pooled;
+                o[c] =
+                    std::max(static_cast<float>(R * (std::max(nowH[px][c], 0.0) + delta[c])), 0.0f);
+            }
         }
     });
 }
