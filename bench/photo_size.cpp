@@ -157,6 +157,18 @@ int runOne(const std::string& dir, int edits, double epsilon) {
     }
     std::printf("   edit in the per-pixel display (image reused): median %.1f ms, p90 %.1f ms\n",
                 bench::quantile(perPixel, 0.5) * 1e3, bench::quantile(perPixel, 0.9) * 1e3);
+    // The same without the pooled reflectance (pixel_light.h), in this run: its cost.
+    PhotoPixels pool = std::move(r->prepared.photoPixels);
+    r->prepared.photoPixels = {};
+    std::vector<double> unpooled;
+    for (const auto& L : radiance) {
+        const auto t1 = Clock::now();
+        renderEdit(P, L, out, DisplayMode::pixel);
+        unpooled.push_back(secondsSince(t1));
+    }
+    r->prepared.photoPixels = std::move(pool);
+    std::printf("   the same without the pooled reflectance: median %.1f ms, p90 %.1f ms\n",
+                bench::quantile(unpooled, 0.5) * 1e3, bench::quantile(unpooled, 0.9) * 1e3);
     std::printf("   peak memory after the edits: %.0f MiB\n", maxRssMiB());
 
     // Taking the table out (Loscos et al. 1999, §5.3; their 0.7-2.9 s) and bringing it back,

@@ -98,11 +98,19 @@ void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& ou
             throw std::invalid_argument(
                 "renderEdit: the per-pixel display needs a preparation with per-pixel light");
         renderPixelLight(p.display, p.photo, p.pixelDirect, p.vertexIndirect, radiance,
-                         p.photoRadiance, ratioFloor(p.D), out, {}, p.pixelReflectance);
+                         p.photoRadiance, ratioFloor(p.D), out, {}, p.pixelReflectance,
+                         &p.photoPixels);
         return;
     }
     const VertexDisplay d = vertexDisplay(p, splitIrradiance(p, radiance), mode);
     renderRatio(p.display, p.photo, d.ratio, radiance, p.photoRadiance, out, d.added);
+}
+
+void derivePhotoPixels(PreparedImage& p) {
+    p.photoPixels = {};
+    if (p.pixelDirect.empty()) return;
+    p.photoPixels = photoPixels(p.display, p.photo, p.pixelDirect, p.vertexIndirect,
+                                p.photoRadiance, ratioFloor(p.D));
 }
 
 std::string stepTimes(const PrepareTimes& t) {

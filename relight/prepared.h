@@ -74,6 +74,9 @@ struct PreparedImage {
     /// empty otherwise (the per-pixel display then reads the first photo alone).
     std::vector<float> pixelReflectance;
     std::vector<radiosity::Rgb> modelReflectance;  ///< per vertex: the polygon's rho
+    /// Derived, not cached (derivePhotoPixels): the photo per pixel as the per-pixel
+    /// display's pooled reflectance reads it; empty without per-pixel light.
+    PhotoPixels photoPixels;
     // Counts for reports.
     int leaves = 0, links = 0;
     /// The refinement budget (HierarchicalSolver's stats): whether it was reached, the
@@ -84,6 +87,10 @@ struct PreparedImage {
 
     size_t vertexCount() const { return D.size(); }
 };
+
+/// Fills p.photoPixels from its per-pixel light (relight/pipeline/pixel_light.h,
+/// photoPixels); clears it without per-pixel light.
+void derivePhotoPixels(PreparedImage& p);
 
 /// Per-vertex irradiance B for the lights' radiances (one per light; photo units).
 std::vector<radiosity::Rgb> vertexIrradiance(const PreparedImage& p,

@@ -380,6 +380,7 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     removeShadowsForDisplay(*r, o);      // 5, §4.3-4.4
     mapDisplay(*r, o);                   // 6
     mergeAllPhotos(*r, o);               // 6b, Loscos et al. 1999 Eq. (3), when asked
+    derivePhotoPixels(r->prepared);      // what the per-pixel display's pooling reads
     return r;
 }
 

@@ -45,6 +45,14 @@ struct DisplayMap {
     std::vector<float> runWeight;  ///< per pixel of a leaf run: weights of vertex[1..3]
 };
 
+/// The photo per pixel as the per-pixel display's pooled reflectance reads it
+/// (relight/pipeline/pixel_light.h, photoPixels): derived from the prepared state, not
+/// cached.
+struct PhotoPixels {
+    std::vector<float> rho;    ///< 3 per pixel: T / (H_photo + delta)
+    std::vector<float> light;  ///< per pixel: luminance of H_photo + delta; 0: not drawn
+};
+
 /// Fills rowRuns, runs and runWeight from the general arrays. Call it again after changing
 /// those. A pixel of a leaf run then costs 12 bytes instead of about 56 (its start, its
 /// emitter range, its unshaded fraction, 4 vertex ids and 4 weights) and its display ratio

@@ -420,7 +420,8 @@ Image DynamicRelighting::render(DisplayMode mode) {
         if (mode == DisplayMode::pixel)
             renderPixelLight(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
                              P.photoRadiance, ratioFloor(P.D), img,
-                             PixelLightChange{pixelDirect(), indirect_}, P.pixelReflectance);
+                             PixelLightChange{pixelDirect(), indirect_}, P.pixelReflectance,
+                             &P.photoPixels);
     } else {
         const VertexDisplay d = vertexDisplay(mode);
         renderRatio(P.display, P.photo, d.ratio, real, P.photoRadiance, img, d.added);

@@ -502,6 +502,7 @@ std::optional<PreparedImage> readPreparedCache(const fs::path& file, uint64_t ke
         if (std::string e = checkPrepared(p); !e.empty())
             return reject("cache corrupt: inconsistent sizes: " + e);
         packDisplayMap(p.display);  // derived, not stored
+        derivePhotoPixels(p);
         return p;
     } catch (const std::exception& e) {
         // bad_alloc and friends: a cache that cannot be read is rebuilt, not fatal.

@@ -57,7 +57,8 @@ std::vector<Rgb> vertexIndirect(const VertexLighting& lighting, const VertexDire
 void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
                       std::span<const Rgb> indirect, std::span<const Rgb> radianceNow,
                       std::span<const Rgb> radianceInPhoto, const Rgb& delta, Image& out,
-                      PixelLightChange change, std::span<const float> reflectance) {
+                      PixelLightChange change, std::span<const float> reflectance,
+                      const PhotoPixels* pool) {
     const size_t L = radianceInPhoto.size();  // the photo's lights
     const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
     const std::span<const float> directNow = change.direct.empty() ? pixelDirect : change.direct;
@@ -73,8 +74,8 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
                                     std::to_string(pixels) + " pixels x " + std::to_string(L) +
                                     " lights, " + std::to_string(directNow.size()) + " for " +
                                     std::to_string(Lnow) + " lights now)");
-    // Per pixel: the photo's irradiance and the edit's, for the pooled reflectance below.
-    std::vector<Rgb> photoH(reflectance.empty() ? pixels : 0), nowH(photoH.size());
+    const bool pooling = reflectance.empty() && pool && pool->rho.size() == 3 * pixels &&
+                         pool->light.size() == pixels;
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
         // A lamp's face, samples that see nothing, or no leaf: the ratio display's value.
         if (!shownPerPixel(map, px)) return;
@@ -121,65 +122,87 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
             return;
         }
         const Rgb now = kept + fresh;
-        photoH[px] = before;
-        nowH[px] = now;
+        if (pooling && now.luminance() > kPoolAbove * before.luminance() &&
+            before.luminance() > 0) {
+            // The pooled reflectance (header), weighed by the photo's confidence.
+            const double w = kPoolAbove * before.luminance() / now.luminance();
+            const Rgb pooled = pooledReflectance(map, *pool, px);
+            for (int c = 0; c < 3; ++c) {
+                const double R =
+                    w * static_cast<double>(pool->rho[3 * px + static_cast<size_t>(c)]) +
+                    (1 - w) * pooled[c];
+                o[c] = std::max(static_cast<float>(R * (std::max(now[c], 0.0) + delta[c])), 0.0f);
+            }
+            return;
+        }
         for (int c = 0; c < 3; ++c) {
             const double r = guardedRatio(now[c], before[c], delta[c]);
             o[c] = std::max(static_cast<float>(static_cast<double>(t[c]) * r), 0.0f);
         }
     });
-    if (photoH.empty()) return;
-    poolDimReflectance(map, photo, photoH, nowH, delta, out);
 }
 
-void poolDimReflectance(const DisplayMap& map, const Image& photo, std::span<const Rgb> photoH,
-                        std::span<const Rgb> nowH, const Rgb& delta, Image& out) {
+Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px) {
     const int W = map.width, H = map.height;
-    const auto reflectanceAt = [&](size_t q, int c) {
-        return static_cast<double>(photo.rgb[3 * q + static_cast<size_t>(c)]) /
-               (std::max(photoH[q][c], 0.0) + delta[c]);
-    };
-    radiosity::parallelFor(static_cast<size_t>(H), 4, [&](size_t row) {
-        const int y = static_cast<int>(row);
-        for (int x = 0; x < W; ++x) {
-            const size_t px =
-                static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x);
-            if (!shownPerPixel(map, px)) continue;
-            // The photo's confidence at the pixel against the light shown now: 1 where the
-            // edit darkens or keeps the light (the photo's own noise, at its own level).
-            const double a = nowH[px].luminance(), b = photoH[px].luminance();
-            if (!(a > b * kPoolAbove) || !(b > 0)) continue;
-            const double w = kPoolAbove * b / a;  // 1 at the threshold: no step
-            Rgb sumT, sumH;
-            for (int dy = -kPoolRadius; dy <= kPoolRadius; ++dy)
-                for (int dx = -kPoolRadius; dx <= kPoolRadius; ++dx) {
-                    const int qx = x + dx, qy = y + dy;
-                    if (qx < 0 || qy < 0 || qx >= W || qy >= H) continue;
-                    const size_t q =
-                        static_cast<size_t>(qy) * static_cast<size_t>(W) + static_cast<size_t>(qx);
-                    if (q != px && !shownPerPixel(map, q)) continue;
-                    // Only pixels of about the same reflectance: another surface, or a
-                    // texture's other colour, stays out.
-                    bool alike = true;
-                    for (int c = 0; c < 3 && alike; ++c) {
-                        const double rp = reflectanceAt(px, c), rq = reflectanceAt(q, c);
-                        alike = std::abs(rp - rq) <= kPoolTolerance * std::max(rp, rq);
-                    }
-                    if (!alike) continue;
-                    for (int c = 0; c < 3; ++c) {
-                        sumT[c] += static_cast<double>(photo.rgb[3 * q + static_cast<size_t>(c)]);
-                        sumH[c] += std::max(photoH[q][c], 0.0) + delta[c];
-                    }
-                }
-            float* o = out.rgb.data() + px * 3;
-            for (int c = 0; c < 3; ++c) {
-                const double pooled = sumH[c] > 0 ? sumT[c] / sumH[c] : reflectanceAt(px, c);
-                const double R = w * reflectanceAt(px, c) + (1 - w) * pooled;
-                o[c] =
-                    std::max(static_cast<float>(R * (std::max(nowH[px][c], 0.0) + delta[c])), 0.0f);
-            }
+    const int x = static_cast<int>(px % static_cast<size_t>(W));
+    const int y = static_cast<int>(px / static_cast<size_t>(W));
+    const float* rp = &pool.rho[3 * px];
+    Rgb sum;
+    double wsum = 0;
+    for (int dy = -kPoolRadius; dy <= kPoolRadius; ++dy)
+        for (int dx = -kPoolRadius; dx <= kPoolRadius; ++dx) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= W || qy >= H) continue;
+            const size_t q =
+                static_cast<size_t>(qy) * static_cast<size_t>(W) + static_cast<size_t>(qx);
+            const float w = pool.light[q];
+            if (!(w > 0)) continue;  // not a surface pixel of the per-pixel display
+            // Only pixels of about the same reflectance: another surface, or a texture's
+            // other colour, stays out.
+            const float* rq = &pool.rho[3 * q];
+            bool alike = true;
+            for (int c = 0; c < 3 && alike; ++c)
+                alike = std::abs(rp[c] - rq[c]) <=
+                        static_cast<float>(kPoolTolerance) * std::max(rp[c], rq[c]);
+            if (!alike) continue;
+            for (int c = 0; c < 3; ++c) sum[c] += static_cast<double>(w * rq[c]);
+            wsum += static_cast<double>(w);
         }
+    return wsum > 0 ? sum * (1.0 / wsum) : Rgb{rp[0], rp[1], rp[2]};
+}
+
+PhotoPixels photoPixels(const DisplayMap& map, const Image& photo,
+                        std::span<const float> pixelDirect, std::span<const Rgb> indirect,
+                        std::span<const Rgb> radianceInPhoto, const Rgb& delta) {
+    const size_t L = radianceInPhoto.size();
+    const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
+    PhotoPixels out;
+    if (L == 0 || pixelDirect.size() != pixels * L || indirect.size() % L != 0) return out;
+    out.rho.assign(3 * pixels, 0.0f);
+    out.light.assign(pixels, 0.0f);
+    radiosity::parallelFor(pixels, 256, [&](size_t px) {
+        if (!shownPerPixel(map, px)) return;
+        const int k0 = map.start[px], k1 = map.start[px + 1];
+        double wsum = 0;
+        for (int k = k0; k < k1; ++k)
+            wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+        Rgb H;
+        for (size_t l = 0; l < L; ++l) {
+            Rgb ind;
+            for (int k = k0; k < k1; ++k)
+                ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
+                       (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+            H += radianceInPhoto[l] *
+                 (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
+        }
+        Rgb Hd;
+        for (int c = 0; c < 3; ++c) Hd[c] = std::max(H[c], 0.0) + delta[c];
+        for (int c = 0; c < 3; ++c)
+            out.rho[3 * px + static_cast<size_t>(c)] = static_cast<float>(
+                static_cast<double>(photo.rgb[3 * px + static_cast<size_t>(c)]) / Hd[c]);
+        out.light[px] = static_cast<float>(Hd.luminance());
     });
+    return out;
 }
 
 }  // namespace relight

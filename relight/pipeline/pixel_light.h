@@ -70,37 +70,43 @@ struct PixelLightChange {
 /// (ratioFloor of D), so that both displays guard a vanishing photo irradiance alike.
 /// `reflectance` (empty, or 3 floats per pixel): the reflectance merged from all of the
 /// scene's photos (pipeline/photo_merge.h); the pixel is then
-/// T (H_kept + delta) / (H_photo + delta) + R H_fresh.
+/// T (H_kept + delta) / (H_photo + delta) + R H_fresh. `pool` (photoPixels of the same
+/// photo; null: none) turns on the pooled reflectance below, without a merged reflectance.
 void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
                       std::span<const radiosity::Rgb> indirect,
                       std::span<const radiosity::Rgb> radianceNow,
                       std::span<const radiosity::Rgb> radianceInPhoto, const radiosity::Rgb& delta,
                       Image& out, PixelLightChange change = {},
-                      std::span<const float> reflectance = {});
+                      std::span<const float> reflectance = {}, const PhotoPixels* pool = nullptr);
 
-/// Pooled reflectance where the edit brightens what the photo showed dim (Loscos et al.
+/// Pooled reflectance where an edit brightens what the photo showed dim (Loscos et al.
 /// 1999, §4.2-4.3: where confidence is low, lean on a steadier estimate than the pixel's).
 /// A pixel's reflectance T / H_photo carries the photo's noise, which is largest, relative
 /// to the value, where the photo is dark; an edit that brightens it by H_now / H_photo shows
 /// that noise at the new level. So where H_now > kPoolAbove H_photo (luminance) the pixel
 /// shows R H_now with
-///   R = w T / H_photo + (1 - w) sum_q T_q / sum_q H_photo,q,   w = kPoolAbove H_photo / H_now,
-/// the pooled term over the (2 kPoolRadius + 1)^2 pixels around it whose reflectance is
-/// within kPoolTolerance of its own in every channel (its surface, its texture's colour).
+///   R = w T / H_photo + (1 - w) R_pooled,   w = kPoolAbove H_photo / H_now,
+/// R_pooled the mean of T / H_photo over the (2 kPoolRadius + 1)^2 pixels around it whose
+/// reflectance is within kPoolTolerance of its own in every channel (its surface, its
+/// texture's colour), weighed by their photo light (the ratio of sums for grey light).
 /// w is the photo's confidence relative to the light shown: 1 up to kPoolAbove (an edit that
 /// keeps, dims or slightly brightens the light shows the photo's own pixel), and the pooled
 /// estimate takes over as the edit brightens further (half at three times the photo's
-/// light). Cornell virtual_light_only 0.0845 -> 0.081, the rooms' virtual lamps 0.0115 ->
+/// light). Cornell virtual_light_only 0.0845 -> 0.082, the rooms' virtual lamps 0.0115 ->
 /// 0.0112 (bench/RESULTS.md, 2026-11-26); a radius of 4 pools more noise away on the Cornell
 /// box (0.078) but blurs the rooms' wood and brick (virtual_light_and_box 0.0113 -> 0.0119).
-/// `photoH`, `nowH`: H_photo and H_now per pixel; `delta` the ratio floor. renderPixelLight calls
-/// it (without a merged reflectance).
 inline constexpr int kPoolRadius = 2;
 inline constexpr double kPoolAbove = 1.5;
 inline constexpr double kPoolTolerance = 0.3;
-void poolDimReflectance(const DisplayMap& map, const Image& photo,
-                        std::span<const radiosity::Rgb> photoH,
-                        std::span<const radiosity::Rgb> nowH, const radiosity::Rgb& delta,
-                        Image& out);
+/// What the pooling reads of the photo, per pixel (edit-independent, so made once per
+/// prepared state): rho = T / (H_photo + delta) (3 floats) and light = the luminance of
+/// H_photo + delta; light 0 where the per-pixel display does not draw the pixel.
+PhotoPixels photoPixels(const DisplayMap& map, const Image& photo,
+                        std::span<const float> pixelDirect,
+                        std::span<const radiosity::Rgb> indirect,
+                        std::span<const radiosity::Rgb> radianceInPhoto,
+                        const radiosity::Rgb& delta);
+/// R_pooled at pixel px (above).
+radiosity::Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px);
 
 }  // namespace relight

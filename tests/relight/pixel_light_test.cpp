@@ -123,3 +123,83 @@ TEST(PixelLight, TheCornellBoxsVirtualBoxCastsItsShadowPerPixel) {
     EXPECT_LE(sp.changedRelRmse, 0.15);
     EXPECT_LT(sp.changedRelRmse, 0.9 * sr.changedRelRmse);
 }
+
+namespace {
+
+/// A W x H grid of surface pixels, pixel i on vertex i alone (weight 1).
+DisplayMap grid(int W, int H) {
+    DisplayMap m;
+    m.width = W;
+    m.height = H;
+    const int n = W * H;
+    for (int i = 0; i <= n; ++i) {
+        m.start.push_back(i);
+        m.emitterStart.push_back(0);
+    }
+    for (int i = 0; i < n; ++i) {
+        m.vertex.push_back(i);
+        m.weight.push_back(1.0f);
+        m.unshaded.push_back(0.0f);
+    }
+    return m;
+}
+
+}  // namespace
+
+TEST(PixelLight, ABrightenedDimPhotoShowsItsReflectancePooledNotItsNoise) {
+    // One light; the photo received 0.1 per pixel (direct, no indirect) and shows two
+    // surfaces side by side, reflectance 0.5 (x < 8) and 0.2, with +-10 % noise. Lit 4 times
+    // as much, each pixel is w T/H + (1 - w) R_pooled, w = 1.5 / 4: the noise shrinks and
+    // the surfaces do not mix (2.5 times apart, beyond the 30 % tolerance).
+    const int W = 16, H = 8;
+    const DisplayMap map = grid(W, H);
+    Image photo(W, H);
+    const auto truthRho = [](int x) { return x < 8 ? 0.5 : 0.2; };
+    const auto noise = [](int x, int y) { return ((x * 7 + y * 3) % 5 - 2) * 0.05; };  // +-10 %
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            for (int c = 0; c < 3; ++c)
+                photo.at(x, y)[c] = static_cast<float>(truthRho(x) * 0.1 * (1 + noise(x, y)));
+    const std::vector<float> direct(static_cast<size_t>(W * H), 0.1f);
+    const std::vector<Rgb> indirect(static_cast<size_t>(W * H), Rgb{});
+    const std::vector<Rgb> inPhoto{Rgb::gray(1.0)};
+    const Rgb delta = Rgb::gray(1e-9);
+    const PhotoPixels pool = photoPixels(map, photo, direct, indirect, inPhoto, delta);
+    ASSERT_EQ(pool.light.size(), static_cast<size_t>(W * H));
+
+    const auto render = [&](double radiance, const PhotoPixels* p) {
+        Image out(W, H);
+        const std::vector<Rgb> now{Rgb::gray(radiance)};
+        renderPixelLight(map, photo, direct, indirect, now, inPhoto, delta, out, {}, {}, p);
+        return out;
+    };
+    const auto spread = [&](const Image& img, bool left) {
+        // Relative RMS deviation from the true value 4 x 0.1 x rho, over the interior.
+        double sum = 0;
+        int n = 0;
+        for (int y = 2; y < H - 2; ++y)
+            for (int x = left ? 2 : 10; x < (left ? 6 : 14); ++x) {
+                const double want = truthRho(x) * 0.4;
+                sum += std::pow((static_cast<double>(img.at(x, y)[0]) - want) / want, 2);
+                ++n;
+            }
+        return std::sqrt(sum / n);
+    };
+    const Image plain = render(4.0, nullptr), pooled = render(4.0, &pool);
+    for (bool left : {true, false}) {
+        SCOPED_TRACE(left ? "rho 0.5" : "rho 0.2");
+        EXPECT_GT(spread(plain, left), 0.06);  // the photo's noise, as it was
+        EXPECT_LT(spread(pooled, left), 0.5 * spread(plain, left));
+    }
+    // No mixing across the edge: every pixel stays within the noise of its own surface.
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const double v = static_cast<double>(pooled.at(x, y)[0]), want = truthRho(x) * 0.4;
+            EXPECT_NEAR(v, want, 0.101 * want) << x << " " << y;
+        }
+    // Light kept or dimmed (and brightened up to 1.5 times): the photo's own pixels.
+    for (double radiance : {0.5, 1.0, 1.4}) {
+        const Image a = render(radiance, nullptr), b = render(radiance, &pool);
+        EXPECT_EQ(a.rgb, b.rgb) << radiance;
+    }
+}
