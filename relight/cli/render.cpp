@@ -33,10 +33,11 @@ nlohmann::json insertionReport(const DynamicRelighting& dyn, const std::string& 
     const FrameTimes& ft = dyn.times();
     const radiosity::DynamicUpdate& u = dyn.lastUpdate();
     if (kind == "removed object")
-        std::printf("removed object %s: %d links cut, %d pixels filled (%d from the model), "
-                    "%.4f s (%.4f s of it the fill)\n",
-                    name.c_str(), u.linksCut, dyn.removedRegion().filled,
-                    dyn.removedRegion().modelled, ft.total(), ft.fill);
+        std::printf(
+            "removed object %s: %d links cut, %d pixels filled (%d from the model), "
+            "%.4f s (%.4f s of it the fill)\n",
+            name.c_str(), u.linksCut, dyn.removedRegion().filled, dyn.removedRegion().modelled,
+            ft.total(), ft.fill);
     else
         std::printf("inserted %s %s: %d links cut, %d new, %d reactivated, %.4f s\n", kind.c_str(),
                     name.c_str(), u.linksCut, u.linksNew, u.linksReactivated, ft.total());
