@@ -22,9 +22,10 @@ constexpr double kPi = std::numbers::pi;
 // Seeds of the shadow rays of the region's samples, apart from the scene's and the objects'.
 constexpr uint64_t kRegionSeed = 0x4e30e5ull << 28;
 /// Sources whose photo irradiance is below this fraction of their surface's median are
-/// left out of the texture sample: deep in a shadow, T / H is the photo's noise over a
-/// small, less certain H (the 1999 paper's confidence, §4.2).
-constexpr double kDarkSource = 0.1;
+/// left out of the texture sample: in a shadow, T / H is the photo's noise over a small,
+/// less certain H (the 1999 paper's confidence, §4.2). Half: the Cornell box with its blocks
+/// taken out showed a ghost of a penumbra copied from 10 % (bench/RESULTS.md, 2026-11-26).
+constexpr double kDarkSource = 0.5;
 /// The texture sample: the photo's pixels within this many pixels of the mask's box, or
 /// its own size if larger (a wide hole needs a wide sample).
 constexpr int kSampleMargin = 48;
