@@ -30,29 +30,20 @@ constexpr double kDarkSource = 0.5;
 /// its own size if larger (a wide hole needs a wide sample).
 constexpr int kSampleMargin = 48;
 
-/// The photo's irradiance at pixel px: the per-pixel display's denominator (per-pixel
-/// direct light and interpolated indirect light), or the vertex irradiance interpolated
-/// without per-pixel light.
+/// The photo's irradiance at pixel px: the per-pixel display's denominator, or, without
+/// per-pixel light, the vertex irradiance interpolated with the display map's weights.
 Rgb photoIrradiance(const PreparedImage& P, size_t px) {
+    if (!P.pixelDirect.empty())
+        return photoIrradianceAt(P.display, px, P.pixelDirect, P.vertexIndirect, P.photoRadiance);
     const DisplayMap& map = P.display;
     const int k0 = map.start[px], k1 = map.start[px + 1];
     double wsum = 0;
     for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
-    if (!(wsum > 0)) return Rgb{};
-    const size_t L = P.photoRadiance.size();
     Rgb H;
-    for (int k = k0; k < k1; ++k) {
-        const auto v = static_cast<size_t>(map.vertex[static_cast<size_t>(k)]);
-        const double w = static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum;
-        if (!P.pixelDirect.empty())
-            for (size_t l = 0; l < L; ++l)
-                H += P.photoRadiance[l] * P.vertexIndirect[v * L + l] * w;
-        else
-            H += P.lighting.irradiance(static_cast<int>(v), P.photoRadiance) * w;
-    }
-    if (!P.pixelDirect.empty())
-        for (size_t l = 0; l < L; ++l)
-            H += P.photoRadiance[l] * static_cast<double>(P.pixelDirect[px * L + l]);
+    if (!(wsum > 0)) return H;
+    for (int k = k0; k < k1; ++k)
+        H += P.lighting.irradiance(map.vertex[static_cast<size_t>(k)], P.photoRadiance) *
+             (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
     return H;
 }
 

@@ -171,6 +171,24 @@ Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px)
     return wsum > 0 ? sum * (1.0 / wsum) : Rgb{rp[0], rp[1], rp[2]};
 }
 
+Rgb photoIrradianceAt(const DisplayMap& map, size_t px, std::span<const float> pixelDirect,
+                      std::span<const Rgb> indirect, std::span<const Rgb> radianceInPhoto) {
+    const size_t L = radianceInPhoto.size();
+    const int k0 = map.start[px], k1 = map.start[px + 1];
+    double wsum = 0;
+    for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+    Rgb H;
+    if (!(wsum > 0)) return H;
+    for (size_t l = 0; l < L; ++l) {
+        Rgb ind;
+        for (int k = k0; k < k1; ++k)
+            ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
+                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+        H += radianceInPhoto[l] * (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
+    }
+    return H;
+}
+
 PhotoPixels photoPixels(const DisplayMap& map, const Image& photo,
                         std::span<const float> pixelDirect, std::span<const Rgb> indirect,
                         std::span<const Rgb> radianceInPhoto, const Rgb& delta) {
@@ -182,19 +200,7 @@ PhotoPixels photoPixels(const DisplayMap& map, const Image& photo,
     out.light.assign(pixels, 0.0f);
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
         if (!shownPerPixel(map, px)) return;
-        const int k0 = map.start[px], k1 = map.start[px + 1];
-        double wsum = 0;
-        for (int k = k0; k < k1; ++k)
-            wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
-        Rgb H;
-        for (size_t l = 0; l < L; ++l) {
-            Rgb ind;
-            for (int k = k0; k < k1; ++k)
-                ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
-                       (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
-            H += radianceInPhoto[l] *
-                 (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
-        }
+        const Rgb H = photoIrradianceAt(map, px, pixelDirect, indirect, radianceInPhoto);
         Rgb Hd;
         for (int c = 0; c < 3; ++c) Hd[c] = std::max(H[c], 0.0) + delta[c];
         for (int c = 0; c < 3; ++c)

@@ -106,6 +106,13 @@ PhotoPixels photoPixels(const DisplayMap& map, const Image& photo,
                         std::span<const radiosity::Rgb> indirect,
                         std::span<const radiosity::Rgb> radianceInPhoto,
                         const radiosity::Rgb& delta);
+/// The photo's irradiance at pixel px as the per-pixel display divides by it: sum_l
+/// L_l(photo) (pi Gbar_l(px) + the indirect part interpolated with the display map's
+/// weights); 0 for a pixel without vertices.
+radiosity::Rgb photoIrradianceAt(const DisplayMap& map, size_t px,
+                                 std::span<const float> pixelDirect,
+                                 std::span<const radiosity::Rgb> indirect,
+                                 std::span<const radiosity::Rgb> radianceInPhoto);
 /// R_pooled at pixel px (above).
 radiosity::Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px);
 
