@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "relight/dynamic/dynamic_relighting.h"
+#include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 #include "room_fixture.h"
 
@@ -111,4 +112,33 @@ TEST(ObjectRemoval, WhatCannotBeTakenOutIsRefused) {
     dyn.removeLast();
     dyn.removeLast();
     EXPECT_TRUE(dyn.removedRegion().empty());
+}
+
+TEST(ObjectRemoval, TakenOutAmongVirtualPartsAndUndoneInTurn) {
+    // A virtual lamp and box, then the table out, then each undone, last first: the image
+    // before each step comes back (the solver's snapshots, the per-pixel light measured
+    // again with the same rays).
+    auto r = prepareRelighting(loadScene(kRoom), options());
+    const EditFile e = loadEdit(kRoom + "/edits/virtual_light_and_box.json", r->scene);
+    DynamicRelighting dyn(*r, editRadiance(r->scene, e, r->prepared.photoRadiance));
+    const auto same = [](const Image& a, const Image& b) {
+        double worst = 0;
+        for (size_t i = 0; i < a.rgb.size(); ++i)
+            worst = std::max(worst, std::abs(static_cast<double>(a.rgb[i] - b.rgb[i])) /
+                                        (1e-3 + std::abs(static_cast<double>(b.rgb[i]))));
+        return worst;
+    };
+    dyn.addLight(e.addLights.at(0));
+    const Image lamp = dyn.render(DisplayMode::pixel);
+    dyn.addObject(e.addObjects.at(0));
+    const Image box = dyn.render(DisplayMode::pixel);
+    dyn.removeObject("table");
+    const RemovedRegion& g = dyn.removedRegion();
+    ASSERT_FALSE(g.empty());
+    const Image without = dyn.render(DisplayMode::pixel);
+    EXPECT_GT(same(without, box), 0.1);
+    dyn.removeLast();  // the table back
+    EXPECT_LT(same(dyn.render(DisplayMode::pixel), box), 1e-5);
+    dyn.removeLast();  // the box out
+    EXPECT_LT(same(dyn.render(DisplayMode::pixel), lamp), 1e-5);
 }
