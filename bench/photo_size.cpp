@@ -157,6 +157,21 @@ int runOne(const std::string& dir, int edits, double epsilon) {
     }
     std::printf("   edit in the per-pixel display (image reused): median %.1f ms, p90 %.1f ms\n",
                 bench::quantile(perPixel, 0.5) * 1e3, bench::quantile(perPixel, 0.9) * 1e3);
+    // Every lamp at 10 times its radiance: every pixel's reflectance pooled, from the widest
+    // pool (its worst case).
+    {
+        std::vector<radiosity::Rgb> L = P.photoRadiance;
+        for (auto& l : L) l = l * 10.0;
+        std::vector<double> bright;
+        for (int k = 0; k < 5; ++k) {
+            const auto t1 = Clock::now();
+            renderEdit(P, L, out, DisplayMode::pixel);
+            bright.push_back(secondsSince(t1));
+        }
+        std::printf(
+            "   every lamp x10 in the per-pixel display (every pixel pooled): median %.1f ms\n",
+            bench::quantile(bright, 0.5) * 1e3);
+    }
     // The same without the pooled reflectance (pixel_light.h), in this run: its cost.
     PhotoPixels pool = std::move(r->prepared.photoPixels);
     r->prepared.photoPixels = {};

@@ -1,6 +1,7 @@
 #include "relight/pipeline/pixel_light.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -126,7 +127,11 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
             before.luminance() > 0) {
             // The pooled reflectance (header), weighed by the photo's confidence.
             const double w = kPoolAbove * before.luminance() / now.luminance();
-            const Rgb pooled = pooledReflectance(map, *pool, px);
+            // The pool widens as the photo's noise is brightened more (its mean's noise falls
+            // as the window's side grows).
+            const int radius = std::min(
+                kMaxPoolRadius, static_cast<int>(std::lround(kPoolRadius * std::sqrt(1.0 / w))));
+            const Rgb pooled = pooledReflectance(map, *pool, px, radius);
             for (int c = 0; c < 3; ++c) {
                 const double R =
                     w * static_cast<double>(pool->rho[3 * px + static_cast<size_t>(c)]) +
@@ -142,15 +147,17 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
     });
 }
 
-Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px) {
+Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px, int radius) {
     const int W = map.width, H = map.height;
     const int x = static_cast<int>(px % static_cast<size_t>(W));
     const int y = static_cast<int>(px / static_cast<size_t>(W));
     const float* rp = &pool.rho[3 * px];
     Rgb sum;
     double wsum = 0;
-    for (int dy = -kPoolRadius; dy <= kPoolRadius; ++dy)
-        for (int dx = -kPoolRadius; dx <= kPoolRadius; ++dx) {
+    // Wider pools are sampled on a coarser grid: always about (2 kPoolRadius + 1)^2 pixels.
+    const int step = std::max(1, radius / kPoolRadius);
+    for (int dy = -radius; dy <= radius; dy += step)
+        for (int dx = -radius; dx <= radius; dx += step) {
             const int qx = x + dx, qy = y + dy;
             if (qx < 0 || qy < 0 || qx >= W || qy >= H) continue;
             const size_t q =

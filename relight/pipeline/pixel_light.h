@@ -86,16 +86,22 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
 /// that noise at the new level. So where H_now > kPoolAbove H_photo (luminance) the pixel
 /// shows R H_now with
 ///   R = w T / H_photo + (1 - w) R_pooled,   w = kPoolAbove H_photo / H_now,
-/// R_pooled the mean of T / H_photo over the (2 kPoolRadius + 1)^2 pixels around it whose
-/// reflectance is within kPoolTolerance of its own in every channel (its surface, its
-/// texture's colour), weighed by their photo light (the ratio of sums for grey light).
+/// R_pooled the mean of T / H_photo over the pixels around it whose reflectance is within
+/// kPoolTolerance of its own in every channel (its surface, its texture's colour), weighed by
+/// their photo light (the ratio of sums for grey light). The pool's half-width is
+/// kPoolRadius sqrt(1 / w), at most kMaxPoolRadius: the more the photo's noise is brightened,
+/// the wider the mean (2 pixels at 1.5 times the photo's light, 4 at 6 times, 6 from 13.5
+/// times on), sampled on a grid of step radius / kPoolRadius, so that a pixel reads about
+/// (2 kPoolRadius + 1)^2 others whatever the width.
 /// w is the photo's confidence relative to the light shown: 1 up to kPoolAbove (an edit that
 /// keeps, dims or slightly brightens the light shows the photo's own pixel), and the pooled
 /// estimate takes over as the edit brightens further (half at three times the photo's
-/// light). Cornell virtual_light_only 0.0845 -> 0.082, the rooms' virtual lamps 0.0115 ->
-/// 0.0112 (bench/RESULTS.md, 2026-11-26); a radius of 4 pools more noise away on the Cornell
-/// box (0.078) but blurs the rooms' wood and brick (virtual_light_and_box 0.0113 -> 0.0119).
+/// light). Cornell virtual_light_only 0.0845 -> 0.076, the rooms' virtual lamps 0.0115 ->
+/// 0.0112 (bench/RESULTS.md, 2026-11-26); a fixed radius of 4 pools as much noise away on
+/// the Cornell box but blurs the rooms' wood and brick where their light changes little
+/// (virtual_light_and_box 0.0113 -> 0.0119).
 inline constexpr int kPoolRadius = 2;
+inline constexpr int kMaxPoolRadius = 6;
 inline constexpr double kPoolAbove = 1.5;
 inline constexpr double kPoolTolerance = 0.3;
 /// What the pooling reads of the photo, per pixel (edit-independent, so made once per
@@ -114,6 +120,7 @@ radiosity::Rgb photoIrradianceAt(const DisplayMap& map, size_t px,
                                  std::span<const radiosity::Rgb> indirect,
                                  std::span<const radiosity::Rgb> radianceInPhoto);
 /// R_pooled at pixel px (above).
-radiosity::Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px);
+radiosity::Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px,
+                                 int radius = kPoolRadius);
 
 }  // namespace relight
