@@ -12,34 +12,6 @@ namespace relight {
 
 using radiosity::Rgb;
 
-namespace {
-
-/// A photo's irradiance at a shown pixel: its direct part and the whole.
-struct Irradiance {
-    Rgb direct, total;
-};
-Irradiance irradianceAt(const DisplayMap& map, size_t px, std::span<const float> pixelDirect,
-                        std::span<const Rgb> indirect, std::span<const Rgb> radiance) {
-    const size_t L = radiance.size();
-    const int k0 = map.start[px], k1 = map.start[px + 1];
-    double wsum = 0;
-    for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
-    Irradiance h;
-    for (size_t l = 0; l < L; ++l) {
-        if (!(radiance[l].maxComponent() > 0)) continue;  // off in this photo
-        Rgb ind;
-        for (int k = k0; k < k1; ++k)
-            ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
-                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
-        const Rgb direct = radiance[l] * static_cast<double>(pixelDirect[px * L + l]);
-        h.direct += direct;
-        h.total += direct + radiance[l] * ind;
-    }
-    return h;
-}
-
-}  // namespace
-
 PhotoMerge mergePhotos(const DisplayMap& map, std::span<const MergePhoto> photos,
                        std::span<const float> pixelDirect, std::span<const Rgb> indirect,
                        const Rgb& delta) {
@@ -71,9 +43,10 @@ PhotoMerge mergePhotos(const DisplayMap& map, std::span<const MergePhoto> photos
                 dirLum[px] = -1.0f;
                 return;
             }
-            const Irradiance h = irradianceAt(map, px, pixelDirect, indirect, photos[i].radiance);
-            dirLum[px] = static_cast<float>(h.direct.luminance());
-            total[px] = h.total;
+            Rgb direct;
+            total[px] =
+                photoIrradianceAt(map, px, pixelDirect, indirect, photos[i].radiance, &direct);
+            dirLum[px] = static_cast<float>(direct.luminance());
         });
         radiosity::parallelFor(pixels, 256, [&](size_t px) {
             const float d = dirLum[px];

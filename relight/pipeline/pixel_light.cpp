@@ -179,20 +179,25 @@ Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px,
 }
 
 Rgb photoIrradianceAt(const DisplayMap& map, size_t px, std::span<const float> pixelDirect,
-                      std::span<const Rgb> indirect, std::span<const Rgb> radianceInPhoto) {
+                      std::span<const Rgb> indirect, std::span<const Rgb> radianceInPhoto,
+                      Rgb* directPart) {
     const size_t L = radianceInPhoto.size();
     const int k0 = map.start[px], k1 = map.start[px + 1];
     double wsum = 0;
     for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
-    Rgb H;
-    if (!(wsum > 0)) return H;
-    for (size_t l = 0; l < L; ++l) {
-        Rgb ind;
-        for (int k = k0; k < k1; ++k)
-            ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
-                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
-        H += radianceInPhoto[l] * (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
-    }
+    Rgb H, D;
+    if (wsum > 0)
+        for (size_t l = 0; l < L; ++l) {
+            if (!(radianceInPhoto[l].maxComponent() > 0)) continue;  // off in the photo
+            Rgb ind;
+            for (int k = k0; k < k1; ++k)
+                ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
+                       (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+            const Rgb direct = radianceInPhoto[l] * static_cast<double>(pixelDirect[px * L + l]);
+            D += direct;
+            H += direct + radianceInPhoto[l] * ind;
+        }
+    if (directPart) *directPart = D;
     return H;
 }
 

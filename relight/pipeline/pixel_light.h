@@ -114,11 +114,13 @@ PhotoPixels photoPixels(const DisplayMap& map, const Image& photo,
                         const radiosity::Rgb& delta);
 /// The photo's irradiance at pixel px as the per-pixel display divides by it: sum_l
 /// L_l(photo) (pi Gbar_l(px) + the indirect part interpolated with the display map's
-/// weights); 0 for a pixel without vertices.
+/// weights); 0 for a pixel without vertices. `directPart` (optional) gets the direct terms'
+/// sum (pipeline/photo_merge.h weighs a photo by it).
 radiosity::Rgb photoIrradianceAt(const DisplayMap& map, size_t px,
                                  std::span<const float> pixelDirect,
                                  std::span<const radiosity::Rgb> indirect,
-                                 std::span<const radiosity::Rgb> radianceInPhoto);
+                                 std::span<const radiosity::Rgb> radianceInPhoto,
+                                 radiosity::Rgb* directPart = nullptr);
 /// R_pooled at pixel px (above).
 radiosity::Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px,
                                  int radius = kPoolRadius);
