@@ -94,7 +94,7 @@ void HierarchicalSolver::removeRealObject(int object, DynamicUpdate* reportOut) 
     const auto t1 = Clock::now();
     const std::vector<int> also =
         remeasureSeenNear(box.centre(), 0.5 * glm::length(box.diagonal()), h_.nodes.size(), object);
-    boundGather(h_.nodes.size(), /*balance=*/true, &also);
+    if (!also.empty()) boundGather(h_.nodes.size(), /*balance=*/true, &also);
     inserted_.back().shadowLeaves = report.shadowLeaves;
     report.timeLinks += secondsSince(t1);
 

@@ -51,6 +51,13 @@ DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radianc
     indirect_.assign(nv, Rgb{});
     indirect0_ = indirectPerNode();
     maskGrowth_ = defaultMaskGrowth(r.items.width, r.items.height);
+    // The indirect part of each vertex's response: the prepared one, or, prepared without
+    // per-pixel light, the same difference taken here (pipeline/pixel_light.h).
+    if (r.prepared.vertexIndirect.empty())
+        ownIndirectParts_ = vertexIndirect(r.prepared.lighting, r.direct);
+    indirectParts_ = r.prepared.vertexIndirect.empty()
+                         ? std::span<const Rgb>(ownIndirectParts_)
+                         : std::span<const Rgb>(r.prepared.vertexIndirect);
 }
 
 DynamicRelighting::~DynamicRelighting() {
@@ -165,19 +172,13 @@ void DynamicRelighting::refreshRemoved(const radiosity::DynamicUpdate& u, bool a
 }
 
 radiosity::Rgb DynamicRelighting::indirectAt(int leaf, const Vec3& x) const {
-    const PreparedImage& P = r_.prepared;
     const size_t L = static_cast<size_t>(realLights_);
     const auto st = r_.mesh->stencil(leaf, x);
     Rgb sum;
     for (int i = 0; i < st.count; ++i) {
         const auto v = static_cast<size_t>(st.vertex[static_cast<size_t>(i)]);
         Rgb ind = indirect_[v];
-        for (size_t l = 0; l < L; ++l) {
-            const Rgb part = P.vertexIndirect.empty() ? P.lighting.response[v * L + l] -
-                                                            Rgb::gray(r_.direct.visible[v * L + l])
-                                                      : P.vertexIndirect[v * L + l];
-            ind += radiance_[l] * part;
-        }
+        for (size_t l = 0; l < L; ++l) ind += radiance_[l] * indirectParts_[v * L + l];
         sum += ind * st.weight[static_cast<size_t>(i)];
     }
     return sum;

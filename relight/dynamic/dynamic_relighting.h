@@ -161,6 +161,9 @@ class DynamicRelighting {
     RemovedRegion removed_;
     std::vector<int> regionObjects_;  ///< the objects removed_ was built for
     int maskGrowth_ = 1;
+    /// Per vertex and real light: the indirect part of its response (indirectAt).
+    std::vector<Rgb> ownIndirectParts_;
+    std::span<const Rgb> indirectParts_;
     void refreshRemoved(const radiosity::DynamicUpdate& u, bool allLights);
     /// The indirect irradiance at a point of a scene leaf, as the edit stands.
     Rgb indirectAt(int leaf, const radiosity::Vec3& x) const;

@@ -7,7 +7,6 @@
 
 #include "radiosity/direct_light.h"
 #include "radiosity/parallel.h"
-#include "radiosity/stopwatch.h"
 #include "relight/pipeline/pixel_light.h"
 #include "relight/pipeline/texture_fill.h"
 
@@ -74,7 +73,6 @@ int defaultMaskGrowth(int width, int height) {
 
 RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& removed,
                                  size_t realNodes, int grow) {
-    const auto t0 = radiosity::Clock::now();
     RemovedRegion region;
     const ItemBuffer& items = r.items;
     const PreparedImage& P = r.prepared;
@@ -299,7 +297,6 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             }
             ++region.modelled;
         }
-    region.seconds = radiosity::secondsSince(t0);
     return region;
 }
 

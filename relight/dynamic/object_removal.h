@@ -37,7 +37,6 @@ struct RemovedRegion {
     std::vector<radiosity::Vec3> point;
     std::vector<radiosity::Rgb> direct;
     int filled = 0, modelled = 0;  ///< mask pixels textured from the photo, from the model
-    double seconds = 0;            ///< building it (rays, synthesis)
 
     bool empty() const { return width <= 0 || height <= 0; }
     bool inMask(int x, int y) const {

@@ -22,19 +22,7 @@ namespace {
 
 /// A row of `n` surface pixels, pixel x on vertex x alone (weight 1).
 DisplayMap row(int n) {
-    DisplayMap m;
-    m.width = n;
-    m.height = 1;
-    for (int x = 0; x <= n; ++x) {
-        m.start.push_back(x);
-        m.emitterStart.push_back(0);
-    }
-    for (int x = 0; x < n; ++x) {
-        m.vertex.push_back(x);
-        m.weight.push_back(1.0f);
-        m.unshaded.push_back(0.0f);
-    }
-    return m;
+    return test::surfaceGrid(n, 1);
 }
 
 Image filled(int n, float v) {

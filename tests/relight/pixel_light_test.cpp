@@ -124,35 +124,13 @@ TEST(PixelLight, TheCornellBoxsVirtualBoxCastsItsShadowPerPixel) {
     EXPECT_LT(sp.changedRelRmse, 0.9 * sr.changedRelRmse);
 }
 
-namespace {
-
-/// A W x H grid of surface pixels, pixel i on vertex i alone (weight 1).
-DisplayMap grid(int W, int H) {
-    DisplayMap m;
-    m.width = W;
-    m.height = H;
-    const int n = W * H;
-    for (int i = 0; i <= n; ++i) {
-        m.start.push_back(i);
-        m.emitterStart.push_back(0);
-    }
-    for (int i = 0; i < n; ++i) {
-        m.vertex.push_back(i);
-        m.weight.push_back(1.0f);
-        m.unshaded.push_back(0.0f);
-    }
-    return m;
-}
-
-}  // namespace
-
 TEST(PixelLight, ABrightenedDimPhotoShowsItsReflectancePooledNotItsNoise) {
     // One light; the photo received 0.1 per pixel (direct, no indirect) and shows two
     // surfaces side by side, reflectance 0.5 (x < 8) and 0.2, with +-10 % noise. Lit 4 times
     // as much, each pixel is w T/H + (1 - w) R_pooled, w = 1.5 / 4: the noise shrinks and
     // the surfaces do not mix (2.5 times apart, beyond the 30 % tolerance).
     const int W = 16, H = 8;
-    const DisplayMap map = grid(W, H);
+    const DisplayMap map = test::surfaceGrid(W, H);
     Image photo(W, H);
     const auto truthRho = [](int x) { return x < 8 ? 0.5 : 0.2; };
     const auto noise = [](int x, int y) { return ((x * 7 + y * 3) % 5 - 2) * 0.05; };  // +-10 %

@@ -59,4 +59,23 @@ inline EditRenders renderEditIn(const std::string& dir, const std::string& edit,
     return out;
 }
 
+/// A display map of W x H surface pixels built by hand, pixel i on vertex i alone (weight 1):
+/// for the per-pixel display's and the photo merge's arithmetic, without a scene.
+inline DisplayMap surfaceGrid(int W, int H) {
+    DisplayMap m;
+    m.width = W;
+    m.height = H;
+    const int n = W * H;
+    for (int i = 0; i <= n; ++i) {
+        m.start.push_back(i);
+        m.emitterStart.push_back(0);
+    }
+    for (int i = 0; i < n; ++i) {
+        m.vertex.push_back(i);
+        m.weight.push_back(1.0f);
+        m.unshaded.push_back(0.0f);
+    }
+    return m;
+}
+
 }  // namespace relight::test
