@@ -105,7 +105,13 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
 
     // BF criterion (HSA91), power form: rho_r B_s F A_r against epsilon times the emitted
     // power. F is the oracle's bound (conservative for clusters), A_r the receiver's area
-    // that intercepts the source's light.
+    // that intercepts the source's light. For a receiver darker than the scene's mean the
+    // threshold is lowered in proportion to its radiosity (receiverScale): the error that
+    // matters to a picture is relative to what the receiver shows (Gibson & Hubbold 1997,
+    // perceptually driven radiosity), and a display that divides a photo by the light
+    // (Loscos et al. 1999, Eq. (2)) turns an absolute error in a dim corner into a large
+    // error in its reflectance.
+    const double threshold = powerThreshold_ * receiverScale(R);
     const double F = transfer_->bound(r, s, link.F);
     // Near field, the receiver's area facing the source's centre says little (a box's side
     // facing away from the floor's centre still sees half the floor): all of it counts.
@@ -119,8 +125,8 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     // (not at any power: the neighbouring clusters of one finely cut wall touch, yet
     // exchange next to nothing).
     const bool farField = !(R.isCluster() || S.isCluster()) || F <= kFarField ||
-                          !(value > kNearFieldPower * powerThreshold_);
-    if (farField && !(value > powerThreshold_)) return {Decision::accept, value};
+                          !(value > kNearFieldPower * threshold);
+    if (farField && !(value > threshold)) return {Decision::accept, value};
 
     const bool splitR = canSplit(r), splitS = canSplit(s);
     if (!splitR && !splitS) return {Decision::accept, value};
@@ -135,6 +141,11 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     // Of two elements, split the larger: it subtends the larger angle from the other
     // (F_rs > F_sr <=> A_s > A_r by reciprocity).
     return {R.area >= S.area ? Decision::splitReceiver : Decision::splitSource, value};
+}
+
+double HierarchicalSolver::receiverScale(const Node& R) const {
+    if (!(options_.darkFloor < 1) || !(meanB_ > 0)) return 1.0;
+    return std::clamp(R.B.maxComponent() / meanB_, options_.darkFloor, 1.0);
 }
 
 size_t HierarchicalSolver::memoryUsed(size_t queued) const {
@@ -253,6 +264,17 @@ void HierarchicalSolver::evaluateVisibility(const std::vector<size_t>& pending) 
 
 size_t HierarchicalSolver::refineAll() {
     changedInRefine_ = false;
+    if (options_.darkFloor < 1) {
+        // The mean radiosity the oracle weighs receivers against (0 before the first
+        // gather: receiverScale is then 1).
+        double sumBA = 0, sumA = 0;
+        for (const Node& n : h_.nodes)
+            if (n.isLeaf() && !n.isCluster() && !n.emitting && n.rho.maxComponent() > 0) {
+                sumBA += n.B.maxComponent() * n.area;
+                sumA += n.area;
+            }
+        meanB_ = sumA > 0 ? sumBA / sumA : 0;
+    }
     std::vector<Link> old = links_.take();
     links_.reserve(old.size() * 2);
     // Most links stay as they are: the oracle is asked for all of them in parallel, and

@@ -113,8 +113,12 @@ size_t defaultMemoryBudget();
 
 struct SolverOptions {
     double epsilon = kDefaultEpsilon;  ///< radiosity/defaults.h says why relight's is finer
-    size_t maxLinks = 0;               ///< refinement budget in links (0: what fits in maxMemory)
-    size_t maxMemory = 0;              ///< refinement budget in bytes (0: defaultMemoryBudget())
+    /// Relative accuracy where it is dark: a receiver whose radiosity is below the mean of
+    /// the reflecting leaves has its threshold lowered in proportion, down to this fraction
+    /// of epsilon (1: the plain BF criterion). See oracle().
+    double darkFloor = 1.0;
+    size_t maxLinks = 0;   ///< refinement budget in links (0: what fits in maxMemory)
+    size_t maxMemory = 0;  ///< refinement budget in bytes (0: defaultMemoryBudget())
     double minArea = 0;
     double tolerance = 1e-4;
     int maxSweeps = 2000;     ///< gather/push-pull sweeps per solve, a safety bound
@@ -327,6 +331,9 @@ class HierarchicalSolver {
     /// A refinement round that refines at most this fraction of the links ends the rounds.
     static constexpr double kSettled = 1e-3;
     Verdict oracle(const Link& link) const;
+    /// The factor on the power threshold for links to R: clamp(B_R / meanB_, darkFloor, 1)
+    /// (max channel), 1 before there is a solution.
+    double receiverScale(const Node& R) const;
     Link makeLink(int r, int s) const;
     /// A child of `parent` (passive_[parentIndex]) between r and s; visible without rays
     /// when the parent's shaft was empty.
@@ -420,7 +427,8 @@ class HierarchicalSolver {
     ActiveLinks links_;          ///< active links, grouped by receiver (active_links.h)
     std::vector<Link> passive_;  ///< refined-away links, kept for dynamic updates
     double minArea_ = 0;
-    double powerThreshold_ = 0;            ///< epsilon * emitted power (max channel)
+    double powerThreshold_ = 0;  ///< epsilon * emitted power (max channel)
+    double meanB_ = 0;  ///< area-weighted mean radiosity of the reflecting leaves (max channel)
     size_t maxLinks_ = 0, maxMemory_ = 0;  ///< the budget in force
     bool budgetReached_ = false;
     int boundedLeaves_ = 0;

@@ -41,6 +41,11 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
     app->add_option("--epsilon", p.epsilon, "BF refinement threshold")
         ->capture_default_str()
         ->check(finiteNumber(Sign::kPositive));
+    app->add_option("--dark-floor", p.darkFloor,
+                    "lowest factor on the refinement threshold of a receiver darker than the "
+                    "mean radiosity (1: the plain BF criterion)")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-3, 1.0));
     addBudgetOptions(app, p.maxLinks, p.maxMemoryMB);
     app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     app->add_flag("!--no-refinement", p.shadowRefinement,

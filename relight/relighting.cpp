@@ -129,6 +129,7 @@ void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     P.photo = loadFirstPhoto(r.scene);
     radiosity::SolverOptions so;
     so.epsilon = o.epsilon;
+    so.darkFloor = o.darkFloor;
     so.maxLinks = o.maxLinks;
     so.maxMemory = o.maxMemory;
     so.transfer.minRays = o.minRays;

@@ -55,6 +55,9 @@ struct RelightOptions {
     /// BF refinement threshold (radiosity/solver.h): finer than a solve's on its own, to
     /// follow the photo's shadows (radiosity/defaults.h).
     double epsilon = radiosity::kFineEpsilon;
+    /// The solver's darkFloor (radiosity/solver.h): the threshold of a receiver darker than
+    /// the mean is lowered with its radiosity, down to this fraction.
+    double darkFloor = 0.1;
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
     int spp = 16;  ///< item-buffer samples per pixel, at most (sampleBudget)

@@ -46,6 +46,7 @@ struct CacheArgs {
 /// The preparation options that `prepare` and `render` share (part of the cache's key).
 struct PrepareOptionArgs {
     double epsilon = RelightOptions{}.epsilon;
+    double darkFloor = RelightOptions{}.darkFloor;
     size_t maxLinks = 0;
     double maxMemoryMB = 0;
     int spp = 16;

@@ -32,6 +32,7 @@ std::string fitsScene(const PreparedImage& p, const SceneFile& sf) {
 RelightOptions PrepareOptionArgs::relightOptions() const {
     RelightOptions o;
     o.epsilon = epsilon;
+    o.darkFloor = darkFloor;
     o.maxLinks = maxLinks;
     o.maxMemory = static_cast<size_t>(maxMemoryMB * 1048576.0);
     o.spp = spp;

@@ -122,6 +122,7 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
         {"edit", a.edit},
         {"output", a.output},
         {"epsilon", a.prep.epsilon},
+        {"dark_floor", a.prep.darkFloor},
         {"shadow_refinement", a.prep.shadowRefinement},
         {"shadow_removal", a.prep.shadowRemoval},
         {"display", a.display},

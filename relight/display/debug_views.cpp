@@ -12,6 +12,7 @@
 #include "relight/display/ratio_display.h"
 #include "relight/errors.h"
 #include "relight/io/json_file.h"
+#include "relight/pipeline/pixel_light.h"
 
 namespace relight {
 
@@ -154,6 +155,14 @@ DebugViews computeDebugViews(const Relighting& r, std::span<const Rgb> radianceN
         surfacePixels.push_back(px);
     }
     v.bdScale = robustScale(v.D, surfacePixels);
+    if (!P.pixelDirect.empty()) {
+        v.Hphoto = Image(w, hgt);
+        for (int px = 0; px < pixels; ++px)
+            if (shownPerPixel(m, size_t(px)))
+                setPixel(v.Hphoto, px,
+                         photoIrradianceAt(m, size_t(px), P.pixelDirect, P.vertexIndirect,
+                                           P.photoRadiance));
+    }
 
     v.Torig = P.photo;
     const bool removal = !r.removal.kInter.empty();
@@ -245,6 +254,14 @@ std::vector<std::string> writeDebugViews(const Relighting& r, std::span<const Rg
     put("reflectance.png", v.reflectance, 1,
         "leaf reflectance rho, after shadow removal when it ran (linear; black without "
         "reflecting surface)");
+    if (v.Hphoto.width > 0)
+        put("H_photo.exr", v.Hphoto, 1,
+            "the photo's irradiance per pixel as the per-pixel display divides by it (direct "
+            "light per pixel plus the interpolated indirect light, photo units); pi T / H_photo "
+            "is the pixel's reflectance (Loscos et al. 1999, Eq. (2)); black where the "
+            "per-pixel display does not draw");
+    else
+        skipped.push_back({{"file", "H_photo.exr"}, {"why", "prepared without per-pixel light"}});
     put("mesh.png", v.mesh, 1,
         "leaf element edges (yellow)" + overDimmedPhoto +
             " (Fig. 10, 11): pixels whose samples, or whose first sample and its right or "

@@ -17,6 +17,10 @@
 //   T_inter      T_orig k_inter (Eq. (13)): shadows lifted with the reference reflectance.
 //   T_final      T_orig k_final: the texture after the umbra correction (Eq. (16)). Fig. 18(e).
 //   reflectance  the leaf reflectance rho (linear, no scale).
+//   H_photo      with per-pixel light only: the photo's irradiance per pixel as the
+//                per-pixel display divides by it (pipeline/pixel_light.h,
+//                photoIrradianceAt), in the photo's units; pi T / H_photo is the pixel's
+//                reflectance (Loscos et al. 1999, Eq. (2)).
 //   mesh         the leaf elements' edges over the dimmed photo. Fig. 10, 11.
 //   frontier     occluded leaves (blue) and frontier leaves (green, the paper's colour)
 //                over the dimmed photo. Fig. 14(a).
@@ -43,6 +47,7 @@ struct DebugViews {
     Image B, D;                   ///< linear, photo units (EXR as is, PNG times bdScale)
     Image Torig, Tinter, Tfinal;  ///< linear; Tinter and Tfinal empty without shadow removal
     Image reflectance;            ///< linear, dimensionless
+    Image Hphoto;                 ///< linear, photo units; empty without per-pixel light
     Image mesh, frontier;         ///< linear overlays; frontier empty without shadow removal
     /// Per pixel rho / (pi sum_v w_v), 0 without surface: B = bFactor * sum_v w_v H(v) with
     /// the display map's weights, so that a display can draw B for any vertex irradiance.
@@ -61,7 +66,8 @@ DebugViews computeDebugViews(const Relighting& r, std::span<const radiosity::Rgb
 void createDebugViewsFolder(const std::filesystem::path& dir);
 
 /// Computes the views and writes them into `dir` (created if missing): B.exr, B.png, D.exr,
-/// D.png, T_orig.png, T_inter.png, T_final.png, reflectance.png, mesh.png, frontier.png,
+/// D.png, T_orig.png, T_inter.png, T_final.png, reflectance.png, H_photo.exr, mesh.png,
+/// frontier.png,
 /// then index.json listing each file, what it shows and its scale, and the views skipped
 /// and why. Every file is written atomically (temporary name, then renamed) and index.json
 /// last, so an index lists only complete files. Returns the file names written, index.json

@@ -22,9 +22,9 @@ expect("${out}" "using cache" "render from the cache")
 relight(out 0 render "${room}" ${cheap} --edit "${edit}" -o "${WORK}/views.exr"
         --debug-views "${views}" --report "${WORK}/report.json")
 expect("${out}" "solver state is needed[^\n]*; preparing" "render --debug-views")
-expect("${out}" "wrote debug views [^\n]*views \\(11 files" "render --debug-views")
-foreach(f B.exr B.png D.exr D.png T_orig.png T_inter.png T_final.png reflectance.png mesh.png
-          frontier.png index.json)
+expect("${out}" "wrote debug views [^\n]*views \\(12 files" "render --debug-views")
+foreach(f B.exr B.png D.exr D.png T_orig.png T_inter.png T_final.png reflectance.png H_photo.exr
+          mesh.png frontier.png index.json)
   if(NOT EXISTS "${views}/${f}")
     message(FATAL_ERROR "render --debug-views wrote no ${f}")
   endif()

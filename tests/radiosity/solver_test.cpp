@@ -71,3 +71,25 @@ TEST(Solver, DeterministicWhateverTheThreadCount) {
     ASSERT_EQ(a.first.size(), b.first.size());
     for (size_t i = 0; i < a.first.size(); ++i) ASSERT_EQ(a.first[i], b.first[i]) << i;
 }
+
+TEST(Solver, DarkReceiversAreRefinedFinerDownToTheFloor) {
+    // SolverOptions::darkFloor: a receiver darker than the mean radiosity has its BF
+    // threshold lowered in proportion, down to darkFloor times epsilon. In a furnace lit by
+    // one face, the faces far from it are darker than the mean: the solve refines more than
+    // the plain criterion (darkFloor 1), and less than the plain criterion at epsilon times
+    // the floor, which refines every receiver that finely.
+    const auto run = [](double epsilon, double darkFloor) {
+        Scene s = furnace(0.6, 2.0);
+        for (size_t i = 1; i < s.lights.size(); ++i) s.lights[i].radiance = Rgb{};
+        SolverOptions o;
+        o.epsilon = epsilon;
+        o.darkFloor = darkFloor;
+        HierarchicalSolver solver(s, o);
+        solver.solve();
+        return std::make_pair(solver.links().size(), solver.stats());
+    };
+    const auto plain = run(1e-3, 1.0), dark = run(1e-3, 0.1), fine = run(1e-4, 1.0);
+    EXPECT_GT(dark.first, plain.first);
+    EXPECT_LT(dark.first, fine.first);
+    EXPECT_GT(dark.second.leaves, plain.second.leaves);
+}
