@@ -34,7 +34,7 @@ void HierarchicalSolver::normaliseLamps(int firstPolygon) {
     for (size_t p = 0; p < delivered.size(); ++p)
         if (delivered[p] > 0 && nodes[h_.polygonRoot[p]].seen < 0)
             faces.push_back(h_.polygonRoot[p]);
-    measureSeen(faces);
+    measureSeen(faces, kLampSeenSide, kLampSeenSide);
     links_.forEachMutable([&](Link& l) {
         const Node& S = nodes[l.source];
         if (reflects(S)) return;
@@ -111,12 +111,11 @@ std::vector<double> HierarchicalSolver::meanOverLeaves(
     return x;
 }
 
-void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {
+void HierarchicalSolver::measureSeen(const std::vector<int>& leaves, int side, int more) {
     // Cosine-distributed rays, stratified over the hemisphere (detail/hemisphere.h), from
     // a random point of the leaf each.
     const double diag = glm::length(h_.nodes[Hierarchy::kRoot].bounds.diagonal());
-    const double tMin = 1e-6 * diag;       // above Embree's float rounding (visibility.h)
-    constexpr int kFirst = 8, kMore = 16;  // 64 rays; 256 where they disagree
+    const double tMin = 1e-6 * diag;  // above Embree's float rounding (visibility.h)
     parallelFor(leaves.size(), 16, [&](size_t i) {
         Node& e = h_.nodes[leaves[i]];
         Rng rng(0xC0FFEEull ^ (static_cast<uint64_t>(leaves[i]) * 0x9E3779B97F4A7C15ull));
@@ -133,10 +132,10 @@ void HierarchicalSolver::measureSeen(const std::vector<int>& leaves) {
             }
             cast += k * k;
         };
-        castRays(kFirst);
-        if (hits > 0 && hits < cast) {  // a partly open leaf: a finer estimate
+        castRays(side);
+        if (more > side && hits > 0 && hits < cast) {  // a partly open leaf: a finer estimate
             hits = cast = 0;
-            castRays(kMore);
+            castRays(more);
         }
         e.seen = static_cast<double>(hits) / cast;
         e.seenError = std::sqrt(e.seen * (1 - e.seen) / cast);

@@ -319,6 +319,8 @@ class HierarchicalSolver {
     static constexpr double kFarField = 0.1;
     /// Fraction of the power threshold above which a near-field cluster link is refined.
     static constexpr double kNearFieldPower = 0.1;
+    /// Strata per side of the rays that measure a lamp face's `seen` (measureSeen).
+    static constexpr int kLampSeenSide = 64;
     /// Largest factor by which the energy bound scales a leaf's gather up.
     static constexpr double kMaxRenormalisation = 2.0;
     /// The energy bound's balance: at most this many column/row alternations...
@@ -381,8 +383,12 @@ class HierarchicalSolver {
     /// the faces from polygon `firstPolygon` on: an inserted light's, leaving the scene's
     /// lamps (and their link corrections) alone.
     void normaliseLamps(int firstPolygon = 0);
-    /// Ray casts the `seen` fraction of these leaf elements (64 cosine-distributed rays).
-    void measureSeen(const std::vector<int>& leaves);
+    /// Ray casts the `seen` fraction of these elements: first side^2 cosine-distributed rays
+    /// (stratified), then more^2 where they disagree. Leaves: 64, then 256 (the energy
+    /// bound allows for the error). Lamps' faces: 4096 at once (normaliseLamps scales all of
+    /// a lamp's light by it: 256 rays left it +-2.5 %, and the tessellated Cornell box's lamp
+    /// read 0.809 against the quads' 0.832).
+    void measureSeen(const std::vector<int>& leaves, int side = 8, int more = 16);
     [[noreturn]] void throwNotConverged(int sweeps, double power, double delta) const;
     /// One refinement pass over the active links; returns how many were refined.
     size_t refineAll();

@@ -116,9 +116,23 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
     auto rep = estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds);
     ReflectanceEstimate r;
     r.seconds = secondsSince(t0);
+    // Per object, the area-weighted mean of its polygons' reflectances (emitting faces left
+    // out): what a user checks an estimate against.
+    const radiosity::Scene& scene = solver.scene();
+    std::vector<radiosity::Rgb> sum(scene.objects.size());
+    std::vector<double> area(scene.objects.size(), 0.0);
+    for (const radiosity::Polygon& p : scene.polygons) {
+        if (p.light >= 0) continue;
+        sum[static_cast<size_t>(p.object)] += p.rho * p.area;
+        area[static_cast<size_t>(p.object)] += p.area;
+    }
+    nlohmann::json objects = nlohmann::json::object();
+    for (size_t o = 0; o < sum.size(); ++o)
+        if (area[o] > 0) objects[scene.objects[o]] = rgbJson(sum[o] * (1.0 / area[o]));
     r.report = {{"rounds", rep.rounds},
                 {"polygons_seen", rep.polygonsSeen},
                 {"polygons_defaulted", rep.polygonsDefaulted},
+                {"objects", objects},
                 {"seconds", r.seconds}};
     return r;
 }
