@@ -339,6 +339,9 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
         vis_->removePolygons(rec.visGroup);
         h_.detachLastObject();
     }
+    // Leaves that the change split (an earlier virtual object's: only the scene's are
+    // frozen) are leaves again; their children were made after the snapshot.
+    h_.truncateElements(rec.B.size());
     links_.replace(std::move(rec.links));
     passive_.resize(rec.passive);
     if (rec.removed < 0) {

@@ -217,6 +217,15 @@ bool Hierarchy::unsubdivide(int node) {
     return true;
 }
 
+void Hierarchy::truncateElements(size_t count) {
+    if (nodes.size() > count) nodes.resize(count);
+    for (Node& n : nodes)
+        if (n.childCount > 0 && static_cast<size_t>(n.firstChild) >= count) {
+            n.firstChild = -1;
+            n.childCount = 0;
+        }
+}
+
 bool Hierarchy::subdivide(int node) {
     if (nodes[node].isCluster() || !nodes[node].isLeaf()) return false;
     const Node parent = nodes[node];  // copy: push_back below may reallocate

@@ -100,6 +100,9 @@ class Hierarchy {
     /// Undoes subdivide(node) when its 4 children are the newest nodes and leaves
     /// (returns false otherwise, changing nothing).
     bool unsubdivide(int node);
+    /// Drops the element nodes from `count` on (subdivisions made after a snapshot of
+    /// `count` nodes) and makes leaves again of the nodes whose children they were.
+    void truncateElements(size_t count);
 
     /// Dynamic objects (Drettakis & Sillion 1997; Loscos et al. 2000, §5.1): attaches
     /// `polygons`, whose Scene::polygons indices are firstPolygon, firstPolygon + 1, ... (the

@@ -407,3 +407,34 @@ TEST(RealObjectRemoval, RefusesWhatCannotBeTakenOut) {
     solver.removeLastObject();
     EXPECT_EQ(solver.insertedObjects(), 0);
 }
+
+TEST(DynamicObjects, RemovingABoxUnsplitsTheVirtualLampItSplit) {
+    // Only the scene's leaves are frozen: a box inserted next to a virtual lamp may split
+    // the lamp's elements (a link from the lamp refined at the source). Removing the box
+    // drops those children, and the lamp's elements are leaves again, as after its own
+    // insertion: no node keeps children past the end of the hierarchy.
+    HierarchicalSolver solver(room(), options());
+    solver.solve();
+    const Rgb radiance = Rgb::gray(2.0);
+    solver.insertObject(
+        "virtual lamp",
+        {makePolygon({{0.8, -0.3, 1.2}, {0.8, 0.3, 1.2}, {1.4, 0.3, 1.2}, {1.4, -0.3, 1.2}}, -1,
+                     Rgb{})},
+        &radiance);
+    const std::vector<Node> before = solver.hierarchy().nodes;
+    solver.insertObject("box", box({0.85, -0.15, 0.6}, {1.15, 0.15, 0.9}, Rgb::gray(0.6)));
+    size_t splitLampNodes = 0;
+    for (size_t n = 0; n < before.size(); ++n)
+        if (before[n].isLeaf() && !solver.hierarchy().nodes[n].isLeaf()) ++splitLampNodes;
+    EXPECT_GT(splitLampNodes, 0u) << "the box split none of the lamp's leaves: no test";
+    solver.removeLastObject();
+    const auto& nodes = solver.hierarchy().nodes;
+    ASSERT_EQ(nodes.size(), before.size());
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        ASSERT_EQ(nodes[n].childCount, before[n].childCount) << n;
+        if (nodes[n].childCount > 0) {
+            ASSERT_LE(static_cast<size_t>(nodes[n].firstChild + nodes[n].childCount), nodes.size())
+                << n;
+        }
+    }
+}
