@@ -1,4 +1,5 @@
 #include "relight/dynamic/dynamic_relighting.h"
+#include "relight/dynamic/overlay_samples.h"
 
 #include <algorithm>
 #include <chrono>
@@ -484,8 +485,8 @@ VirtualOverlay DynamicRelighting::overlay() {
         return o;
     }
     o.rgba.assign(static_cast<size_t>(o.width) * o.height * 4, 0.0f);
-    const int k =
-        std::max(1, static_cast<int>(std::floor(std::sqrt(static_cast<double>(r_.items.spp)))));
+    const OverlaySamples samples(r_.items.spp);
+    const int k = samples.k;
     const Vec3 eye = camera.position();
     const auto& h = solver_.hierarchy();
     const auto& vis = solver_.visibility();
@@ -500,8 +501,7 @@ VirtualOverlay DynamicRelighting::overlay() {
             const size_t g =
                 filled ? static_cast<size_t>((y - gone.y0) * gone.width + x - gone.x0) : 0;
             for (int s = 0; s < k * k; ++s) {
-                const double u = x - 0.5 + ((s % k) + 0.5) / k;
-                const double v = y - 0.5 + ((s / k) + 0.5) / k;
+                const auto [u, v] = samples.at(x, y, s);
                 const Vec3 dir = camera.rayDirection(u, v);
                 const auto hit = vis.intersect(eye, dir);
                 if (hit.polygon < static_cast<int>(realPolygons_) && filled) {

@@ -1,4 +1,5 @@
 #include "relight/dynamic/object_removal.h"
+#include "relight/dynamic/overlay_samples.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,9 +117,9 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
 
     // 2. The camera's samples in the box again, the objects hidden; virtual parts in front
     //    are passed through (the overlay draws them over the fill at each frame).
-    const int k =
-        std::max(1, static_cast<int>(std::floor(std::sqrt(static_cast<double>(items.spp)))));
-    const size_t kk = static_cast<size_t>(k * k);
+    const OverlaySamples samples(items.spp);
+    const int k = samples.k;
+    const size_t kk = static_cast<size_t>(samples.count());
     region.k = k;
     region.polygon.assign(boxPixels * kk, -1);
     region.leaf.assign(boxPixels * kk, -1);
@@ -135,10 +136,7 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             const size_t b = row * static_cast<size_t>(bw) + static_cast<size_t>(bx);
             votes.clear();
             for (size_t s = 0; s < kk; ++s) {
-                const double u =
-                    x - 0.5 + (static_cast<double>(s % static_cast<size_t>(k)) + 0.5) / k;
-                const double v =
-                    y - 0.5 + (static_cast<double>(s / static_cast<size_t>(k)) + 0.5) / k;
+                const auto [u, v] = samples.at(x, y, static_cast<int>(s));
                 const Vec3 dir = camera.rayDirection(u, v);
                 double tMin = 0;
                 radiosity::Visibility::Hit hit;
