@@ -119,16 +119,13 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
     // Per object, the area-weighted mean of its polygons' reflectances (emitting faces left
     // out): what a user checks an estimate against.
     const radiosity::Scene& scene = solver.scene();
-    std::vector<radiosity::Rgb> sum(scene.objects.size());
-    std::vector<double> area(scene.objects.size(), 0.0);
-    for (const radiosity::Polygon& p : scene.polygons) {
-        if (p.light >= 0) continue;
-        sum[static_cast<size_t>(p.object)] += p.rho * p.area;
-        area[static_cast<size_t>(p.object)] += p.area;
-    }
+    std::vector<radiosity::Rgb> rho;
+    for (const radiosity::Polygon& p : scene.polygons) rho.push_back(p.rho);
+    const ObjectMeans means =
+        objectMeans(scene, rho, [&](int p) { return scene.polygons[p].light < 0; });
     nlohmann::json objects = nlohmann::json::object();
-    for (size_t o = 0; o < sum.size(); ++o)
-        if (area[o] > 0) objects[scene.objects[o]] = rgbJson(sum[o] * (1.0 / area[o]));
+    for (size_t o = 0; o < means.rho.size(); ++o)
+        if (means.area[o] > 0) objects[scene.objects[o]] = rgbJson(means.rho[o]);
     r.report = {{"rounds", rep.rounds},
                 {"polygons_seen", rep.polygonsSeen},
                 {"polygons_defaulted", rep.polygonsDefaulted},

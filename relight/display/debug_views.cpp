@@ -157,11 +157,12 @@ DebugViews computeDebugViews(const Relighting& r, std::span<const Rgb> radianceN
     v.bdScale = robustScale(v.D, surfacePixels);
     if (!P.pixelDirect.empty()) {
         v.Hphoto = Image(w, hgt);
-        for (int px = 0; px < pixels; ++px)
-            if (shownPerPixel(m, size_t(px)))
-                setPixel(v.Hphoto, px,
-                         photoIrradianceAt(m, size_t(px), P.pixelDirect, P.vertexIndirect,
-                                           P.photoRadiance));
+        radiosity::parallelFor(static_cast<size_t>(pixels), 1024, [&](size_t px) {
+            if (shownPerPixel(m, px))
+                setPixel(
+                    v.Hphoto, static_cast<int>(px),
+                    photoIrradianceAt(m, px, P.pixelDirect, P.vertexIndirect, P.photoRadiance));
+        });
     }
 
     v.Torig = P.photo;

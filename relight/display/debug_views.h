@@ -67,9 +67,8 @@ void createDebugViewsFolder(const std::filesystem::path& dir);
 
 /// Computes the views and writes them into `dir` (created if missing): B.exr, B.png, D.exr,
 /// D.png, T_orig.png, T_inter.png, T_final.png, reflectance.png, H_photo.exr, mesh.png,
-/// frontier.png,
-/// then index.json listing each file, what it shows and its scale, and the views skipped
-/// and why. Every file is written atomically (temporary name, then renamed) and index.json
+/// frontier.png, then index.json listing each file, what it shows and its scale, and the views
+/// skipped and why. Every file is written atomically (temporary name, then renamed) and index.json
 /// last, so an index lists only complete files. Returns the file names written, index.json
 /// last. Throws as createDebugViewsFolder, and OutputError naming the file when one cannot
 /// be written.

@@ -44,6 +44,22 @@ std::vector<int> surfaceOf(const radiosity::Scene& scene) {
     return parent;
 }
 
+ObjectMeans objectMeans(const radiosity::Scene& scene, std::span<const Rgb> rho,
+                        const std::function<bool(int)>& use) {
+    ObjectMeans m;
+    m.rho.assign(scene.objects.size(), Rgb{});
+    m.area.assign(scene.objects.size(), 0.0);
+    for (size_t p = 0; p < scene.polygons.size(); ++p) {
+        if (!use(static_cast<int>(p))) continue;
+        const radiosity::Polygon& poly = scene.polygons[p];
+        m.rho[static_cast<size_t>(poly.object)] += rho[p] * poly.area;
+        m.area[static_cast<size_t>(poly.object)] += poly.area;
+    }
+    for (size_t o = 0; o < m.rho.size(); ++o)
+        if (m.area[o] > 0) m.rho[o] = m.rho[o] * (1.0 / m.area[o]);
+    return m;
+}
+
 namespace {
 
 /// Per polygon, what does not change between rounds: sums over its usable photo samples
@@ -144,8 +160,7 @@ struct RoundEstimates {
     std::vector<bool> seen;
     Rgb meanRho;
     double meanArea = 0;
-    std::vector<Rgb> objectRho;  ///< per object: sum of rho * area, then the mean
-    std::vector<double> objectArea;
+    ObjectMeans objects;  ///< per object, over its polygons seen
     int seenCount = 0;
 };
 
@@ -165,8 +180,6 @@ RoundEstimates estimateFromSums(const radiosity::Scene& scene, const std::vector
     RoundEstimates e;
     e.rho.resize(np);
     e.seen.assign(np, false);
-    e.objectRho.assign(scene.objects.size(), Rgb{});
-    e.objectArea.assign(scene.objects.size(), 0.0);
     for (int p = 0; p < np; ++p) {
         if (scene.polygons[p].light >= 0) continue;
         const bool own = sums.count[p] >= minSamples;
@@ -178,15 +191,11 @@ RoundEstimates estimateFromSums(const radiosity::Scene& scene, const std::vector
         e.rho[p] = clampReflectance(e.rho[p]);
         e.seen[p] = true;
         ++e.seenCount;
-        const radiosity::Polygon& poly = scene.polygons[p];
-        e.meanRho += e.rho[p] * poly.area;
-        e.meanArea += poly.area;
-        e.objectRho[poly.object] += e.rho[p] * poly.area;
-        e.objectArea[poly.object] += poly.area;
+        e.meanRho += e.rho[p] * scene.polygons[p].area;
+        e.meanArea += scene.polygons[p].area;
     }
     if (e.meanArea > 0) e.meanRho = e.meanRho * (1.0 / e.meanArea);
-    for (size_t o = 0; o < e.objectRho.size(); ++o)
-        if (e.objectArea[o] > 0) e.objectRho[o] = e.objectRho[o] * (1.0 / e.objectArea[o]);
+    e.objects = objectMeans(scene, e.rho, [&](int p) { return static_cast<bool>(e.seen[p]); });
     return e;
 }
 
@@ -212,8 +221,8 @@ void stepReflectances(radiosity::HierarchicalSolver& solver, const SceneFile& sc
             auto it = sceneFile.objectSettings.find(name);
             if (it != sceneFile.objectSettings.end() && it->second.reflectance)
                 e.rho[p] = *it->second.reflectance;
-            else if (e.objectArea[poly.object] > 0)
-                e.rho[p] = e.objectRho[poly.object];
+            else if (e.objects.area[poly.object] > 0)
+                e.rho[p] = e.objects.rho[poly.object];
             else
                 e.rho[p] = e.meanArea > 0 ? e.meanRho : poly.rho;
         }

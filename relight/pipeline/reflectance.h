@@ -50,6 +50,15 @@ inline radiosity::Rgb clampReflectance(radiosity::Rgb rho) {
 /// one of its surface's polygons). Emitting faces are surfaces of their own.
 std::vector<int> surfaceOf(const radiosity::Scene& scene);
 
+/// Per object: the area-weighted mean of rho[p] over its polygons p with use(p), and the
+/// area they cover (0, and a zero mean, for an object with none).
+struct ObjectMeans {
+    std::vector<radiosity::Rgb> rho;
+    std::vector<double> area;
+};
+ObjectMeans objectMeans(const radiosity::Scene& scene, std::span<const radiosity::Rgb> rho,
+                        const std::function<bool(int)>& use);
+
 struct ReflectanceReport {
     int rounds = 0;
     int polygonsSeen = 0;       ///< polygons with enough photo samples, or their surface
