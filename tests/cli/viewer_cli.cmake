@@ -25,9 +25,13 @@ file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(cache "${WORK}/prepared.bin")
 
-# Runs the viewer under xvfb-run (run_checked).
+# Runs the viewer under xvfb-run (run_checked). With an X authority file of its own (-f),
+# xvfb-run makes no temporary folder: its removal at exit raced the X server's reset on a
+# loaded machine ("problem while cleaning up temporary directory", exit code 5, in place of
+# the viewer's own).
 function(viewer out expected_rc)
-  run_checked(o ${expected_rc} "${XVFB_RUN}" -a -s "-screen 0 1280x1024x24" ${viewer_cmd} ${ARGN})
+  run_checked(o ${expected_rc} "${XVFB_RUN}" -a -f "${WORK}/Xauthority" -s "-screen 0 1280x1024x24"
+              ${viewer_cmd} ${ARGN})
   set(${out} "${o}" PARENT_SCOPE)
 endfunction()
 
