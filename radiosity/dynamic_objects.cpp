@@ -14,6 +14,7 @@
 // new links) is only that of the old and the new position.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "radiosity/detail/shaft.h"
@@ -84,7 +85,26 @@ void HierarchicalSolver::cutLinks(const Bounds3& box, int object, DynamicUpdate&
     std::vector<int>& cut = found.cut;
     std::erase_if(cut, [&](int a) { return found.erased[a] != 0; });
     const uint64_t raysBefore = transfer_->counters.rays.load();
-    parallelFor(cut.size(), 8, [&](size_t i) { transfer_->visibility(links_.mutableAt(cut[i])); });
+    parallelFor(cut.size(), 8, [&](size_t i) {
+        Link& l = links_.mutableAt(cut[i]);
+        if (revive || !l.corrected) {
+            // An insertion adds its shadow to what the photo showed: a link corrected by
+            // real-shadow removal keeps its correction.
+            visibilityAgain(l);
+            return;
+        }
+        // A removal: where the object blocked part of the link, the shadow the correction
+        // was measured in is (partly) gone, and so is the correction; elsewhere the
+        // correction was for another blocker and stays. (The rays are seeded by the link's
+        // nodes: an unchanged visibility is the same number.)
+        const double corr = h_.nodes[l.receiver].lightCorrection;
+        const double before = corr > 0 ? static_cast<double>(l.V) / corr : 0.0;
+        transfer_->visibility(l);
+        if (static_cast<double>(l.V) > before * (1 + 1e-6) + 1e-6)
+            l.corrected = false;
+        else
+            l.V = static_cast<float>(static_cast<double>(l.V) * corr);
+    });
     report.linksCut += static_cast<int>(cut.size());
     // The leaf elements under each cut light link's receiver: a link may end above the
     // leaves (an element subdivided for other links, a cluster far from the lamp); every
@@ -281,6 +301,9 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     // A virtual light delivers its power as a lamp of the scene does (normaliseLamps);
     // its links are new, so removal takes the scaling away with them.
     if (light >= 0) normaliseLamps(first);
+    // The leaves under the new shadows follow them (2000, Fig. 24(a)): after the lamps'
+    // normalisation, which the split links inherit.
+    refineNewShadows(report);
     // The object's own leaves are bounded and balanced (their sends and gathers), and so
     // are the scene's leaves whose view the object may change: what they see is measured
     // again (a floor under a box sees the box's underside where it saw open space). The
@@ -294,6 +317,100 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     report.timeGather += secondsSince(t0);
     if (reportOut) *reportOut = std::move(report);
     return object;
+}
+
+void HierarchicalSolver::refineNewShadows(DynamicUpdate& report) {
+    if (!options_.newShadowSplits || frozenNodes_ == 0) return;
+    const auto t0 = Clock::now();
+    const uint64_t raysBefore = transfer_->counters.rays.load();
+    std::vector<int> leaves;
+    for (int leaf : report.shadowLeaves)
+        if (static_cast<size_t>(leaf) < frozenNodes_) leaves.push_back(leaf);
+    std::sort(leaves.begin(), leaves.end());
+    leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
+    links_.index();
+    // Level by level (a split moves the leaf's links from lights to its children, and the
+    // list of links is rebuilt once per level, not once per split): the leaves crossed by a
+    // shadow boundary are split, their children's links from lights get their visibility
+    // (in parallel), and the children still crossed by it are split at the next level.
+    std::vector<std::pair<int, int>> level;  // (leaf, splits still allowed below it)
+    for (int leaf : leaves)
+        if (crossedByShadow(leaf)) level.emplace_back(leaf, options_.newShadowSplits(leaf));
+    shadowSplitting_ = true;
+    struct Reset {
+        bool& flag;
+        ~Reset() { flag = false; }
+    } reset{shadowSplitting_};
+    while (!level.empty()) {
+        std::vector<Link> fresh;
+        std::vector<std::pair<int, int>> split;
+        for (const auto& [leaf, depth] : level) {
+            if (depth <= 0 || !canSplit(leaf)) continue;
+            const std::span<const Link> run = links_.of(leaf);
+            std::vector<Link> old;
+            for (const Link& l : run)
+                if (lightOfNode(l.source) >= 0) old.push_back(l);
+            h_.subdivide(leaf);
+            const Node& n = h_.nodes[leaf];
+            for (int k = 0; k < n.childCount; ++k) {
+                // A child sees about what its parent saw (same plane, a quarter of the
+                // size): the energy bound's measure is kept rather than cast again on every
+                // move of an object.
+                h_.nodes[n.firstChild + k].seen = n.seen;
+                h_.nodes[n.firstChild + k].seenError = n.seenError;
+            }
+            for (const Link& l : old) {
+                passive_.push_back(l);
+                const int me = static_cast<int>(passive_.size()) - 1;
+                const double scale = lampScale(l);
+                for (int k = 0; k < n.childCount; ++k)
+                    if (transfer_->facing(n.firstChild + k, l.source))
+                        fresh.push_back(lightChildLink(l, me, n.firstChild + k, scale));
+            }
+            split.emplace_back(leaf, depth);
+        }
+        if (split.empty()) break;
+        report.shadowSplits += static_cast<int>(split.size());
+        std::vector<char> isSplit(h_.nodes.size(), 0);
+        for (const auto& sd : split) isSplit[static_cast<size_t>(sd.first)] = 1;
+        links_.eraseIf([&](const Link& l) {
+            return isSplit[static_cast<size_t>(l.receiver)] && lightOfNode(l.source) >= 0;
+        });
+        parallelFor(fresh.size(), 16, [&](size_t i) { finishLightChildLink(fresh[i]); });
+        for (const Link& c : fresh) links_.push_back(c);
+        links_.index();
+        level.clear();
+        for (const auto& [leaf, depth] : split) {
+            const Node& n = h_.nodes[leaf];
+            for (int k = 0; k < n.childCount; ++k)
+                if (depth > 1 && crossedByShadow(n.firstChild + k))
+                    level.emplace_back(n.firstChild + k, depth - 1);
+        }
+    }
+    report.rays += transfer_->counters.rays.load() - raysBefore;
+    report.timeLinks += secondsSince(t0);
+}
+
+bool HierarchicalSolver::crossedByShadow(int leaf) const {
+    const Node& n = h_.nodes[leaf];
+    if (n.isCluster() || !n.isLeaf()) return false;
+    // A shadow boundary crosses the leaf where one of its links from a light is PARTIAL
+    // (Loscos et al. 2000, §2.3); an umbra or a lit leaf has nothing to follow. Lights
+    // that give the leaf less than kShadowMinShare of its unoccluded direct light are left
+    // out: their shadow does not show.
+    double total = 0;
+    const std::span<const Link> run = links_.of(leaf);
+    for (const Link& l : run) {
+        const int light = lightOfNode(l.source);
+        if (light >= 0) total += l.F * scene_.lights[light].radiance.maxComponent();
+    }
+    for (const Link& l : run) {
+        const int light = lightOfNode(l.source);
+        if (light >= 0 && l.type == VisibilityType::partial &&
+            l.F * scene_.lights[light].radiance.maxComponent() >= kShadowMinShare * total)
+            return true;
+    }
+    return false;
 }
 
 std::vector<int> HierarchicalSolver::remeasureSeenNear(int cluster, size_t firstNode) {

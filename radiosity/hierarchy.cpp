@@ -247,6 +247,7 @@ bool Hierarchy::subdivide(int node) {
         child.emitting = parent.emitting;
         child.gatherScale = parent.gatherScale;
         child.sendScale = parent.sendScale;
+        child.lightCorrection = parent.lightCorrection;
         child.Bsent = parent.Bsent;
         finishGeometry(child);
         nodes.push_back(child);

@@ -76,6 +76,11 @@ struct Node {
     /// Leaf element: factor on what it sends through its links (the column balance of the
     /// energy bound); 1 until balanced, and for a face that does not reflect.
     double sendScale = 1;
+    /// Leaf element: the link correction of real-shadow removal on its links from lights
+    /// (HierarchicalSolver::scaleLightLinks; Loscos et al. 2000, Eq. (15)), 1 without one.
+    /// Kept so that a link from a light that gets its visibility again (a dynamic update
+    /// cut it) or is split to the children keeps the correction.
+    double lightCorrection = 1;
 
     bool isCluster() const { return kind == NodeKind::cluster; }
     bool isLeaf() const { return childCount == 0; }

@@ -79,7 +79,7 @@ Piece wholeLeaf(const Node& e, int n) {
 
 LeafMesh::LeafMesh(const Hierarchy& h, const SplitRule& split) : LeafMesh(h, 0, split) {}
 
-LeafMesh::LeafMesh(const Hierarchy& h, int firstNode, const SplitRule& split)
+LeafMesh::LeafMesh(const Hierarchy& h, int firstNode, const SplitRule& split, int firstPolygon)
     : h_(h), corners_(h.nodes.size()), splits_(h.nodes.size(), 0), gridStart_(h.nodes.size(), -1) {
     // The vertices at one position, each with the normal of the polygon that made it.
     std::unordered_map<CornerKey, std::vector<int>, CornerKeyHash> index;
@@ -102,7 +102,7 @@ LeafMesh::LeafMesh(const Hierarchy& h, int firstNode, const SplitRule& split)
     for (size_t n = 0; n < h.nodes.size(); ++n) {
         corners_[n] = {-1, -1, -1, -1};
         const Node& e = h.nodes[n];
-        if (n < first || e.isCluster() || !e.isLeaf()) continue;
+        if (n < first || e.isCluster() || !e.isLeaf() || e.polygon < firstPolygon) continue;
         for (int i = 0; i < e.vertexCount; ++i) corners_[n][i] = vertexAt(e.v[i], n);
         const int s = split ? std::clamp(split(static_cast<int>(n)), 0, kMaxSplits) : 0;
         if (s == 0) continue;

@@ -50,9 +50,10 @@ class LeafMesh {
     /// Collects the leaf corners of every polygon of `h` (the hierarchy as it stands), and
     /// the corners of the display pieces of the leaves that `split` splits.
     explicit LeafMesh(const Hierarchy& h, const SplitRule& split = {});
-    /// The same for the leaves whose node id is at least `firstNode` only (the nodes of the
-    /// objects inserted after the scene's hierarchy was built: Hierarchy::attachObject).
-    LeafMesh(const Hierarchy& h, int firstNode, const SplitRule& split = {});
+    /// The same for the leaves whose node id is at least `firstNode` and whose polygon is
+    /// at least `firstPolygon` only (the objects inserted after the scene's hierarchy was
+    /// built, Hierarchy::attachObject, without the scene's leaves split since).
+    LeafMesh(const Hierarchy& h, int firstNode, const SplitRule& split = {}, int firstPolygon = 0);
 
     struct Vertex {
         Vec3 position;  ///< metres

@@ -27,7 +27,11 @@ struct Link {
     /// -1 for a top link. Links form a tree by it (the line-space hierarchy of Drettakis &
     /// Sillion 1997), whose shafts the dynamic updates walk from the top.
     int parent = -1;
+    /// A link from a light whose V carries its receiver's link correction of real-shadow
+    /// removal (Node::lightCorrection): visibility measured again is multiplied by it.
+    bool corrected = false;
 };
+static_assert(sizeof(Link) == 32, "a link is 32 bytes: millions of them are kept");
 
 /// Makes `link` VISIBLE without rays: the shaft between its two nodes holds no occluder
 /// (Haines & Wallace 1991).

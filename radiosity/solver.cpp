@@ -74,7 +74,9 @@ bool HierarchicalSolver::canSplit(int node) const {
     if (!n.isLeaf()) return true;
     // Leaves of the scene as it was before the first dynamic insertion stay leaves: the
     // display interpolates over their corners.
-    if (frozenNodes_ > 0 && static_cast<size_t>(node) < frozenNodes_) return false;
+    // Those under a new shadow are split by refineNewShadows() alone.
+    if (frozenNodes_ > 0 && static_cast<size_t>(node) < frozenNodes_ && !shadowSplitting_)
+        return false;
     return !n.isCluster() && n.area * 0.25 >= minArea_;
 }
 
@@ -668,13 +670,14 @@ bool HierarchicalSolver::splitForLights(int leaf,
     const Node& parent = h_.nodes[leaf];
     if (children) children->assign(4, std::vector<LightExchange>(scene_.lights.size()));
     for (const Link& old : rec.removed) {
+        const double scale = lampScale(old);
         passive_.push_back(old);
         const int me = static_cast<int>(passive_.size()) - 1;
         for (int k = 0; k < parent.childCount; ++k) {
             const int rc = parent.firstChild + k;
             if (!transfer_->facing(rc, old.source)) continue;
-            Link c = childLink(old, me, rc, old.source);
-            if (needsVisibility(c)) transfer_->visibility(c);
+            Link c = lightChildLink(old, me, rc, scale);
+            finishLightChildLink(c);
             links_.push_back(c);
             if (children) {
                 LightExchange& e = (*children)[k][lightOfNode(old.source)];
@@ -704,6 +707,7 @@ void HierarchicalSolver::unsplit(int leaf) {
 void HierarchicalSolver::scaleLightLinks(int node, double c) {
     if (!(c >= 0) || !std::isfinite(c))
         throw std::invalid_argument("scaleLightLinks: the correction must be finite and >= 0");
+    h_.nodes[node].lightCorrection *= c;
     const std::span<const Link> run = links_.of(node);
     if (run.empty()) return;
     const size_t first = static_cast<size_t>(run.data() - links_.all().data());
@@ -711,7 +715,37 @@ void HierarchicalSolver::scaleLightLinks(int node, double c) {
         if (lightOfNode(links_[k].source) >= 0) {
             Link& l = links_.mutableAt(k);
             l.V = static_cast<float>(static_cast<double>(l.V) * c);
+            l.corrected = true;
         }
+}
+
+double HierarchicalSolver::lampScale(const Link& l) const {
+    if (lightOfNode(l.source) < 0) return 1.0;
+    const double unscaled = transfer_->formFactor(l.receiver, l.source);
+    return unscaled > 0 ? l.F / unscaled : 1.0;
+}
+
+Link HierarchicalSolver::lightChildLink(const Link& l, int parentIndex, int r, double scale) const {
+    // What the parent link carried beyond its geometry goes to the child: the lamp's
+    // normalisation (normaliseLamps scaled its F) and the receiver's link correction (the
+    // child inherits its parent's Node::lightCorrection).
+    Link c = childLink(l, parentIndex, r, l.source);
+    c.F *= scale;
+    c.corrected = l.corrected;
+    return c;
+}
+
+void HierarchicalSolver::finishLightChildLink(Link& c) const {
+    if (needsVisibility(c))
+        visibilityAgain(c);
+    else if (c.corrected)
+        c.V = static_cast<float>(static_cast<double>(c.V) * h_.nodes[c.receiver].lightCorrection);
+}
+
+void HierarchicalSolver::visibilityAgain(Link& l) const {
+    transfer_->visibility(l);
+    if (l.corrected)
+        l.V = static_cast<float>(static_cast<double>(l.V) * h_.nodes[l.receiver].lightCorrection);
 }
 
 }  // namespace radiosity

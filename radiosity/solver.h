@@ -128,6 +128,12 @@ struct SolverOptions {
     /// Balance what each leaf sends as well as what it gathers (energy bound).
     bool balanceSends = true;
     TransferOptions transfer;
+    /// New shadows (Loscos et al. 2000, §5.2 and Fig. 24(a); Drettakis & Sillion 1997): how
+    /// many times a leaf of the scene (as it was at the first insertion) may be split where
+    /// an inserted object or light makes its link from a light PARTIAL, so that the leaves
+    /// follow the new shadow's boundary. Empty: never (the leaf keeps one averaged V).
+    /// relight sets it to the display's split of each leaf (display pieces of a few pixels).
+    std::function<int(int leaf)> newShadowSplits;
     /// Called with a one-line message at each phase of long work (may be empty).
     std::function<void(const std::string&)> progress;
 };
@@ -164,6 +170,8 @@ struct DynamicUpdate {
     /// Leaf elements whose links from a light the object's shaft cuts (old and new
     /// positions for a move): where the direct light may have changed.
     std::vector<int> shadowLeaves;
+    /// Splits of the scene's leaves under new shadows (SolverOptions::newShadowSplits) kept.
+    int shadowSplits = 0;
     double timeShafts = 0, timeVisibility = 0, timeLinks = 0, timeGather = 0;  ///< seconds
 };
 
@@ -205,8 +213,12 @@ class HierarchicalSolver {
     ///  3. the object is linked to the scene by the refinement oracle: first the links it
     ///     gathers (so that its radiosity is known), then those it shoots and its own;
     ///     links from a light go down to leaf elements; the scene's leaves present at the
-    ///     first insertion are not subdivided (the display's mesh stays as it is);
-    ///  4. gather/push-pull, warm-started from the current solution.
+    ///     first insertion are not subdivided by it (the display's mesh stays as it is);
+    ///  4. those of them whose links from a light are now PARTIAL (a new shadow's boundary
+    ///     crosses them) are split, level by level, as SolverOptions::newShadowSplits
+    ///     allows (Loscos et al. 2000, Fig. 24(a)); their links from the lights go to the
+    ///     children with the lamp's normalisation and the link correction they carried;
+    ///  5. gather/push-pull, warm-started from the current solution.
     /// Returns the object's index in scene().objects.
     int insertObject(const std::string& name, std::vector<Polygon> polygons,
                      const Rgb* lightRadiance = nullptr, DynamicUpdate* report = nullptr);
@@ -218,6 +230,10 @@ class HierarchicalSolver {
     /// removal as above, then insertion at the new place; only links whose shafts the old
     /// or the new box cuts have their visibility evaluated again.
     void moveLastObject(std::vector<Polygon> polygons, DynamicUpdate* report = nullptr);
+    /// Sets SolverOptions::newShadowSplits for the insertions to come (empty: none).
+    void setNewShadowSplits(std::function<int(int leaf)> rule) {
+        options_.newShadowSplits = std::move(rule);
+    }
     /// Objects inserted and not removed (real objects taken out count as well).
     int insertedObjects() const { return static_cast<int>(inserted_.size()); }
 
@@ -332,11 +348,18 @@ class HierarchicalSolver {
     static constexpr double kSeenChange = 0.01;
     /// A refinement round that refines at most this fraction of the links ends the rounds.
     static constexpr double kSettled = 1e-3;
+    /// A new shadow is followed for a light that gives at least this share of a leaf's
+    /// unoccluded direct light (as the texture-based refinement's minShare,
+    /// relight/pipeline/shadow_refinement.h).
+    static constexpr double kShadowMinShare = 0.02;
     Verdict oracle(const Link& link) const;
     /// The factor on the power threshold for links to R: clamp(B_R / meanB_, darkFloor, 1)
     /// (max channel), 1 before there is a solution.
     double receiverScale(const Node& R) const;
     Link makeLink(int r, int s) const;
+    /// The visibility of `l` evaluated again, with its receiver's link correction when it
+    /// carries one (Link::corrected).
+    void visibilityAgain(Link& l) const;
     /// A child of `parent` (passive_[parentIndex]) between r and s; visible without rays
     /// when the parent's shaft was empty.
     Link childLink(const Link& parent, int parentIndex, int r, int s) const;
@@ -408,6 +431,20 @@ class HierarchicalSolver {
     };
     CutLinks findCutLinks(const Bounds3& box, int object, DynamicUpdate& report, bool revive);
     void linkObject(int cluster, int oldRoot, DynamicUpdate& report);
+    /// Splits the leaves of report.shadowLeaves that the scene had at the first insertion
+    /// where a link from a light is now PARTIAL (SolverOptions::newShadowSplits); counts the
+    /// splits kept in report.shadowSplits.
+    void refineNewShadows(DynamicUpdate& report);
+    /// Whether a shadow boundary crosses leaf element `leaf`: one of its links from a light
+    /// that gives at least kShadowMinShare of its unoccluded direct light is PARTIAL.
+    bool crossedByShadow(int leaf) const;
+    /// The factor normaliseLamps() put on link `l` from a light (1 for another link).
+    double lampScale(const Link& l) const;
+    /// A child r of link `l` from a light (passive_[parentIndex]), carrying what l carried
+    /// beyond its geometry: the lamp's normalisation `scale` and the link correction.
+    Link lightChildLink(const Link& l, int parentIndex, int r, double scale) const;
+    /// Its visibility (with the receiver's link correction when it carries one).
+    void finishLightChildLink(Link& c) const;
     int lightOfNode(int node) const;
     void addLinksFromSource(int node);
     /// Links for the lights that are on and have none (see setLightRadiances); returns
@@ -441,6 +478,8 @@ class HierarchicalSolver {
     double maxGather_ = 1;
     bool started_ = false;
     bool changedInRefine_ = false;
+    /// refineNewShadows() at work: the scene's frozen leaves may be split.
+    bool shadowSplitting_ = false;
     /// The links' generation (ActiveLinks::generation) of the last sweep: when it changed,
     /// the next sweep clears every node's irradiance, not only the receivers'.
     uint64_t sweptGeneration_ = ~uint64_t{0};

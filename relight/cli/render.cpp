@@ -39,13 +39,17 @@ nlohmann::json insertionReport(const DynamicRelighting& dyn, const std::string& 
             name.c_str(), u.linksCut, dyn.removedRegion().filled, dyn.removedRegion().modelled,
             ft.total(), ft.fill);
     else
-        std::printf("inserted %s %s: %d links cut, %d new, %d reactivated, %.4f s\n", kind.c_str(),
-                    name.c_str(), u.linksCut, u.linksNew, u.linksReactivated, ft.total());
+        std::printf(
+            "inserted %s %s: %d links cut, %d new, %d reactivated, %d leaves split under its "
+            "shadows, %.4f s\n",
+            kind.c_str(), name.c_str(), u.linksCut, u.linksNew, u.linksReactivated, u.shadowSplits,
+            ft.total());
     return {{"kind", kind},
             {"name", name},
             {"links_cut", u.linksCut},
             {"links_new", u.linksNew},
             {"links_reactivated", u.linksReactivated},
+            {"shadow_splits", u.shadowSplits},
             {"shaft_tests", u.shaftTests},
             {"rays", u.rays},
             {"time_s",
@@ -61,7 +65,8 @@ nlohmann::json insertionReport(const DynamicRelighting& dyn, const std::string& 
 /// prepared solver state `full` in turn, and reported in `report` (insertionReport).
 Image renderWithVirtualParts(Relighting& full, const EditFile& edit,
                              std::span<const radiosity::Rgb> radiance, DisplayMode mode,
-                             nlohmann::json& report) {
+                             nlohmann::json& report, Image* editMesh) {
+    const size_t preparedNodes = full.solver->hierarchy().nodes.size();
     DynamicRelighting dyn(full, radiance);
     // Real objects out first: the virtual parts then light and shade the room without them.
     for (const std::string& name : edit.removeObjects) {
@@ -80,6 +85,8 @@ Image renderWithVirtualParts(Relighting& full, const EditFile& edit,
     for (const std::string& w : virtualLightReachWarnings(edit, solver.scene(), solver.visibility(),
                                                           static_cast<size_t>(dyn.realLights())))
         std::fprintf(stderr, "warning: %s\n", w.c_str());
+    // The leaves as the insertions left them, before they are taken out again.
+    if (editMesh) *editMesh = editMeshView(full, preparedNodes);
     return dyn.render(mode);
 }
 
@@ -187,18 +194,22 @@ int runRender(const RenderArgs& a) {
     Image img = renderEdit(s.image, radiance, mode);
     requireFiniteImage(img, sf, edit, radiance);
     t.edit = secondsSince(t0);
+    nlohmann::json virtualJson = nlohmann::json::array();
+    Image editMesh;
+    if (virtualParts) {
+        t0 = Clock::now();
+        img = renderWithVirtualParts(*full, edit, radiance, mode, virtualJson,
+                                     a.debugViews.empty() ? nullptr : &editMesh);
+        requireFiniteImage(img, sf, edit, radiance);
+        t.edit = secondsSince(t0);
+    }
+    // The views of the prepared state (the virtual parts are out of the solver again, which
+    // is as prepared bit for bit), with the leaves as the edit left them.
     size_t viewFiles = 0;
     t0 = Clock::now();
     if (full && !a.debugViews.empty()) {
-        viewFiles = writeDebugViews(*full, radiance, a.debugViews).size();
+        viewFiles = writeDebugViews(*full, radiance, a.debugViews, &editMesh).size();
         t.views = secondsSince(t0);
-    }
-    nlohmann::json virtualJson = nlohmann::json::array();
-    if (virtualParts) {
-        t0 = Clock::now();
-        img = renderWithVirtualParts(*full, edit, radiance, mode, virtualJson);
-        requireFiniteImage(img, sf, edit, radiance);
-        t.edit = secondsSince(t0);
     }
     writeImage(a.output, img, a.exposure);
     printSummary(a, s, img, t, viewFiles);

@@ -40,12 +40,13 @@ void setPixel(Image& img, int px, const Rgb& c) {
 
 /// What a pixel's item-buffer samples fall in (per-leaf quantities).
 struct PixelLeaves {
-    Rgb rho;             ///< sum of the leaf reflectances of its surface samples
-    int surface = 0;     ///< samples on a leaf
-    int occluded = 0;    ///< samples on an occluded leaf (shadow removal's class)
-    int frontier = 0;    ///< samples on a frontier leaf
-    int first = -1;      ///< id of sample 0 (the top-left one): see sampleId
-    bool mixed = false;  ///< its samples have different ids: a leaf edge crosses the pixel
+    Rgb rho;              ///< sum of the leaf reflectances of its surface samples
+    int surface = 0;      ///< samples on a leaf
+    int occluded = 0;     ///< samples on an occluded leaf (shadow removal's class)
+    int frontier = 0;     ///< samples on a frontier leaf
+    int first = -1;       ///< id of sample 0 (the top-left one): see sampleId
+    bool mixed = false;   ///< its samples have different ids: a leaf edge crosses the pixel
+    bool anyNew = false;  ///< a sample lies in a leaf whose id is at least scanLeaves' firstNew
 };
 
 /// Leaf, or -1 for nothing, or -2 - light for a light's emitting face: an edge is where
@@ -54,7 +55,7 @@ int sampleId(const SampleHit& hit) {
     return hit.surface() ? hit.leaf : (hit.light >= 0 ? -2 - hit.light : -1);
 }
 
-PixelLeaves scanPixel(const Relighting& r, int x, int y) {
+PixelLeaves scanPixel(const Relighting& r, int x, int y, size_t firstNew) {
     const ItemBuffer& items = r.items;
     const auto& h = r.solver->hierarchy();
     PixelLeaves p;
@@ -64,9 +65,11 @@ PixelLeaves scanPixel(const Relighting& r, int x, int y) {
         if (s == 0) p.first = id;
         if (id != p.first) p.mixed = true;
         if (!hit.surface()) continue;
+        p.anyNew = p.anyNew || static_cast<size_t>(hit.leaf) >= firstNew;
         ++p.surface;
         p.rho += h.nodes[hit.leaf].rho;
-        if (r.removal.leafClass.empty()) continue;  // shadow removal was off
+        // Shadow removal was off, or the leaf is newer than its classes.
+        if (static_cast<size_t>(hit.leaf) >= r.removal.leafClass.size()) continue;
         const LeafShadowClass c = r.removal.leafClass[hit.leaf];
         if (c == LeafShadowClass::occluded) ++p.occluded;
         if (c == LeafShadowClass::frontier) ++p.frontier;
@@ -74,12 +77,35 @@ PixelLeaves scanPixel(const Relighting& r, int x, int y) {
     return p;
 }
 
-std::vector<PixelLeaves> scanLeaves(const Relighting& r) {
+std::vector<PixelLeaves> scanLeaves(const Relighting& r, size_t firstNew) {
     const int w = r.items.width;
     std::vector<PixelLeaves> out(static_cast<size_t>(w) * r.items.height);
     parallelFor(static_cast<size_t>(r.items.height), 1, [&](size_t y) {
-        for (int x = 0; x < w; ++x) out[y * w + x] = scanPixel(r, x, static_cast<int>(y));
+        for (int x = 0; x < w; ++x) out[y * w + x] = scanPixel(r, x, static_cast<int>(y), firstNew);
     });
+    return out;
+}
+
+/// The leaf elements' edges over the dimmed photo: pixels whose samples, or whose first
+/// sample and its right or lower neighbour's, lie in different leaves. Yellow, or cyan where
+/// one of the two leaves has an id from `firstNew` on (split by an edit).
+Image meshOverPhoto(const Relighting& r, const std::vector<PixelLeaves>& leaves, size_t firstNew) {
+    const Rgb edge{1.0, 0.85, 0.0}, newEdge{0.0, 0.9, 1.0};
+    const int w = r.items.width, hgt = r.items.height;
+    const auto isNew = [&](int id) { return id >= 0 && static_cast<size_t>(id) >= firstNew; };
+    Image out(w, hgt);
+    for (int y = 0; y < hgt; ++y)
+        for (int x = 0; x < w; ++x) {
+            const int px = y * w + x;
+            const PixelLeaves& p = leaves[px];
+            const int right = x + 1 < w ? leaves[px + 1].first : p.first;
+            const int below = y + 1 < hgt ? leaves[px + w].first : p.first;
+            const bool onEdge = p.mixed || right != p.first || below != p.first;
+            const bool fresh = isNew(p.first) || (right != p.first && isNew(right)) ||
+                               (below != p.first && isNew(below)) || (p.mixed && p.anyNew);
+            setPixel(out, px,
+                     onEdge ? (fresh ? newEdge : edge) : pixel(r.prepared.photo, px) * kDim);
+        }
     return out;
 }
 
@@ -130,7 +156,8 @@ DebugViews computeDebugViews(const Relighting& r, std::span<const Rgb> radianceN
                                     " lights");
     const DisplayMap& m = P.display;
     const int w = P.photo.width, hgt = P.photo.height, pixels = w * hgt;
-    const std::vector<PixelLeaves> leaves = scanLeaves(r);
+    const size_t nodes = r.solver->hierarchy().nodes.size();
+    const std::vector<PixelLeaves> leaves = scanLeaves(r, nodes);
     const std::vector<Rgb> H = vertexIrradiance(P, radianceNow);
 
     DebugViews v;
@@ -173,18 +200,7 @@ DebugViews computeDebugViews(const Relighting& r, std::span<const Rgb> radianceN
     }
 
     // Loscos et al. 2000, Fig. 10, 11: the leaf elements' edges over the photo.
-    const Rgb edge{1.0, 0.85, 0.0};
-    v.mesh = Image(w, hgt);
-    for (int y = 0; y < hgt; ++y)
-        for (int x = 0; x < w; ++x) {
-            const int px = y * w + x;
-            const PixelLeaves& p = leaves[px];
-            // Within the pixel, or between its first sample and its right and lower
-            // neighbours' (an edge on the pixel border falls between samples).
-            const bool onEdge = p.mixed || (x + 1 < w && leaves[px + 1].first != p.first) ||
-                                (y + 1 < hgt && leaves[px + w].first != p.first);
-            setPixel(v.mesh, px, onEdge ? edge : pixel(P.photo, px) * kDim);
-        }
+    v.mesh = meshOverPhoto(r, leaves, nodes);
 
     // Loscos et al. 2000, Fig. 14(a): the shadow regions and their frontier. The tint is
     // the share of the pixel's samples on such leaves.
@@ -203,6 +219,10 @@ DebugViews computeDebugViews(const Relighting& r, std::span<const Rgb> radianceN
     return v;
 }
 
+Image editMeshView(const Relighting& r, size_t preparedNodes) {
+    return meshOverPhoto(r, scanLeaves(r, preparedNodes), preparedNodes);
+}
+
 void createDebugViewsFolder(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
@@ -212,7 +232,7 @@ void createDebugViewsFolder(const fs::path& dir) {
 }
 
 std::vector<std::string> writeDebugViews(const Relighting& r, std::span<const Rgb> radianceNow,
-                                         const fs::path& dir) {
+                                         const fs::path& dir, const Image* editMesh) {
     createDebugViewsFolder(dir);
     const DebugViews v = computeDebugViews(r, radianceNow);
 
@@ -273,6 +293,16 @@ std::vector<std::string> writeDebugViews(const Relighting& r, std::span<const Rg
                 " (Fig. 14(a)), tinted by the share of each pixel's samples on them");
     else
         skipped.push_back({{"file", "frontier.png"}, {"why", why}});
+    if (editMesh && editMesh->width > 0)
+        put("mesh_edit.png", *editMesh, 1,
+            "the leaves as the edit's insertions left them (Loscos et al. 2000, Fig. 24(a)): "
+            "edges of the prepared leaves yellow, of the leaves split for the edit (under "
+            "its new shadows) cyan" +
+                overDimmedPhoto +
+                "; the photo's surfaces only (the camera's samples of the "
+                "preparation: a virtual object does not hide them)");
+    else
+        skipped.push_back({{"file", "mesh_edit.png"}, {"why", "the edit inserts nothing"}});
 
     nlohmann::json lights = nlohmann::json::object();
     const auto& ls = r.scene.scene.lights;

@@ -67,13 +67,20 @@ void createDebugViewsFolder(const std::filesystem::path& dir);
 
 /// Computes the views and writes them into `dir` (created if missing): B.exr, B.png, D.exr,
 /// D.png, T_orig.png, T_inter.png, T_final.png, reflectance.png, H_photo.exr, mesh.png,
-/// frontier.png, then index.json listing each file, what it shows and its scale, and the views
-/// skipped and why. Every file is written atomically (temporary name, then renamed) and index.json
-/// last, so an index lists only complete files. Returns the file names written, index.json
-/// last. Throws as createDebugViewsFolder, and OutputError naming the file when one cannot
-/// be written.
+/// frontier.png, mesh_edit.png (`editMesh`, editMeshView(), when given), then index.json listing
+/// each file, what it shows and its scale, and the views skipped and why. Every file is written
+/// atomically (temporary name, then renamed) and index.json last, so an index lists only complete
+/// files. Returns the file names written, index.json last. Throws as createDebugViewsFolder, and
+/// OutputError naming the file when one cannot be written.
 std::vector<std::string> writeDebugViews(const Relighting& r,
                                          std::span<const radiosity::Rgb> radianceNow,
-                                         const std::filesystem::path& dir);
+                                         const std::filesystem::path& dir,
+                                         const Image* editMesh = nullptr);
+
+/// The leaf elements' edges over the dimmed photo as the solver's hierarchy stands now (an
+/// edit's virtual parts inserted), those of the leaves with ids from `preparedNodes` on
+/// (split by the edit: Loscos et al. 2000, Fig. 24(a)) in cyan. writeDebugViews() writes it
+/// as mesh_edit.png.
+Image editMeshView(const Relighting& r, size_t preparedNodes);
 
 }  // namespace relight

@@ -51,6 +51,12 @@ DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radianc
     virtualDirect_.assign(nv, Rgb{});
     indirect_.assign(nv, Rgb{});
     indirect0_ = indirectPerNode();
+    // The leaves under a new shadow are split down to the display's pieces (Loscos et al.
+    // 2000, Fig. 24(a)): finer than the pieces no vertex would show it.
+    const radiosity::LeafMesh* mesh = r_.mesh.get();
+    solver_.setNewShadowSplits([mesh, n = realNodes_](int leaf) {
+        return static_cast<size_t>(leaf) < n ? mesh->splits(leaf) : 0;
+    });
     maskGrowth_ = defaultMaskGrowth(r.items.width, r.items.height);
     // The indirect part of each vertex's response: the prepared one, or, prepared without
     // per-pixel light, the same difference taken here (pipeline/pixel_light.h).
@@ -66,6 +72,7 @@ DynamicRelighting::~DynamicRelighting() {
     // restores each insertion's snapshot), with the photo's radiances.
     try {
         while (solver_.insertedObjects() > 0) solver_.removeLastObject();
+        solver_.setNewShadowSplits({});
         solver_.setLightRadiances(photoRadiance_);
     } catch (...) {
         // A destructor must not throw; the solver is left as the failed step left it.
@@ -76,12 +83,30 @@ std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
     // H_ind(node): what the node and its ancestors gather through links whose source is not
     // an emitting element (light links are the direct light, evaluated per vertex).
     const auto& nodes = solver_.hierarchy().nodes;
-    return solver_.gatherDown(
+    std::vector<Rgb> H = solver_.gatherDown(
         [&](int s) {
             const Node& S = nodes[s];
             return !S.isCluster() && S.emitting ? Rgb{} : S.B;
         },
         /*bounded=*/true);
+    // A leaf of the scene that an insertion split (under a new shadow, or by an object's
+    // links) is displayed as one: the area-weighted mean of what its leaves gather. The
+    // children come after their parent, so from the last node back every child is done.
+    for (size_t n = nodes.size(); n-- > 0;) {
+        const Node& e = nodes[n];
+        if (e.isCluster() || e.isLeaf() || static_cast<size_t>(e.firstChild) < realNodes_ ||
+            static_cast<size_t>(e.polygon) >= realPolygons_)
+            continue;
+        Rgb sum;
+        double area = 0;
+        for (int k = 0; k < e.childCount; ++k) {
+            const Node& c = nodes[static_cast<size_t>(e.firstChild + k)];
+            sum += c.area * H[static_cast<size_t>(e.firstChild + k)];
+            area += c.area;
+        }
+        if (area > 0) H[n] = (1.0 / area) * sum;
+    }
+    return H;
 }
 
 int DynamicRelighting::addLight(const VirtualLight& light) {
@@ -368,7 +393,9 @@ void DynamicRelighting::refreshIndirect(bool full) {
     // The virtual objects' surfaces: rho H / pi at their leaf corners, H from the direct
     // light per vertex and the leaves' indirect light.
     const auto& h = solver_.hierarchy();
-    objectMesh_ = std::make_unique<radiosity::LeafMesh>(h, static_cast<int>(realNodes_));
+    objectMesh_ = std::make_unique<radiosity::LeafMesh>(h, static_cast<int>(realNodes_),
+                                                        radiosity::LeafMesh::SplitRule{},
+                                                        static_cast<int>(realPolygons_));
     const auto indirectAtCorners = objectMesh_->averageOfLeaves([&](int n) { return now[n]; });
     const auto& scene = solver_.scene();
     const int lights = static_cast<int>(scene.lights.size());

@@ -39,7 +39,7 @@ constexpr uint32_t kPreparedFormatVersion = 5;
 /// (a new step, a changed algorithm or default): caches made by the old code are then
 /// stale. (On Linux the key also hashes the program's own bytes, which catches a forgotten
 /// bump; elsewhere this constant is all there is.)
-constexpr uint32_t kPreparationEngineVersion = 3;
+constexpr uint32_t kPreparationEngineVersion = 4;
 
 /// FNV-1a 64 of the preparation's inputs: the two versions above, the bytes of the running
 /// program (on Linux: a cache made by another build is stale), the bytes of scene.json,

@@ -69,6 +69,19 @@ relight(out 0 render "${room}" ${cheap} --no-cache -o "${WORK}/nocache.png"
         --debug-views "${WORK}/views2")
 expect("${out}" "wrote debug views" "--no-cache --debug-views")
 
+# An edit that inserts a box: the leaves under its shadow are split (Loscos et al. 2000,
+# Fig. 24(a)), and mesh_edit.png shows them; an edit that inserts nothing skips that view.
+relight(out 0 render "${room}" ${cheap} --edit "${SCENE}/edits/virtual_box.json"
+        -o "${WORK}/box.exr" --debug-views "${WORK}/views3")
+expect("${out}" "inserted object [^\n]*, [1-9][0-9]* leaves split under its shadows"
+       "render virtual_box")
+expect("${out}" "wrote debug views [^\n]*views3 \\(13 files" "render virtual_box --debug-views")
+if(NOT EXISTS "${WORK}/views3/mesh_edit.png")
+  message(FATAL_ERROR "render --debug-views of an edit with a box wrote no mesh_edit.png")
+endif()
+file(READ "${views}/index.json" index)
+expect("${index}" "mesh_edit.png[^}]*the edit inserts nothing" "index.json of back_off")
+
 # A folder that cannot be made: fails at once, before any preparation, naming it.
 file(WRITE "${WORK}/blocker" "a file where a folder should be")
 relight(out 3 render "${room}" ${cheap} -o "${WORK}/x.png" --debug-views "${WORK}/blocker/views")

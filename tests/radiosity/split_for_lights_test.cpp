@@ -62,16 +62,12 @@ TEST(SplitForLights, ChildrenShareTheLeafsFormFactorAndLinksGoPassive) {
     ASSERT_TRUE(solver.splitForLights(leaf, &children));
     ASSERT_EQ(children.size(), 4u);
     EXPECT_GT(solver.passiveLinks().size(), passive);
-    // F is the receiver-to-source form factor, a quadrature over the receiver: the
-    // parent's is the area-weighted mean of its children's. The children's mean is the
-    // same rule on 4 times as many points, so it must be at least as close to a high-order
-    // reference as the parent's own value.
+    // F is the receiver-to-source form factor, a quadrature over the receiver, times the
+    // lamp's normalisation (normaliseLamps: the lamp delivers exactly its power), which
+    // the children carry: their area-weighted mean is the parent's F, up to the quadrature
+    // error (the same rule on 4 times as many points; 2e-3 relative at this distance).
     const auto& nodes = solver.hierarchy().nodes;
     const Node& parent = nodes[leaf];
-    const Polygon& lamp = solver.scene().polygons[2];
-    const double reference =
-        polygonToPolygon(parent.v.data(), parent.vertexCount, parent.normal, lamp.v.data(),
-                         static_cast<int>(lamp.v.size()), lamp.normal, 12);
     double meanF = 0;
     for (int k = 0; k < 4; ++k) {
         const Node& c = nodes[parent.firstChild + k];
@@ -79,9 +75,15 @@ TEST(SplitForLights, ChildrenShareTheLeafsFormFactorAndLinksGoPassive) {
         EXPECT_GE(children[k][0].FV, 0.0);
         EXPECT_LE(children[k][0].FV, children[k][0].F * (1 + 1e-12));
     }
-    EXPECT_LE(std::abs(meanF - reference),
-              std::max(std::abs(before[0].F - reference), 1e-9 * reference));
-    EXPECT_NEAR(meanF, reference, 2e-3 * reference);
+    EXPECT_NEAR(meanF, before[0].F, 2e-3 * before[0].F);
+    // ... and the geometry is right: the lamp's scale is within a few per cent of 1 here
+    // (its whole power reaches the floor and the plate), so the mean is within that of
+    // a high-order reference.
+    const Polygon& lamp = solver.scene().polygons[2];
+    const double reference =
+        polygonToPolygon(parent.v.data(), parent.vertexCount, parent.normal, lamp.v.data(),
+                         static_cast<int>(lamp.v.size()), lamp.normal, 12);
+    EXPECT_NEAR(meanF, reference, 0.03 * reference);
     EXPECT_TRUE(
         solver.linksOf(leaf).empty() ||
         std::none_of(solver.linksOf(leaf).begin(), solver.linksOf(leaf).end(), [&](const Link& l) {

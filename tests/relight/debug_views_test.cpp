@@ -83,9 +83,11 @@ TEST(DebugViews, WritesEveryListedFileAtThePhotosSize) {
     std::vector<std::string> listed;
     for (const auto& v : index["views"]) listed.push_back(v["file"]);
     EXPECT_EQ(listed, std::vector<std::string>(files.begin(), files.end() - 1));
-    // Prepared without per-pixel light: only the per-pixel photo irradiance is skipped.
-    ASSERT_EQ(index["skipped"].size(), 1u);
+    // Prepared without per-pixel light: only the per-pixel photo irradiance is skipped, and
+    // the edit's mesh (none given).
+    ASSERT_EQ(index["skipped"].size(), 2u);
     EXPECT_EQ(index["skipped"][0]["file"], "H_photo.exr");
+    EXPECT_EQ(index["skipped"][1]["file"], "mesh_edit.png");
     EXPECT_DOUBLE_EQ(index["views"][1]["scale"].get<double>(), backOffViews().bdScale);
     EXPECT_EQ(index["lights"]["C"], nlohmann::json({0.0, 0.0, 0.0}));
     // The EXR holds the view's floats as computed.
@@ -280,7 +282,7 @@ TEST(DebugViews, WithoutShadowRemovalTheTextureViewsAreSkipped) {
     nlohmann::json index;
     std::ifstream(dir.path() / "index.json") >> index;
     EXPECT_FALSE(index["shadow_removal"].get<bool>());
-    ASSERT_EQ(index["skipped"].size(), 4u);  // T_inter, T_final, H_photo, frontier
+    ASSERT_EQ(index["skipped"].size(), 5u);  // T_inter, T_final, H_photo, frontier, mesh_edit
     EXPECT_EQ(index["skipped"][3]["file"], "frontier.png");
     EXPECT_NE(index["skipped"][0]["why"].get<std::string>().find("shadow removal was off"),
               std::string::npos);

@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
+#include "relight/display/debug_views.h"
 #include "relight/display/metric.h"
 #include "room_fixture.h"
 
@@ -151,6 +153,75 @@ TEST(DynamicRelighting, TheBoxShowsItsReflectanceAndCastsAShadow) {
     // Its soft shadows on the floor (four ceiling lamps): about 90 pixels lose more than
     // 20 % at the tests' settings.
     EXPECT_GT(shadow, 40);
+}
+
+TEST(DynamicRelighting, TheLeavesUnderTheBoxsShadowFollowIt) {
+    // Loscos et al. 2000, Fig. 24(a): the scene's leaves that the box's shadow boundaries
+    // cross are split, at most as often as the display splits them into pieces, and only
+    // among the leaves whose links from the lamps the box's shaft cut.
+    const auto radiance = radianceOf(EditFile{});
+    const EditFile e = edit("virtual_box");
+    const Relighting& r = room();
+    const size_t prepared = r.solver->hierarchy().nodes.size();
+    const size_t polygons = r.solver->scene().polygons.size();
+    Score refined, plain;
+    // The edit's mesh view (render --debug-views, mesh_edit.png) marks the split leaves' edges
+    // in cyan: none before the box, some after.
+    const auto cyan = [&] {
+        const Image m = editMeshView(r, prepared);
+        int n = 0;
+        for (int y = 0; y < m.height; ++y)
+            for (int x = 0; x < m.width; ++x)
+                n += m.at(x, y)[0] < 0.01f && m.at(x, y)[1] > 0.8f && m.at(x, y)[2] > 0.99f;
+        return n;
+    };
+    EXPECT_EQ(cyan(), 0);
+    {
+        DynamicRelighting dyn(room(), radiance);
+        dyn.addObject(e.addObjects.at(0));
+        EXPECT_GT(cyan(), 100);
+        const auto& u = dyn.lastUpdate();
+        EXPECT_GT(u.shadowSplits, 0);
+        const auto& nodes = r.solver->hierarchy().nodes;
+        const std::set<int> cut(u.shadowLeaves.begin(), u.shadowLeaves.end());
+        int split = 0;
+        for (size_t n = 0; n < prepared; ++n) {
+            const auto& leaf = nodes[n];
+            if (leaf.isCluster() || leaf.isLeaf() ||
+                static_cast<size_t>(leaf.firstChild) < prepared)
+                continue;
+            ++split;
+            EXPECT_TRUE(cut.count(static_cast<int>(n))) << n;
+            int depth = 0;
+            std::vector<std::pair<int, int>> stack{{static_cast<int>(n), 0}};
+            while (!stack.empty()) {
+                const auto [m, d] = stack.back();
+                stack.pop_back();
+                depth = std::max(depth, d);
+                for (int k = 0; k < nodes[m].childCount; ++k)
+                    stack.push_back({nodes[m].firstChild + k, d + 1});
+            }
+            EXPECT_LE(depth, r.mesh->splits(static_cast<int>(n))) << n;
+        }
+        // Every split counted: the scene's leaves', and their children's below them.
+        int inner = 0;
+        for (size_t n = prepared; n < nodes.size(); ++n)
+            inner += !nodes[n].isCluster() && !nodes[n].isLeaf() &&
+                     static_cast<size_t>(nodes[n].polygon) < polygons;
+        EXPECT_GT(split, 0);
+        EXPECT_EQ(split + inner, u.shadowSplits);
+        refined = score("virtual_box", dyn.render(DisplayMode::pixel));
+    }
+    {
+        DynamicRelighting dyn(room(), radiance);
+        r.solver->setNewShadowSplits({});
+        dyn.addObject(e.addObjects.at(0));
+        EXPECT_EQ(dyn.lastUpdate().shadowSplits, 0);
+        plain = score("virtual_box", dyn.render(DisplayMode::pixel));
+    }
+    std::printf("virtual_box, changed_rel_rmse: %.4f with the leaves split, %.4f without\n",
+                refined.changedRelRmse, plain.changedRelRmse);
+    EXPECT_LT(refined.changedRelRmse, plain.changedRelRmse);
 }
 
 // The per-pixel display with virtual parts (Loscos et al. 1999, §5.2): the direct light
