@@ -48,10 +48,10 @@ void HierarchicalSolver::boundGather(size_t firstNode, bool balance, const std::
     const auto& nodes = h_.nodes;
     // Gd: what each leaf gathers from the sources that do not reflect (the lamps), whose
     // links carry exact form factors; light straight from an emitting face feeds nothing
-    // back, and the real-shadow correction may scale it above V = 1 on purpose
-    // (scaleLightLinks).
+    // back. It is what the leaf sees of the lamps: without the real-shadow correction,
+    // which scales those links (above V = 1, too) on purpose (scaleLightLinks).
     const std::vector<Rgb> Gd =
-        gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 0.0 : 1.0); }, false);
+        gatherDown([&](int s) { return Rgb::gray(reflects(nodes[s]) ? 0.0 : 1.0); }, false, true);
     std::vector<int> unmeasured;
     for (size_t n = firstNode; n < nodes.size(); ++n)
         if (!nodes[n].isCluster() && nodes[n].isLeaf() && nodes[n].seen < 0)

@@ -88,9 +88,7 @@ void HierarchicalSolver::removeRealObject(int object, DynamicUpdate* reportOut) 
     //    and their energy bound set again. The other leaves keep their gather scales: a
     //    leaf that gathered from the object now gathers, through the links the object cut,
     //    from what lay behind it in the same directions, so its sum of form factors G
-    //    stays about what the bound made it. (Bounding them again would also read the
-    //    real-shadow removal's light-link corrections, V above 1 on purpose, as lamps seen
-    //    beyond the hemisphere, and zero their gather.)
+    //    stays about what the bound made it.
     const auto t1 = Clock::now();
     const std::vector<int> also =
         remeasureSeenNear(box.centre(), 0.5 * glm::length(box.diagonal()), h_.nodes.size(), object);

@@ -337,8 +337,8 @@ std::span<const Link> HierarchicalSolver::linksOf(int node) const {
     return links_.of(node);
 }
 
-std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& value,
-                                                bool bounded) const {
+std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& value, bool bounded,
+                                                bool uncorrected) const {
     const auto& nodes = h_.nodes;
     std::vector<Rgb> H(nodes.size()), Hd(nodes.size());
     std::vector<DirectionalIrradiance> Hv(nodes.size());
@@ -348,7 +348,9 @@ std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& v
         for (int k = links_.start(i); k < links_.start(i + 1); ++k) {
             const Link& l = links_[k];
             const Node& S = nodes[l.source];
-            const Rgb h = value(l.source) * (l.F * static_cast<double>(l.V));
+            double V = l.V;
+            if (uncorrected && l.corrected && R.lightCorrection > 0) V /= R.lightCorrection;
+            const Rgb h = value(l.source) * (l.F * V);
             if (R.isCluster())
                 Hv[r].add(h, toFrame(R, linkDirection(R, S)));
             else if (reflects(S))

@@ -280,8 +280,11 @@ class HierarchicalSolver {
     /// of the node and of all its ancestors, a cluster ancestor's through its vector
     /// irradiance; cluster nodes: 0) when each source s of a link sends radiosity
     /// value(s). With `bounded`, a leaf's sum is scaled by its gatherScale, as the solution
-    /// is. gatherDown(B of the sources) is what the last sweep gathered.
-    std::vector<Rgb> gatherDown(const std::function<Rgb(int)>& value, bool bounded) const;
+    /// is. gatherDown(B of the sources) is what the last sweep gathered. With `uncorrected`,
+    /// a link from a light carries its visibility without the real-shadow removal's link
+    /// correction (Link::corrected): what the receiver sees of the lamp.
+    std::vector<Rgb> gatherDown(const std::function<Rgb(int)>& value, bool bounded,
+                                bool uncorrected = false) const;
 
     /// Light exchanged by `node` with each light (scene order): the sums of F and F V over
     /// the active links it gathers from that light's emitting elements. With the light
