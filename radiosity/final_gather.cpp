@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "radiosity/detail/form_factor.h"
+#include "radiosity/detail/hemisphere.h"
 #include "radiosity/detail/rng.h"
 #include "radiosity/detail/transfer.h"
 
@@ -149,6 +150,68 @@ void finalGatherResponses(const HierarchicalSolver& solver, const LightResponses
         for (int l = 0; l < L; ++l) H[l] += r[l] * w;
     };
     gatherWeights(solver, polygon, x, partialRays, seed, rays, carries, acc);
+}
+
+namespace {
+
+/// The leaves that side^2 cosine-distributed rays from x (stratified, jittered, seeded by
+/// `seed`) hit first: visit(leaf) for each; a ray that leaves the scene visits nothing.
+template <class Visit>
+void rayGatherLeaves(const HierarchicalSolver& solver, int polygon, const Vec3& x, int side,
+                     uint64_t seed, uint64_t* rays, const Visit& visit) {
+    const Scene& scene = solver.scene();
+    const Vec3& n = scene.polygons[static_cast<size_t>(polygon)].normal;
+    // Off the surface by a hair, so that the rays do not find the polygon they leave.
+    const Vec3 origin = x + 1e-5 * n;
+    const HemisphereFrame frame(n);
+    Rng rng(seed * 0x9E3779B97F4A7C15ull + 0x6A7A7ull);
+    side = std::max(side, 1);
+    for (int cell = 0; cell < side * side; ++cell) {
+        const Vec3 d = cosineDirection(frame, cell, side, rng);
+        Visibility::Hit hit = solver.visibility().intersect(origin, d, 1e-6);
+        if (hit.polygon < 0) continue;
+        // Surfaces are one-sided: the back of a polygon sends nothing. A thin part modelled
+        // as two faces back to back is hit on either at the same distance: the one behind
+        // the back face, within a hair, is taken instead.
+        if (glm::dot(scene.polygons[static_cast<size_t>(hit.polygon)].normal, d) >= 0) {
+            const Visibility::Hit next =
+                solver.visibility().intersect(origin, d, hit.t + 1e-7, hit.t + 1e-4);
+            if (next.polygon < 0 ||
+                glm::dot(scene.polygons[static_cast<size_t>(next.polygon)].normal, d) >= 0)
+                continue;
+            hit = next;
+        }
+        const int leaf = solver.hierarchy().locateLeaf(hit.polygon, origin + hit.t * d);
+        if (leaf >= 0) visit(leaf);
+    }
+    if (rays) *rays += static_cast<uint64_t>(side) * static_cast<uint64_t>(side);
+}
+
+}  // namespace
+
+Rgb rayGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x, int side,
+                      uint64_t seed, uint64_t* rays) {
+    const auto& nodes = solver.hierarchy().nodes;
+    Rgb sum;
+    rayGatherLeaves(solver, polygon, x, side, seed, rays, [&](int leaf) {
+        const Node& e = nodes[static_cast<size_t>(leaf)];
+        sum += e.emitting ? e.B - e.E : e.B;
+    });
+    side = std::max(side, 1);
+    return (1.0 / (side * side)) * sum;
+}
+
+void rayGatherResponses(const HierarchicalSolver& solver, const LightResponses& responses,
+                        int polygon, const Vec3& x, Rgb* H, int side, uint64_t seed,
+                        uint64_t* rays) {
+    const int L = responses.lights();
+    for (int l = 0; l < L; ++l) H[l] = Rgb{};
+    rayGatherLeaves(solver, polygon, x, side, seed, rays, [&](int leaf) {
+        const auto r = responses.reflected(leaf);
+        for (int l = 0; l < L; ++l) H[l] += r[static_cast<size_t>(l)];
+    });
+    side = std::max(side, 1);
+    for (int l = 0; l < L; ++l) H[l] = (1.0 / (side * side)) * H[l];
 }
 
 Rgb gatheredIrradiance(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,

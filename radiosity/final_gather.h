@@ -61,6 +61,25 @@ void finalGatherResponses(const HierarchicalSolver& solver, const LightResponses
                           int polygon, const Vec3& x, Rgb* H, int partialRays = 4,
                           uint64_t seed = 0, uint64_t* rays = nullptr);
 
+/// Indirect irradiance at point x of `polygon` gathered by rays (radiosity units): side^2
+/// cosine-distributed directions over the hemisphere of its front (stratified, jittered,
+/// seeded by `seed`), each bringing the radiosity that the leaf it hits reflects (B - E on
+/// an emitter: what it emits is direct light; nothing from a ray that leaves the scene):
+///   H_indirect(x) = pi * (1 / N) sum_i L(y_i) = (1 / N) sum_i B_reflected(y_i).
+/// Unlike finalGatherIndirect(), every ray reads the radiosity where it lands, at the
+/// leaves' resolution: a link from a large source that x partly sees brings the source's
+/// mean radiosity there, which in a dim corner next to a block is that of the parts x does
+/// not see (bench/RESULTS.md, 2026-11-26: the Cornell box's corners 10-18 % too light). The
+/// price is noise, 1 / sqrt(N) of the radiance's spread over the hemisphere, and N rays.
+/// `rays` (optional) counts those cast.
+Rgb rayGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x, int side,
+                      uint64_t seed, uint64_t* rays = nullptr);
+/// The same per light: H[l] = indirect irradiance at x per unit radiance of light l, from
+/// `responses` (built on the same solver). H holds responses.lights() values.
+void rayGatherResponses(const HierarchicalSolver& solver, const LightResponses& responses,
+                        int polygon, const Vec3& x, Rgb* H, int side, uint64_t seed,
+                        uint64_t* rays = nullptr);
+
 /// Irradiance at point x of `polygon` by final gather (radiosity units):
 ///   H(x) = sum_l E_l G_l(x) + H_indirect(x),
 /// G from `direct` (built on the same solver), H_indirect from finalGatherIndirect().

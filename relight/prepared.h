@@ -66,7 +66,8 @@ struct PreparedImage {
     std::vector<float> confidence;              ///< per vertex: K in [0, 1] (confidence.h)
     /// Per-pixel direct light (pipeline/pixel_light.h), only when prepared with
     /// RelightOptions::pixelLight: pi Gbar per pixel and light, and the indirect part of
-    /// each vertex's response per light. Empty otherwise.
+    /// each vertex's response per light (a gather by rays, RelightOptions::indirectRays).
+    /// Empty otherwise.
     std::vector<float> pixelDirect;
     std::vector<radiosity::Rgb> vertexIndirect;
     /// The reflectance merged from all of the scene's photos, 3 floats per pixel

@@ -6,7 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "radiosity/final_gather.h"
 #include "radiosity/light_reach.h"
+#include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
 #include "relight/io/json_reader.h"
 #include "relight/pipeline/confidence.h"
@@ -95,6 +97,14 @@ std::vector<std::string> virtualLightReachWarnings(const EditFile& edit,
         if (!w.empty()) out.push_back(std::move(w));
     }
     return out;
+}
+
+int indirectRaySide(const RelightOptions& o, size_t vertices) {
+    int64_t rays = std::max(o.indirectRays, 16);
+    if (vertices > 0) rays = std::min(rays, o.indirectRayBudget / static_cast<int64_t>(vertices));
+    int side = 4;
+    while (static_cast<int64_t>(side + 1) * (side + 1) <= rays) ++side;
+    return side;
 }
 
 radiosity::LeafMesh::SplitRule displaySplits(const LeafTexture& texture, const SamplingPlan& plan,
@@ -263,7 +273,26 @@ void lightPixels(Relighting& r, const RelightOptions& o) {
         say(o, "direct light per pixel");
         P.pixelDirect = measurePixelDirect(r.items, *r.solver, directLightOptions(o));
     }
-    P.vertexIndirect = vertexIndirect(P.lighting, r.direct);
+    // The indirect part of each vertex's response per light, gathered by rays that read
+    // the leaves' radiosity where they land (radiosity::rayGatherResponses), not through
+    // the links' sources: the per-pixel display divides the photo by it, and where the
+    // photo is lit by bounced light only, the links' coarse sources read 10-18 % too
+    // much light (bench/RESULTS.md, 2026-11-26).
+    const auto& mesh = *r.mesh;
+    const auto& solver = *r.solver;
+    const size_t nv = mesh.vertices().size();
+    const size_t L = r.responses->lights() > 0 ? static_cast<size_t>(r.responses->lights()) : 0;
+    r.gatherSide = indirectRaySide(o, nv);
+    P.vertexIndirect.assign(nv * L, Rgb{});
+    radiosity::parallelForChunks(nv, 64, [&](size_t first, size_t last) {
+        for (size_t v = first; v != last; ++v) {
+            const int p = mesh.vertices()[v].polygon;
+            if (solver.scene().polygons[static_cast<size_t>(p)].light >= 0) continue;
+            radiosity::rayGatherResponses(solver, *r.responses, p,
+                                          mesh.insidePoint(static_cast<int>(v)),
+                                          P.vertexIndirect.data() + v * L, r.gatherSide, v);
+        }
+    });
     P.times.vertexLighting += since(t0);
 }
 

@@ -85,6 +85,13 @@ struct RelightOptions {
     /// Measure the direct light per pixel as well (pipeline/pixel_light.h), for the
     /// per-pixel display: shadow rays at every sample of every pixel.
     bool pixelLight = false;
+    /// With pixelLight, the indirect light at each display vertex is gathered by this many
+    /// rays at most (radiosity::rayGatherIndirect: each reads the radiosity of the leaf it
+    /// hits), fewer where the mesh has so many vertices that vertices x rays would exceed
+    /// indirectRayBudget (at least 16 each). 256 rays leave a noise of a few per cent per
+    /// vertex, which the display's interpolation and the metric's 4 x 4 blocks average.
+    int indirectRays = 256;
+    int64_t indirectRayBudget = int64_t{1} << 25;
     /// With pixelLight, merge the reflectance of all of the scene's photos per pixel for the
     /// light the first photo did not hold (pipeline/photo_merge.h; Loscos et al. 1999,
     /// Eq. (3)); off: the first photo alone (better on the bundled scenes but for a lamp
@@ -98,6 +105,10 @@ struct RelightOptions {
 /// samples (samples x stride^2 / spp). Empty when piecePixels is 0.
 radiosity::LeafMesh::SplitRule displaySplits(const LeafTexture& texture, const SamplingPlan& plan,
                                              double piecePixels);
+
+/// The side k of the ray gather's k x k directions at each of `vertices` display vertices:
+/// the largest with k^2 <= indirectRays and vertices k^2 <= indirectRayBudget, at least 4.
+int indirectRaySide(const RelightOptions& o, size_t vertices);
 
 /// The whole prepared state: what rendering needs (`prepared`, cacheable) and the solver
 /// state behind it (for the gather path, edits that change geometry, and debug views).
@@ -121,6 +132,9 @@ struct Relighting {
     /// The shadow rays of the per-point direct light (RelightOptions' minRays, maxRays), for
     /// the edits that measure it again (relight/dynamic/dynamic_relighting.h).
     radiosity::DirectLightOptions directOptions;
+    /// The side of the ray gather's grid of directions at the display vertices
+    /// (indirectRaySide(); 0: prepared without per-pixel light, the links' final gather).
+    int gatherSide = 0;
 };
 
 /// Below this share of its emission meeting the front of a surface (radiosity::lightReach), a

@@ -127,11 +127,13 @@ void DynamicRelighting::rememberGatherBefore() {
     // refreshIndirect() counts an object's change.
     if (!gatherBefore_.empty()) return;
     gatherBefore_ = gatherAtVertices();
+    if (r_.gatherSide > 0) gatherBeforeRays_ = gatherAtVertices(/*byRays=*/true);
     if (solver_.insertedObjects() == 0) return;
     const std::vector<Rgb> now = indirectPerNode();
     const std::vector<Rgb> objects =
         r_.mesh->averageOfLeaves([&](int n) { return now[n] - indirect0_[n]; });
     for (size_t v = 0; v < gatherBefore_.size(); ++v) gatherBefore_[v] -= objects[v];
+    for (size_t v = 0; v < gatherBeforeRays_.size(); ++v) gatherBeforeRays_[v] -= objects[v];
 }
 
 void DynamicRelighting::addObject(const VirtualObject& object) {
@@ -203,7 +205,8 @@ radiosity::Rgb DynamicRelighting::indirectAt(int leaf, const Vec3& x) const {
     Rgb sum;
     for (int i = 0; i < st.count; ++i) {
         const auto v = static_cast<size_t>(st.vertex[static_cast<size_t>(i)]);
-        Rgb ind = indirect_[v];
+        // The per-pixel display's indirect light (the prepared parts are its).
+        Rgb ind = pixelIndirect()[v];
         for (size_t l = 0; l < L; ++l) ind += radiance_[l] * indirectParts_[v * L + l];
         sum += ind * st.weight[static_cast<size_t>(i)];
     }
@@ -357,15 +360,18 @@ void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool vir
     });
 }
 
-std::vector<Rgb> DynamicRelighting::gatherAtVertices() const {
+std::vector<Rgb> DynamicRelighting::gatherAtVertices(bool byRays) const {
     const auto& mesh = *r_.mesh;
     const auto& scene = solver_.scene();
     std::vector<Rgb> out(mesh.vertices().size());
     parallelFor(out.size(), 16, [&](size_t v) {
         const int p = mesh.vertices()[v].polygon;
         if (scene.polygons[p].light >= 0) return;
-        out[v] =
-            radiosity::finalGatherIndirect(solver_, p, mesh.insidePoint(static_cast<int>(v)), 4, v);
+        const radiosity::Vec3 x = mesh.insidePoint(static_cast<int>(v));
+        // As the preparation gathered the photo's indirect light: through the links for the
+        // vertex lighting, by rays for the per-pixel display (Relighting::gatherSide).
+        out[v] = byRays ? radiosity::rayGatherIndirect(solver_, p, x, r_.gatherSide, v)
+                        : radiosity::finalGatherIndirect(solver_, p, x, 4, v);
     });
     return out;
 }
@@ -381,10 +387,21 @@ void DynamicRelighting::refreshIndirect(bool full) {
         gatherDelta_.resize(gathered.size());
         for (size_t v = 0; v < gathered.size(); ++v)
             gatherDelta_[v] = gathered[v] - gatherBefore_[v];
+        if (!gatherBeforeRays_.empty()) {
+            const std::vector<Rgb> rays = gatherAtVertices(/*byRays=*/true);
+            gatherDeltaRays_.resize(rays.size());
+            for (size_t v = 0; v < rays.size(); ++v)
+                gatherDeltaRays_[v] = rays[v] - gatherBeforeRays_[v];
+        }
         leafAtFull_ = leaf;
     }
     for (size_t v = 0; v < indirect_.size(); ++v)
         indirect_[v] = gatherDelta_.empty() ? leaf[v] : gatherDelta_[v] + leaf[v] - leafAtFull_[v];
+    if (!gatherDeltaRays_.empty()) {
+        indirectPixel_.resize(indirect_.size());
+        for (size_t v = 0; v < indirect_.size(); ++v)
+            indirectPixel_[v] = gatherDeltaRays_[v] + leaf[v] - leafAtFull_[v];
+    }
     if (static_cast<size_t>(solver_.hierarchy().nodes.size()) <= realNodes_) {
         objectMesh_.reset();
         objectRadiance_.clear();
@@ -449,7 +466,7 @@ Image DynamicRelighting::render(DisplayMode mode) {
         if (mode == DisplayMode::pixel)
             renderPixelLight(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
                              P.photoRadiance, ratioFloor(P.D), img,
-                             PixelLightChange{pixelDirect(), indirect_}, P.pixelReflectance,
+                             PixelLightChange{pixelDirect(), pixelIndirect()}, P.pixelReflectance,
                              &P.photoPixels);
     } else {
         const VertexDisplay d = vertexDisplay(mode);

@@ -127,7 +127,11 @@ class DynamicRelighting {
     void afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices);
     void refreshDirect(const std::vector<int>& vertices, bool virtualOnly);
     void refreshIndirect(bool full);  ///< and the virtual objects' surfaces
-    std::vector<Rgb> gatherAtVertices() const;
+    std::vector<Rgb> gatherAtVertices(bool byRays = false) const;
+    /// indirectPixel_ where the per-pixel display has its own, indirect_ otherwise.
+    const std::vector<Rgb>& pixelIndirect() const {
+        return indirectPixel_.empty() ? indirect_ : indirectPixel_;
+    }
     void rememberGatherBefore();
     void markChangedLeaves(const std::vector<int>& leaves);
     std::vector<Rgb> indirectPerNode() const;
@@ -148,6 +152,11 @@ class DynamicRelighting {
     // virtual part, its change at the last full update (a light added or removed), and the
     // leaf-level change at that time; objects moved since add only their leaf-level change.
     std::vector<Rgb> gatherBefore_, gatherDelta_, leafAtFull_;
+    // The same by rays (radiosity::rayGatherIndirect), for the per-pixel display when the
+    // preparation gathered the photo's indirect light by rays (Relighting::gatherSide): each
+    // display's change is measured as its photo light was, so that a gather's own error
+    // divides out. indirectPixel_ is then the per-pixel display's indirect_.
+    std::vector<Rgb> gatherBeforeRays_, gatherDeltaRays_, indirectPixel_;
     std::unique_ptr<radiosity::LeafMesh> objectMesh_;  ///< virtual objects' leaf corners
     std::vector<Rgb> objectRadiance_;                  ///< per object vertex: rho H / pi
     // The per-pixel display (pixelDirect()): the scene leaf of each item-buffer sample (-1:

@@ -110,6 +110,8 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.f64(o.displayPiecePixels);
     h.i64(o.pixelLight ? 1 : 0);
     h.i64(o.mergePhotos ? 1 : 0);
+    h.i64(o.indirectRays);
+    h.i64(o.indirectRayBudget);
 }
 
 // ---- the two directions ------------------------------------------------------------------

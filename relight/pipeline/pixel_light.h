@@ -8,7 +8,9 @@
 // - Gbar_l(p): the mean of G_l (radiosity/direct_light.h: exact point-to-polygon form
 //   factor, shadow rays) over the pixel's samples that see a reflecting surface;
 // - the indirect part at the leaf vertices, interpolated with the display map's weights
-//   (indirect light varies slowly: the hierarchy's, as the paper's B-hat).
+//   (indirect light varies slowly: the hierarchy's, as the paper's B-hat), gathered at
+//   each vertex by rays that read the leaves' radiosity where they land
+//   (radiosity::rayGatherResponses; RelightOptions::indirectRays).
 // The per-pixel display (DisplayMode::pixel, relight/prepared.h) is then
 //   pixel = T (sum_l L_l h_l(p) + delta) / (sum_l L_l(photo) h_l(p) + delta),
 // Eq. (2) and (4) of the 1999 paper: the reflectance T / H_photo times the new irradiance.
