@@ -91,7 +91,7 @@ struct RelightOptions {
     /// indirectRayBudget (at least 16 each). 256 rays leave a noise of a few per cent per
     /// vertex, which the display's interpolation and the metric's 4 x 4 blocks average.
     int indirectRays = 256;
-    int64_t indirectRayBudget = int64_t{1} << 25;
+    int64_t indirectRayBudget = int64_t{1} << 24;
     /// With pixelLight, merge the reflectance of all of the scene's photos per pixel for the
     /// light the first photo did not hold (pipeline/photo_merge.h; Loscos et al. 1999,
     /// Eq. (3)); off: the first photo alone (better on the bundled scenes but for a lamp
