@@ -22,7 +22,12 @@
 // The per-pixel display (DisplayMode::pixel, relight/pipeline/pixel_light.h) takes the
 // direct light per pixel instead (Loscos et al. 1999, §5.2): each virtual light's at every
 // sample, every light's again at the pixels with a sample on a leaf whose light links an
-// object's shaft cut (pixelDirect()), and the indirect change interpolated at each pixel.
+// object's shaft cut (pixelDirect()), and the indirect change interpolated at each pixel
+// (a light's change gathered at the vertices by rays, as the preparation gathered the
+// photo's: radiosity::rayGatherIndirect, Relighting::gatherSide). An insertion splits the
+// scene's leaves under its new shadows (radiosity::SolverOptions::newShadowSplits, down to
+// the display's pieces; Loscos et al. 2000, Fig. 24(a)); a split leaf is displayed as one,
+// with the mean of what its leaves gather.
 #pragma once
 
 #include <memory>
