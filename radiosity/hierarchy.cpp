@@ -1,4 +1,5 @@
 #include "radiosity/hierarchy.h"
+#include "radiosity/face_clusters.h"
 
 #include <algorithm>
 #include <cmath>
@@ -113,14 +114,13 @@ Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) : polygons_(
     const int n = static_cast<int>(scene.polygons.size());
     polygonOrder.resize(n);
     std::iota(polygonOrder.begin(), polygonOrder.end(), 0);
-    std::vector<Vec3> centroids(n);
-    for (int i = 0; i < n; ++i) centroids[i] = scene.polygons[i].centroid();
     polygonRoot.assign(n, -1);
+    polygonPatch.assign(n, -1);
     nodes.reserve(4 * n + 16);
     nodes.emplace_back();
     nodes[0].kind = NodeKind::cluster;
     clusterCount_ = 1;
-    buildCluster(kRoot, 0, n, std::max(1, maxPolygonsPerCluster), centroids);
+    buildOverPatches(kRoot, scene.polygons, 0, std::max(1, maxPolygonsPerCluster));
 
     areaPrefix.assign(n + 1, 0.0);
     for (int i = 0; i < n; ++i)
@@ -134,8 +134,94 @@ Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) : polygons_(
     pullAverages(kRoot);
 }
 
+void Hierarchy::buildOverPatches(int node, std::span<const Polygon> polygons, int base,
+                                 int maxPerCluster) {
+    // The face clusters (face_clusters.h) are the units of the spatial split above them: a
+    // patch is never cut by it, so every cluster below a patch's node is nearly planar.
+    const FaceClusterForest forest = buildFaceClusters(polygons);
+    PatchSet set;
+    set.centroid.reserve(forest.roots.size());
+    std::vector<int> members;
+    for (int root : forest.roots) {
+        members.clear();
+        forest.polygonsUnder(root, members);
+        Vec3 c{0, 0, 0};
+        double area = 0;
+        for (int m : members) {
+            const Polygon& p = polygons[static_cast<size_t>(m)];
+            c += p.area * p.centroid();
+            area += p.area;
+        }
+        set.start.push_back(static_cast<int>(set.polygons.size()));
+        for (int m : members) set.polygons.push_back(base + m);
+        set.centroid.push_back(area > 0 ? c / area
+                                        : polygons[static_cast<size_t>(members[0])].centroid());
+    }
+    set.start.push_back(static_cast<int>(set.polygons.size()));
+    set.order.resize(set.centroid.size());
+    std::iota(set.order.begin(), set.order.end(), 0);
+    std::vector<Vec3> centroids(polygons.size());  // by polygon index less `base`
+    for (size_t i = 0; i < polygons.size(); ++i) centroids[i] = polygons[i].centroid();
+    set.base = base;
+    buildPatchLevel(node, set, 0, static_cast<int>(set.order.size()), base, maxPerCluster,
+                    centroids);
+}
+
+void Hierarchy::buildPatchLevel(int node, PatchSet& set, int pb, int pe, int begin,
+                                int maxPerCluster, const std::vector<Vec3>& centroids) {
+    int count = 0;
+    for (int i = pb; i < pe; ++i) count += set.size(set.order[i]);
+    if (pe - pb == 1 || count <= maxPerCluster) {
+        // One patch (split by position within it, all of it nearly planar), or few
+        // polygons: laid out in patch order, then the polygon-level split.
+        int at = begin;
+        for (int i = pb; i < pe; ++i)
+            for (int k = set.start[set.order[i]]; k < set.start[set.order[i] + 1]; ++k)
+                polygonOrder[at++] = set.polygons[k];
+        if (pe - pb == 1 && count > 1)
+            for (int i = begin; i < at; ++i) polygonPatch[polygonOrder[i]] = node;
+        buildCluster(node, begin, begin + count, maxPerCluster, centroids, set.base);
+        return;
+    }
+    // Median split of the patches' centroids along the longest axis of their bounds.
+    Bounds3 cb;
+    for (int i = pb; i < pe; ++i) cb.extend(set.centroid[set.order[i]]);
+    const int axis = cb.longestAxis();
+    const int mid = pb + (pe - pb) / 2;
+    std::nth_element(set.order.begin() + pb, set.order.begin() + mid, set.order.begin() + pe,
+                     [&](int a, int b) {
+                         if (set.centroid[a][axis] != set.centroid[b][axis])
+                             return set.centroid[a][axis] < set.centroid[b][axis];
+                         return a < b;  // deterministic order for ties
+                     });
+    int left = 0;
+    for (int i = pb; i < mid; ++i) left += set.size(set.order[i]);
+    nodes[node].polyBegin = begin;
+    nodes[node].polyEnd = begin + count;
+    const int first = addClusterChildren(node);
+    buildPatchLevel(first, set, pb, mid, begin, maxPerCluster, centroids);
+    buildPatchLevel(first + 1, set, mid, pe, begin + left, maxPerCluster, centroids);
+    aggregateChildren(nodes, node);
+    fitNormalCone(node);
+}
+
+int Hierarchy::addClusterChildren(int node) {
+    const int first = static_cast<int>(nodes.size());
+    nodes[node].firstChild = first;
+    nodes[node].childCount = 2;
+    for (int c = 0; c < 2; ++c) {
+        Node child;
+        child.kind = NodeKind::cluster;
+        child.parent = node;
+        child.level = nodes[node].level + 1;
+        nodes.push_back(child);
+        ++clusterCount_;
+    }
+    return first;
+}
+
 void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
-                             const std::vector<Vec3>& centroids) {
+                             const std::vector<Vec3>& centroids, int base) {
     nodes[node].polyBegin = begin;
     nodes[node].polyEnd = end;
     const int count = end - begin;
@@ -157,28 +243,18 @@ void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
     } else {
         // Median split of the centroids along the longest axis of their bounds.
         Bounds3 cb;
-        for (int i = begin; i < end; ++i) cb.extend(centroids[polygonOrder[i]]);
+        const auto at = [&](int p) -> const Vec3& { return centroids[p - base]; };
+        for (int i = begin; i < end; ++i) cb.extend(at(polygonOrder[i]));
         const int axis = cb.longestAxis();
         const int mid = begin + count / 2;
         std::nth_element(polygonOrder.begin() + begin, polygonOrder.begin() + mid,
                          polygonOrder.begin() + end, [&](int a, int b) {
-                             if (centroids[a][axis] != centroids[b][axis])
-                                 return centroids[a][axis] < centroids[b][axis];
+                             if (at(a)[axis] != at(b)[axis]) return at(a)[axis] < at(b)[axis];
                              return a < b;  // deterministic order for ties
                          });
-        const int first = static_cast<int>(nodes.size());
-        nodes[node].firstChild = first;
-        nodes[node].childCount = 2;
-        for (int c = 0; c < 2; ++c) {
-            Node child;
-            child.kind = NodeKind::cluster;
-            child.parent = node;
-            child.level = nodes[node].level + 1;
-            nodes.push_back(child);
-            ++clusterCount_;
-        }
-        buildCluster(first, begin, mid, maxPerCluster, centroids);
-        buildCluster(first + 1, mid, end, maxPerCluster, centroids);
+        const int first = addClusterChildren(node);
+        buildCluster(first, begin, mid, maxPerCluster, centroids, base);
+        buildCluster(first + 1, mid, end, maxPerCluster, centroids, base);
     }
     aggregateChildren(nodes, node);
     fitNormalCone(node);
@@ -284,14 +360,13 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
 
     const int begin = static_cast<int>(polygonOrder.size());
     const int total = firstPolygon + static_cast<int>(polygons.size());
-    std::vector<Vec3> centroids(total);
     for (size_t i = 0; i < polygons.size(); ++i) {
         polygons_.push_back(polygons[i]);
         polygonOrder.push_back(firstPolygon + static_cast<int>(i));
-        centroids[firstPolygon + i] = polygons[i].centroid();
     }
     polygonRoot.resize(total, -1);
-    buildCluster(n0 + 1, begin, total, std::max(1, maxPolygonsPerCluster), centroids);
+    polygonPatch.resize(total, -1);
+    buildOverPatches(n0 + 1, polygons, firstPolygon, std::max(1, maxPolygonsPerCluster));
     areaPrefix.resize(total + 1);
     for (int i = begin; i < total; ++i)
         areaPrefix[i + 1] = areaPrefix[i] + polygons_[polygonOrder[i]].area;
@@ -339,6 +414,7 @@ void Hierarchy::detachLastObject() {
     polygons_.resize(rec.polygons);
     polygonOrder.resize(rec.polygons);
     polygonRoot.resize(rec.polygons);
+    polygonPatch.resize(rec.polygons);
     areaPrefix.resize(rec.polygons + 1);
     ordered_.resize(rec.polygons);
 }
@@ -490,6 +566,19 @@ void Hierarchy::pullAverages(int node) {
         m.E = E * inv;
     }
     m.emitting = emitting;
+}
+
+int Hierarchy::faceClusterCount() const {
+    std::vector<int> patches;
+    int own = 0;
+    for (int p : polygonPatch) {
+        if (p < 0)
+            ++own;
+        else
+            patches.push_back(p);
+    }
+    std::sort(patches.begin(), patches.end());
+    return own + static_cast<int>(std::unique(patches.begin(), patches.end()) - patches.begin());
 }
 
 int Hierarchy::leafCount() const {

@@ -88,16 +88,22 @@ struct Node {
 
 class Hierarchy {
   public:
-    /// Builds the cluster hierarchy over `scene` (median splits along the longest axis of
-    /// the polygons' centroids, at most `maxPolygonsPerCluster` polygons per leaf cluster)
-    /// and one root element per polygon. Reflectance and emittance come from `scene`.
+    /// Builds the cluster hierarchy over `scene` and one root element per polygon: the
+    /// polygons' face clusters (connected, nearly planar patches: face_clusters.h), split
+    /// by their centroids (median along the longest axis), then each patch by its polygons'
+    /// centroids, down to at most `maxPolygonsPerCluster` polygons per leaf cluster. Reflectance
+    /// and emittance come from `scene`.
     explicit Hierarchy(const Scene& scene, int maxPolygonsPerCluster = 4);
 
     static constexpr int kRoot = 0;
 
     std::vector<Node> nodes;
-    std::vector<int> polygonRoot;    ///< polygon index -> its root element node
-    std::vector<int> polygonOrder;   ///< polygons in cluster order
+    std::vector<int> polygonRoot;   ///< polygon index -> its root element node
+    std::vector<int> polygonOrder;  ///< polygons in cluster order
+    /// Polygon index -> the cluster node of its face cluster (a patch of at least two
+    /// polygons, face_clusters.h), or -1 for a polygon that is a patch of its own. What is
+    /// measured per surface rather than per polygon (the leaves' `seen`) is measured there.
+    std::vector<int> polygonPatch;
     std::vector<double> areaPrefix;  ///< areaPrefix[i] = sum of areas of polygonOrder[0, i)
 
     /// Splits a leaf element into 4 children (returns false for clusters and non-leaves).
@@ -147,6 +153,8 @@ class Hierarchy {
     void pullAverages(int node);
 
     int leafCount() const;
+    /// The face clusters (polygonPatch): patches of several polygons, and polygons of their own.
+    int faceClusterCount() const;
     /// The clusters in top-down order (each after its parent) and the polygons' root
     /// elements (the element children of clusters), from a walk down from the root.
     void clustersAndRoots(std::vector<int>& clusters, std::vector<int>& roots) const;
@@ -154,8 +162,27 @@ class Hierarchy {
     int elementCount() const { return static_cast<int>(nodes.size()) - clusterCount_; }
 
   private:
+    /// The input polygons' face clusters (face_clusters.h), as runs of polygon indices, with
+    /// their area-weighted centroids; `order` is the patches' order as the split leaves it.
+    struct PatchSet {
+        std::vector<int> polygons, start, order;
+        std::vector<Vec3> centroid;
+        int base = 0;  ///< the index of the first polygon built over
+        int size(int patch) const { return start[patch + 1] - start[patch]; }
+    };
+    /// Builds the subtree of `node` over `polygons` (Scene indices base, base + 1, ...,
+    /// already in polygonOrder from position base): the polygons' face clusters, split by
+    /// their centroids (median along the longest axis) down to one patch, or to at most
+    /// `maxPerCluster` polygons; each patch then split by its polygons' centroids.
+    void buildOverPatches(int node, std::span<const Polygon> polygons, int base, int maxPerCluster);
+    void buildPatchLevel(int node, PatchSet& set, int pb, int pe, int begin, int maxPerCluster,
+                         const std::vector<Vec3>& centroids);
+    /// Appends two empty cluster children to `node`; returns the first one's id.
+    int addClusterChildren(int node);
+    /// Median split of polygonOrder[begin, end) by centroid (centroids[p - base] for
+    /// polygon p) down to leaf clusters of at most maxPerCluster root elements.
     void buildCluster(int node, int begin, int end, int maxPerCluster,
-                      const std::vector<Vec3>& centroids);
+                      const std::vector<Vec3>& centroids, int base);
     /// A cluster's normal cone from its polygons' normals (Node::coneAxis, coneAngle).
     void fitNormalCone(int cluster);
     void initElement(Node& e, const Polygon& p, int polygonIndex);

@@ -199,7 +199,7 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
             accept(link);
             continue;
         }
-        if (!forced && !withinBudget(queue.size())) {
+        if (!forced && (!withinBudget(queue.size()) || outOfTime(queue.size()))) {
             // Out of budget: keep the link as it is; what is still queued has a smaller
             // oracle value.
             budgetReached_ = true;
@@ -246,6 +246,27 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
         }
     }
     evaluateVisibility(pending);
+}
+
+bool HierarchicalSolver::outOfTime(size_t queued) {
+    if (timeBudgetReached_) return true;
+    if (refineDeadline_ == Clock::time_point::max() || clockCalls_++ % kClockStride != 0)
+        return false;
+    const auto now = Clock::now();
+    if (now >= refineDeadline_) {
+        timeBudgetReached_ = true;
+        report("time budget of the refinement reached: " + std::to_string(links_.size()) +
+               " links accepted, " + std::to_string(queued) + " left as they are");
+        return true;
+    }
+    if (std::chrono::duration<double>(now - lastProgress_).count() >= kProgressSeconds) {
+        lastProgress_ = now;
+        char msg[160];
+        std::snprintf(msg, sizeof msg, "  refining: %zu links accepted, %zu queued, %d leaves",
+                      links_.size(), queued, h_.leafCount());
+        report(msg);
+    }
+    return false;
 }
 
 Link HierarchicalSolver::childLink(const Link& parent, int parentIndex, int r, int s) const {
@@ -464,6 +485,11 @@ void HierarchicalSolver::solve() {
         pushPullAll();
         return;
     }
+    const auto start = Clock::now();
+    lastProgress_ = start;
+    if (options_.refineSeconds > 0 && !timeBudgetReached_)
+        refineDeadline_ = start + std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(options_.refineSeconds));
     for (int round = 0; round < options_.maxRefineRounds; ++round) {
         auto t0 = Clock::now();
         const size_t refined = refineAll();
@@ -471,8 +497,9 @@ void HierarchicalSolver::solve() {
         // kSettled of the links changes the solution by less than the links it leaves, each
         // just above the threshold, can; another round (1.8 s on 1.6 M links) is not worth it.
         const bool changed = changedInRefine_;
-        const bool settled = !changed || static_cast<double>(refined) <=
-                                             kSettled * static_cast<double>(links_.size());
+        const bool settled =
+            !changed || timeBudgetReached_ ||
+            static_cast<double>(refined) <= kSettled * static_cast<double>(links_.size());
         const bool last = round + 1 == options_.maxRefineRounds || settled;
         if (last && options_.forceLightLinksToLeaves) pushLightLinksToLeaves();
         links_.index();
@@ -482,12 +509,15 @@ void HierarchicalSolver::solve() {
         ++timing_.refineRounds;
         const int sweeps = gatherPushPull();
         char msg[256];
-        std::snprintf(msg, sizeof msg, "refine round %d: %zu links, %d leaves, %d sweeps%s",
-                      round + 1, links_.size(), h_.leafCount(), sweeps,
-                      budgetReached_ ? " (refinement budget reached)" : "");
+        std::snprintf(msg, sizeof msg, "refine round %d: %zu links, %d leaves, %d sweeps, %.1f s%s",
+                      round + 1, links_.size(), h_.leafCount(), sweeps, secondsSince(start),
+                      timeBudgetReached_ ? " (time budget reached)"
+                      : budgetReached_   ? " (refinement budget reached)"
+                                         : "");
         report(msg);
         if (settled) break;
     }
+    refineDeadline_ = Clock::time_point::max();  // dynamic updates refine without it
 }
 
 void HierarchicalSolver::addLinksFromSource(int node) {
@@ -618,7 +648,10 @@ SolverStats HierarchicalSolver::stats() const {
     }
     s.boundedLeaves = boundedLeaves_;
     s.maxGather = maxGather_;
-    s.budgetReached = budgetReached_;
+    s.budgetReached = budgetReached_ || timeBudgetReached_;
+    s.polygons = static_cast<int>(scene_.polygons.size());
+    s.faceClusters = h_.faceClusterCount();
+    s.timeBudgetReached = timeBudgetReached_;
     s.memoryBytes = memoryUsed(0);
     s.maxLinks = maxLinks_;
     s.maxMemory = maxMemory_;

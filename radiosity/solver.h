@@ -98,6 +98,7 @@
 #include "radiosity/hierarchy.h"
 #include "radiosity/link.h"
 #include "radiosity/scene.h"
+#include "radiosity/stopwatch.h"
 #include "radiosity/visibility.h"
 
 namespace radiosity {
@@ -119,6 +120,11 @@ struct SolverOptions {
     double darkFloor = 1.0;
     size_t maxLinks = 0;   ///< refinement budget in links (0: what fits in maxMemory)
     size_t maxMemory = 0;  ///< refinement budget in bytes (0: defaultMemoryBudget())
+    /// Time budget of solve()'s refinement, seconds from solve()'s start (0: none). When it
+    /// runs out, the link being refined and those still queued are accepted as they are
+    /// (the largest oracle values were refined first), no later round refines, and the
+    /// links from lights still go down to the leaves (the method needs them there).
+    double refineSeconds = 0;
     double minArea = 0;
     double tolerance = 1e-4;
     int maxSweeps = 2000;     ///< gather/push-pull sweeps per solve, a safety bound
@@ -140,6 +146,7 @@ struct SolverOptions {
 
 struct SolverStats {
     int clusters = 0, elements = 0, leaves = 0;
+    int polygons = 0, faceClusters = 0;  ///< the input's, and its face clusters (hierarchy.h)
     int links = 0, linksVisible = 0, linksInvisible = 0, linksPartial = 0;
     int passiveLinks = 0;  ///< links kept after being refined (Drettakis & Sillion 1997)
     int refineRounds = 0, sweeps = 0;
@@ -153,7 +160,8 @@ struct SolverStats {
     /// reflect.
     int boundedLeaves = 0;
     double maxGather = 1;
-    bool budgetReached = false;          ///< refinement stopped at maxLinks / maxMemory
+    bool budgetReached = false;          ///< refinement stopped at maxLinks / maxMemory / time
+    bool timeBudgetReached = false;      ///< ... of them, at SolverOptions::refineSeconds
     size_t memoryBytes = 0;              ///< nodes and links (active and passive), bytes
     size_t maxLinks = 0, maxMemory = 0;  ///< the budget in force
 };
@@ -415,6 +423,9 @@ class HierarchicalSolver {
     /// a lamp's light by it: 256 rays left it +-2.5 %, and the tessellated Cornell box's lamp
     /// read 0.809 against the quads' 0.832).
     void measureSeen(const std::vector<int>& leaves, int side = 8, int more = 16);
+    /// The same, but the leaves that are whole polygons of a face cluster of several
+    /// (Hierarchy::polygonPatch) take their face cluster's `seen`, measured once for it.
+    void measureSeenByPatch(const std::vector<int>& leaves);
     [[noreturn]] void throwNotConverged(int sweeps, double power, double delta) const;
     /// One refinement pass over the active links; returns how many were refined.
     size_t refineAll();
@@ -477,6 +488,17 @@ class HierarchicalSolver {
     double meanB_ = 0;  ///< area-weighted mean radiosity of the reflecting leaves (max channel)
     size_t maxLinks_ = 0, maxMemory_ = 0;  ///< the budget in force
     bool budgetReached_ = false;
+    bool timeBudgetReached_ = false;
+    /// The end of solve()'s time budget (SolverOptions::refineSeconds); the largest time
+    /// point outside solve() and without a budget.
+    Clock::time_point refineDeadline_ = Clock::time_point::max();
+    /// Whether the refinement's time is up (reads the clock every kClockStride calls);
+    /// reports progress every kProgressSeconds while refining.
+    bool outOfTime(size_t queued);
+    static constexpr int kClockStride = 1024;
+    static constexpr double kProgressSeconds = 10;
+    size_t clockCalls_ = 0;
+    Clock::time_point lastProgress_{};
     int boundedLeaves_ = 0;
     double maxGather_ = 1;
     bool started_ = false;

@@ -5,7 +5,7 @@
 //                   [preparation options] [--cache FILE | --no-cache] [--debug-views DIR]
 //                   [--display ratio|confidence|pixel]
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
-//                        --max-links N, --max-memory MiB, --display-pixels P,
+//                        --max-links N, --max-memory MiB, --time-budget S, --display-pixels P,
 //                        --no-pixel-light, --all-photos
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
 // Errors print one clear line naming the file (and the line or key); the exit code says
@@ -26,7 +26,12 @@ using cli::Sign;
 namespace {
 
 /// The budget options, the same for `solve`, `prepare` and `render`.
-void addBudgetOptions(CLI::App* app, size_t& maxLinks, double& maxMemoryMB) {
+void addBudgetOptions(CLI::App* app, size_t& maxLinks, double& maxMemoryMB, double& timeBudget) {
+    app->add_option("--time-budget", timeBudget,
+                    "seconds the preparation may take: the refinement stops at half of it, "
+                    "its largest errors refined first (0: no limit)")
+        ->capture_default_str()
+        ->check(finiteNumber(Sign::kNonNegative));
     app->add_option("--max-links", maxLinks,
                     "refinement budget in links (default: what fits in --max-memory)")
         ->check(cli::wholeNumber());
@@ -46,7 +51,7 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
                     "mean radiosity (1: the plain BF criterion)")
         ->capture_default_str()
         ->check(CLI::Range(1e-3, 1.0));
-    addBudgetOptions(app, p.maxLinks, p.maxMemoryMB);
+    addBudgetOptions(app, p.maxLinks, p.maxMemoryMB, p.timeBudget);
     app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     app->add_flag("!--no-refinement", p.shadowRefinement,
                   "skip the texture-based refinement of shadow boundaries (§4.2)");
@@ -77,7 +82,7 @@ CLI::App* addSolveCommand(CLI::App& app, cli::SolveArgs& sa) {
         ->add_option("--min-area", sa.minArea,
                      "smallest element area in m^2 (0: 2e-5 of the scene's area)")
         ->check(finiteNumber(Sign::kNonNegative));
-    addBudgetOptions(solve, sa.maxLinks, sa.maxMemoryMB);
+    addBudgetOptions(solve, sa.maxLinks, sa.maxMemoryMB, sa.timeBudget);
     solve->add_option("--min-rays", sa.minRays, "visibility rays per link, first round")
         ->capture_default_str()
         ->check(CLI::Range(1, 256));

@@ -82,7 +82,7 @@ struct PreparedImage {
     int leaves = 0, links = 0;
     /// The refinement budget (HierarchicalSolver's stats): whether it was reached, the
     /// solver's nodes and links in bytes, and the budget in force.
-    int budgetReached = 0;
+    int budgetReached = 0;  ///< bit 0: a budget was reached; bit 1: it was the time budget
     uint64_t solverBytes = 0, maxLinks = 0, maxMemory = 0;
     PrepareTimes times;
 

@@ -142,6 +142,7 @@ void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     so.darkFloor = o.darkFloor;
     so.maxLinks = o.maxLinks;
     so.maxMemory = o.maxMemory;
+    so.refineSeconds = o.timeBudget * RelightOptions::kRefineShare;
     so.transfer.minRays = o.minRays;
     so.transfer.maxRays = o.maxRays;
     so.progress = o.progress;
@@ -192,7 +193,13 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
     say(o, "radiosity solution of the photo's lights");
     r.solver->solve();
     P.times.solve = since(t0);
-    if (const auto st = r.solver->stats(); st.budgetReached)
+    if (const auto st = r.solver->stats(); st.timeBudgetReached)
+        say(o, "warning: the refinement's time budget (" +
+                   std::to_string(o.timeBudget * RelightOptions::kRefineShare) +
+                   " s of --time-budget " + std::to_string(o.timeBudget) + " s) was reached (" +
+                   std::to_string(st.links) +
+                   " links): the solution is coarser where the oracle's error was smallest");
+    else if (st.budgetReached)
         say(o, "warning: the refinement budget was reached (" + std::to_string(st.links) +
                    " links, " + std::to_string(st.memoryBytes >> 20) +
                    " MiB): the solution is coarser where the oracle's error was smallest");
@@ -387,7 +394,7 @@ void mapDisplay(Relighting& r, const RelightOptions& o) {
     const auto st = r.solver->stats();
     P.leaves = st.leaves;
     P.links = st.links;
-    P.budgetReached = st.budgetReached ? 1 : 0;
+    P.budgetReached = (st.budgetReached ? 1 : 0) | (st.timeBudgetReached ? 2 : 0);
     P.solverBytes = st.memoryBytes;
     P.maxLinks = st.maxLinks;
     P.maxMemory = st.maxMemory;

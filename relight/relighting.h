@@ -60,6 +60,13 @@ struct RelightOptions {
     double darkFloor = 0.1;
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
+    /// Time budget of the preparation, seconds (0: none): the solver's refinement may take
+    /// kRefineShare of it (SolverOptions::refineSeconds), refining the links of largest
+    /// error first; the rest of the preparation is linear in the leaves and runs to its end.
+    /// The default suits a 2-core laptop: the bundled scenes prepare in a few seconds, far
+    /// inside it; a 10^5-10^6-triangle room ends its refinement within a minute.
+    double timeBudget = 120;
+    static constexpr double kRefineShare = 0.5;
     int spp = 16;  ///< item-buffer samples per pixel, at most (sampleBudget)
     /// Samples over the whole image: fewer samples per pixel, and the estimates from the
     /// photo on a sub-grid of pixels, on large photos (SamplingPlan,

@@ -20,6 +20,8 @@ struct SolveArgs {
     double minArea = 0;
     size_t maxLinks = 0;     ///< refinement budget in links (0: from the memory budget)
     double maxMemoryMB = 0;  ///< refinement budget in MiB (0: 40 % of the machine's memory)
+    /// Seconds the refinement may take (0: none); the preparation's default share.
+    double timeBudget = RelightOptions{}.timeBudget;
     int minRays = radiosity::kDefaultMinRays, maxRays = radiosity::kDefaultMaxRays;
     int spp = 16;
     int reflectanceRounds = 12;
@@ -49,6 +51,7 @@ struct PrepareOptionArgs {
     double darkFloor = RelightOptions{}.darkFloor;
     size_t maxLinks = 0;
     double maxMemoryMB = 0;
+    double timeBudget = RelightOptions{}.timeBudget;  ///< seconds (0: none)
     int spp = 16;
     bool shadowRefinement = true;
     bool shadowRemoval = true;

@@ -35,6 +35,7 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     o.darkFloor = darkFloor;
     o.maxLinks = maxLinks;
     o.maxMemory = static_cast<size_t>(maxMemoryMB * 1048576.0);
+    o.timeBudget = timeBudget;
     o.spp = spp;
     o.shadowRefinement = shadowRefinement;
     o.shadowRemoval = shadowRemoval;
@@ -109,7 +110,9 @@ int runPrepare(const PrepareArgs& a) {
     std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
     std::printf("budget: %.1f of %.1f MiB, links within %llu%s\n", p.solverBytes / 1048576.0,
                 p.maxMemory / 1048576.0, static_cast<unsigned long long>(p.maxLinks),
-                p.budgetReached ? ": REACHED, refinement stopped" : "");
+                (p.budgetReached & 2)  ? ": time budget REACHED, refinement stopped"
+                : p.budgetReached != 0 ? ": REACHED, refinement stopped"
+                                       : "");
     if (s.written)
         std::printf("time: prepare %.3f s (%s)\n", s.seconds, stepTimes(p.times).c_str());
     else

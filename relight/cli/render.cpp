@@ -140,6 +140,7 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
         {"links", p.links},
         {"budget",
          {{"reached", p.budgetReached != 0},
+          {"time_budget_reached", (p.budgetReached & 2) != 0},
           {"solver_mib", p.solverBytes / 1048576.0},
           {"max_links", p.maxLinks},
           {"max_memory_mib", p.maxMemory / 1048576.0}}},

@@ -27,6 +27,7 @@ radiosity::SolverOptions solverOptions(const SolveArgs& a) {
     o.minArea = a.minArea;
     o.maxLinks = a.maxLinks;
     o.maxMemory = static_cast<size_t>(a.maxMemoryMB * 1048576.0);
+    o.refineSeconds = a.timeBudget * RelightOptions::kRefineShare;
     o.transfer.minRays = a.minRays;
     o.transfer.maxRays = a.maxRays;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
@@ -135,7 +136,8 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
 }
 
 void printStats(const radiosity::SolverStats& st) {
-    std::printf("elements %d (leaves %d), clusters %d\n", st.elements, st.leaves, st.clusters);
+    std::printf("input polygons %d in %d face clusters; elements %d (leaves %d), clusters %d\n",
+                st.polygons, st.faceClusters, st.elements, st.leaves, st.clusters);
     std::printf("links %d: visible %d, partial %d, invisible %d; passive %d\n", st.links,
                 st.linksVisible, st.linksPartial, st.linksInvisible, st.passiveLinks);
     std::printf("rays %llu, form factors %llu, shafts %llu (empty %llu)\n",
@@ -156,7 +158,10 @@ void printStats(const radiosity::SolverStats& st) {
                 st.maxGather);
     std::printf("budget: %.1f of %.1f MiB, %zu of %zu links%s\n", st.memoryBytes / 1048576.0,
                 st.maxMemory / 1048576.0, static_cast<size_t>(st.links + st.passiveLinks),
-                st.maxLinks, st.budgetReached ? ": REACHED, refinement stopped" : "");
+                st.maxLinks,
+                st.timeBudgetReached ? ": time budget REACHED, refinement stopped"
+                : st.budgetReached   ? ": REACHED, refinement stopped"
+                                     : "");
 }
 
 /// -o: the radiosity seen from the camera.
@@ -179,6 +184,8 @@ nlohmann::json solveReport(const SolveArgs& a, const radiosity::HierarchicalSolv
             {"min_area_m2", solver.minArea()},
             {"elements", st.elements},
             {"leaves", st.leaves},
+            {"input_polygons", st.polygons},
+            {"face_clusters", st.faceClusters},
             {"clusters", st.clusters},
             {"links",
              {{"total", st.links},
@@ -200,6 +207,8 @@ nlohmann::json solveReport(const SolveArgs& a, const radiosity::HierarchicalSolv
             {"sweeps", st.sweeps},
             {"budget",
              {{"reached", st.budgetReached},
+              {"time_budget_reached", st.timeBudgetReached},
+              {"refine_seconds_allowed", a.timeBudget * RelightOptions::kRefineShare},
               {"max_links", st.maxLinks},
               {"max_memory_bytes", st.maxMemory},
               {"memory_bytes", st.memoryBytes}}},

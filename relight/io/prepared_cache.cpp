@@ -96,6 +96,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     // gives the same state on machines of the same memory only.
     h.i64(static_cast<int64_t>(o.maxLinks));
     h.i64(static_cast<int64_t>(o.maxMemory > 0 ? o.maxMemory : radiosity::defaultMemoryBudget()));
+    h.f64(o.timeBudget);
     h.i64(o.spp);
     h.i64(o.sampleBudget);
     h.i64(o.minRays);
@@ -413,7 +414,8 @@ std::string checkPrepared(const PreparedImage& p) {
         return "modelReflectance has " + n(p.modelReflectance.size()) + " entries, not " +
                n(vertices);
     if (p.leaves < 0 || p.links < 0) return "negative counts";
-    if (p.budgetReached != 0 && p.budgetReached != 1) return "budget flag neither 0 nor 1";
+    if (p.budgetReached != 0 && p.budgetReached != 1 && p.budgetReached != 3)
+        return "budget flag neither 0, 1 nor 3";
     return {};
 }
 
