@@ -218,7 +218,10 @@ glm::dmat3 rotationAboutAxis(const Vec3& axis, double degrees) {
 Sh9Rotation sh9Rotation(const glm::dmat3& R) {
     Sh9Rotation rot;
     // Band 1 is c1 (a . w) with a = (L11, L1-1, L10) along (x, y, z); L(R^T w) has
-    // a' = R a. In the format's order (y, z, x) that is R with rows and columns permuted.
+    // a' = R a. In the format's order (y, z, x) that is R with rows and columns permuted,
+    // without signs: the format's basis has no Condon-Shortley phase. Libraries that have
+    // it (google/spherical-harmonics) negate Y1-1, Y11, Y2-1 and Y21, so their coefficients
+    // and band matrices differ from these by those four signs.
     static constexpr int kAxis[3] = {1, 2, 0};
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) rot.band1[i][j] = R[kAxis[j]][kAxis[i]];

@@ -52,13 +52,13 @@ std::vector<std::pair<double, double>> gaussLegendre(double lo, double hi, int p
     return r;
 }
 
-// The integral of Y_k(w) w_z over the lune {w_z > 0, w.b > 0} (b unit, not along z): the
-// part of an upward normal's sky that the overhang hides. About the axis u = z x b the lune
-// is the wedge of azimuths (beta - pi/2, pi/2) at every polar angle theta, where
-// b = cos(beta) z + sin(beta) e2: a product domain, integrated by Gauss-Legendre in theta
-// (dw = sin(theta) dtheta dphi) and in phi. Written without sky_transfer.cpp's sampling.
-Sh9 luneIntegral(const Vec3& b) {
-    const Vec3 a{0, 0, 1};
+// The integral of Y_k(w) (n.w) over the lune {w.a > 0, w.b > 0} (a, b unit and not
+// parallel, n.w >= 0 there). With a = n = z it is the part of an upward normal's sky that
+// the overhang hides. About the axis u = a x b the lune is the wedge of azimuths
+// (beta - pi/2, pi/2) at every polar angle theta, where b = cos(beta) a + sin(beta) e2: a
+// product domain, integrated by Gauss-Legendre in theta (dw = sin(theta) dtheta dphi) and
+// in phi. Written without sky_transfer.cpp's sampling.
+Sh9 luneIntegral(const Vec3& a, const Vec3& b, const Vec3& n) {
     const Vec3 u = glm::normalize(glm::cross(a, b));
     const Vec3 e2 = glm::cross(u, a);
     const double beta = std::atan2(glm::dot(b, e2), glm::dot(b, a));
@@ -68,10 +68,16 @@ Sh9 luneIntegral(const Vec3& b) {
             const double s = std::sin(theta);
             const Vec3 w = std::cos(theta) * u + s * (std::cos(phi) * a + std::sin(phi) * e2);
             const Sh9 y = sh9Basis(w);
-            for (int k = 0; k < kSh9Count; ++k) T[k] += y[k] * w.z * s * wt * wp;
+            for (int k = 0; k < kSh9Count; ++k) T[k] += y[k] * glm::dot(n, w) * s * wt * wp;
         }
     }
     return T;
+}
+
+// The part of an upward normal's sky an overhang hides, the half-space w.b > 0 above.
+Sh9 hiddenByOverhang(const Vec3& b) {
+    const Vec3 z{0, 0, 1};
+    return luneIntegral(z, b, z);
 }
 
 // The stratified estimate's error, measured with 64 seeds on the unoccluded normals and
@@ -115,7 +121,7 @@ TEST(SkyTransfer, UnderTheOverhangsEdgeHalfTheSkyIsHidden) {
     const Sh9 analytic{c0 * kPi / 2,  0, c1 * kPi / 3, -2 * c1 / 3, 0, 0, c20 * kPi / 4,
                        -c2 * kPi / 8, 0};
     // The reference integrator agrees with the closed form (1e-12: rounding).
-    const Sh9 open = sh9CosineTransfer({0, 0, 1}), hidden = luneIntegral({1, 0, 0});
+    const Sh9 open = sh9CosineTransfer({0, 0, 1}), hidden = hiddenByOverhang({1, 0, 0});
     for (int k = 0; k < kSh9Count; ++k) EXPECT_NEAR(open[k] - hidden[k], analytic[k], 1e-12);
 
     const Scene s = overhangScene(1, 1e4);
@@ -133,11 +139,29 @@ TEST(SkyTransfer, AwayFromTheEdgeTheHiddenLuneMatchesItsIntegral) {
     const Visibility vis(s);
     for (const double x0 : {-1.5, -0.4, 0.7, 3.0}) {
         const Sh9 open = sh9CosineTransfer({0, 0, 1});
-        const Sh9 hidden = luneIntegral(glm::normalize(Vec3{h, 0, x0}));
+        const Sh9 hidden = hiddenByOverhang(glm::normalize(Vec3{h, 0, x0}));
         const Sh9 T = skyTransfer(vis, s.bounds(), {{x0, -0.2, 0}, {0, 0, 1}, 0}, 7, {kRays});
         for (int k = 0; k < kSh9Count; ++k)
             EXPECT_NEAR(T[k], open[k] - hidden[k], kEdgeTol) << "x0 " << x0 << " k " << k;
     }
+}
+
+TEST(SkyTransfer, AWallsFootSeesTheUpperHalfOfItsHemisphere) {
+    // A point on a wall facing +x, 0.5 m above the ground: the ground hides every
+    // direction below the horizon, so T is the integral of Y_k(w) w_x over
+    // {w_x > 0, w_z > 0}. The wall is the point's own polygon; the ground blocks.
+    const double W = 1e4;
+    Scene s;
+    s.objects.push_back("yard");
+    addQuad(s, {-W, -W, 0}, {W, -W, 0}, {W, W, 0}, {-W, W, 0});  // ground, up
+    addQuad(s, {0, -W, 0}, {0, W, 0}, {0, W, W}, {0, -W, W});    // wall, facing +x
+    const Visibility vis(s);
+    const Vec3 x{1, 0, 0};
+    const Sh9 ref = luneIntegral(x, {0, 0, 1}, x);
+    const Sh9 T = skyTransfer(vis, s.bounds(), {{0, 0.3, 0.5}, x, 1}, 3, {kRays});
+    for (int k = 0; k < kSh9Count; ++k) EXPECT_NEAR(T[k], ref[k], kEdgeTol) << "k " << k;
+    // Half the cosine-weighted hemisphere: T00 = c0 pi / 2.
+    EXPECT_NEAR(ref[0], 0.5 / std::sqrt(kPi) * kPi / 2, 1e-12);
 }
 
 TEST(SkyTransfer, OccludedIrradianceIsTheDotProduct) {
