@@ -20,9 +20,10 @@ struct LightJson {
 };
 
 /// Reads {"name", "type", "vertices", "radiance"} at `path`. `typeRequired`: scene.json
-/// needs "type" ("quad", the only type); an edit may leave it out. `estimateAllowed`: a
-/// scene light may say "estimate" (its photo calibrates it); a virtual light may not.
-/// Throws InputError naming the key.
+/// needs "type" ("quad", the only type relight lights with; the format's "sun", "point" and
+/// "environment" are refused, naming the light and its type); an edit may leave it out.
+/// `estimateAllowed`: a scene light may say "estimate" (its photo calibrates it); a virtual light
+/// may not. Throws InputError naming the key.
 LightJson readLightJson(const jsonio::JsonReader& r, const nlohmann::json& lj,
                         const std::string& path, bool typeRequired, bool estimateAllowed);
 
