@@ -193,13 +193,15 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
     say(o, "radiosity solution of the photo's lights");
     r.solver->solve();
     P.times.solve = since(t0);
-    if (const auto st = r.solver->stats(); st.timeBudgetReached)
-        say(o, "warning: the refinement's time budget (" +
-                   std::to_string(o.timeBudget * RelightOptions::kRefineShare) +
-                   " s of --time-budget " + std::to_string(o.timeBudget) + " s) was reached (" +
-                   std::to_string(st.links) +
-                   " links): the solution is coarser where the oracle's error was smallest");
-    else if (st.budgetReached)
+    if (const auto st = r.solver->stats(); st.timeBudgetReached) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "warning: the refinement's time budget (%g s, half of --time-budget) was "
+                      "reached at %d links: the solution is coarser where the oracle's error "
+                      "was smallest",
+                      o.timeBudget * RelightOptions::kRefineShare, st.links);
+        say(o, msg);
+    } else if (st.budgetReached)
         say(o, "warning: the refinement budget was reached (" + std::to_string(st.links) +
                    " links, " + std::to_string(st.memoryBytes >> 20) +
                    " MiB): the solution is coarser where the oracle's error was smallest");
