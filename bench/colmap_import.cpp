@@ -4,7 +4,7 @@
 //      and the whole import of one of its images (the room's camera, photo, mesh, lights);
 //   2. a 12 MP (4000x3000) 8-bit JPEG through a SIMPLE_RADIAL camera: the whole import,
 //      and its steps (the pinhole fit, the resampling; the rest is reading and writing).
-// Prints each figure (best of 3) and the command that made it.
+// Prints each figure (best of 5) and the command that made it.
 //   ./build/bench/colmap_import data [--images N] [--points P]
 #include <OpenImageIO/imageio.h>
 
@@ -32,10 +32,10 @@ namespace {
 namespace fs = std::filesystem;
 namespace colmap = relight::colmap;
 
-/// The best of 3 runs of `f`, in seconds.
-double bestOf3(const std::function<void()>& f) {
+/// The best of 5 runs of `f`, in seconds.
+double bestOf5(const std::function<void()>& f) {
     double best = 1e300;
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 5; ++i) {
         const auto t0 = radiosity::Clock::now();
         f();
         best = std::min(best, radiosity::secondsSince(t0));
@@ -114,8 +114,8 @@ void largeModel(const fs::path& data, const fs::path& work, int count, int point
     fs::copy_file(data / "room" / "photo.exr", work / "images" / "photo.exr",
                   fs::copy_options::overwrite_existing);
     for (const char* form : {"text", "bin"}) {
-        const double read = bestOf3([&] { colmap::readModel(work / form); });
-        const double all = bestOf3([&] {
+        const double read = bestOf5([&] { colmap::readModel(work / form); });
+        const double all = bestOf5([&] {
             relight::importColmap(
                 roomImport(data, work / form, work / "images", "photo.exr", work / "out"));
         });
@@ -155,10 +155,10 @@ void distortedPhoto(const fs::path& data, const fs::path& work) {
     }
     const colmap::Lens lens = colmap::lensOf(model.cameras[1]);
     colmap::Lens pinhole;
-    const double fit = bestOf3([&] { pinhole = relight::undistortedLens(lens, "bench"); });
+    const double fit = bestOf5([&] { pinhole = relight::undistortedLens(lens, "bench"); });
     relight::PixelGrid grid{w, h, 3, std::vector<float>(static_cast<size_t>(w) * h * 3, 0.5f)};
-    const double resample = bestOf3([&] { relight::undistortPixels(grid, lens, pinhole); });
-    const double all = bestOf3([&] {
+    const double resample = bestOf5([&] { relight::undistortPixels(grid, lens, pinhole); });
+    const double all = bestOf5([&] {
         relight::importColmap(
             roomImport(data, work / "sparse12", work / "images12", "big.jpg", work / "out12"));
     });
