@@ -102,7 +102,9 @@ Camera readCameraLine(const std::string& line, const LineReader& lines) {
     c.model = field<std::string>(fields, lines, "MODEL");
     c.width = field<int64_t>(fields, lines, "WIDTH");
     c.height = field<int64_t>(fields, lines, "HEIGHT");
-    if (c.width <= 0 || c.height <= 0) lines.fail("the camera's size must be positive");
+    // The binary reader's bound too: a size beyond 2^30 pixels is a damaged line.
+    if (c.width <= 0 || c.height <= 0 || c.width > (1 << 30) || c.height > (1 << 30))
+        lines.fail("bad camera size " + std::to_string(c.width) + "x" + std::to_string(c.height));
     const int n = paramCount(c.model);
     if (n < 0) lines.fail("unknown camera model \"" + c.model + "\"");
     for (int k = 0; k < n; ++k) c.params.push_back(field<double>(fields, lines, "PARAMS"));
