@@ -75,7 +75,8 @@ class App {
     bool wasDown_ = false;
     double lastMx_ = -1, lastMy_ = -1;
     std::string windowShot_;
-    int movingLamp_ = -1;  ///< the real lamp the next click moves, or -1
+    int movingLamp_ = -1;            ///< the real lamp the next click moves, or -1
+    float newLampSize_[2] = {0, 0};  ///< metres; 0: the size of the scene's lamps
 };
 
 /// The window's back buffer (sRGB-encoded bytes) as a linear image, rows from the top.
@@ -183,9 +184,15 @@ void App::objectsPanel() {
 void App::lampsPanel() {
     if (!ImGui::CollapsingHeader("Real lamps (scene.json)", ImGuiTreeNodeFlags_DefaultOpen)) return;
     if (ImGui::RadioButton("place real lamps", tool_ == Tool::lamp)) tool_ = Tool::lamp;
-    ImGui::TextDisabled(movingLamp_ >= 0 ? "click where the lamp goes"
-                                         : "click where a lamp is in the photo: a quad on the "
-                                           "surface, facing out");
+    if (ImGui::DragFloat2("new lamp size (m)", newLampSize_, 0.005f, 0.0f, 10.0f, "%.3f"))
+        for (float& side : newLampSize_) side = std::max(0.0f, side);
+    // Wrapped: the hints are longer than the panel is wide.
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s", movingLamp_ >= 0
+                                  ? "click where the lamp goes"
+                                  : "click where a lamp is in the photo: a quad on the surface, "
+                                    "facing out (size 0: the scene's lamps' size)");
+    ImGui::PopTextWrapPos();
     auto& lamps = session_.placedLamps();
     int remove = -1;
     for (size_t i = 0; i < lamps.size(); ++i) {
@@ -235,6 +242,9 @@ void App::drawLamps(const PhotoRect& r) {
     const PreparedImage& p = session_.prepared();
     const Camera& camera = session_.relighting().scene.camera;
     ImDrawList* draw = ImGui::GetForegroundDrawList();
+    // Within the photo: a lamp partly out of the picture must not draw over the panel.
+    draw->PushClipRect(ImVec2(static_cast<float>(r.x), static_cast<float>(r.y)),
+                       ImVec2(static_cast<float>(r.x + r.w), static_cast<float>(r.y + r.h)));
     for (size_t i = 0; i < session_.placedLamps().size(); ++i) {
         std::vector<ImVec2> points;
         for (const Vec3& c : session_.placedLamps()[i].corners()) {
@@ -249,6 +259,7 @@ void App::drawLamps(const PhotoRect& r) {
         draw->AddPolyline(points.data(), 4, colour, ImDrawFlags_Closed, 2.0f);
         draw->AddText(points[3], colour, session_.placedLamps()[i].name.c_str());
     }
+    draw->PopClipRect();
 }
 
 void App::displayPanel() {
@@ -345,7 +356,8 @@ void App::mouse(const PhotoRect& r) {
                 movingLamp_ = -1;
             });
         else if (tool_ == Tool::lamp)
-            act("placing a lamp", [&] { session_.placeLampAt(pick); });
+            act("placing a lamp",
+                [&] { session_.placeLampAt(pick, newLampSize_[0], newLampSize_[1]); });
         else if (tool_ == Tool::remove && pick.realObject.empty())
             status_ = "no removable object there (scene.json marks which are)";
         else if (tool_ == Tool::remove)
