@@ -24,6 +24,7 @@ namespace fs = std::filesystem;
 using relight::PixelGrid;
 using relight::test::TempDir;
 namespace colmap = relight::colmap;
+using radiosity::Vec3;
 
 /// A SIMPLE_RADIAL camera (COLMAP's numbers) and its lens; barrel distortion for k < 0.
 colmap::Lens simpleRadial(int width, int height, double f, double k) {
@@ -131,6 +132,54 @@ TEST(ColmapUndistort, FittedPinholeSeesOnlyThePhotoAndAllOfItsWidthOrHeight) {
         for (int u = 0; u < lens.width; ++u) check(u, 0), check(u, lens.height - 1);
         for (int v = 0; v < lens.height; ++v) check(0, v), check(lens.width - 1, v);
         EXPECT_LT(closest, 0.05);
+    }
+}
+
+// A world point seen through a distorted COLMAP camera (COLMAP's equations: the quaternion's
+// rotation, then the lens distortion, then f, c with the top-left pixel's centre at 0.5)
+// lands at the pixel of the distorted photo that the undistorted photo reads for the point's
+// pixel in the imported pinhole camera: the whole chain, half-pixel shift included.
+TEST(ColmapUndistort, DistortedProjectionMatchesTheImportedPinholeAndResampling) {
+    colmap::Camera radial{1, "SIMPLE_RADIAL", 640, 480, {500, 321.3, 238.9, -0.07}, ""};
+    colmap::Camera opencv{
+        2, "OPENCV", 640, 480, {510, 495, 318.2, 243.1, -0.08, 0.01, 0.0015, -0.001}, ""};
+    colmap::Image image;
+    image.qvec = {0.9, 0.1, -0.2, 0.05};
+    image.tvec = {0.1, -0.2, 2.5};
+    for (const colmap::Camera& camera : {radial, opencv}) {
+        SCOPED_TRACE(camera.model);
+        const colmap::Lens lens = colmap::lensOf(camera);
+        const colmap::Lens pinhole = relight::undistortedLens(lens, "test");
+        const relight::Camera imported = colmap::sceneCamera(image, pinhole);
+        const bool simple = camera.model == "SIMPLE_RADIAL";
+        const std::vector<double>& p = camera.params;
+        for (double wx = -0.6; wx <= 0.6; wx += 0.3)
+            for (double wy = -0.4; wy <= 0.4; wy += 0.2) {
+                const Vec3 world(wx, wy, 0.3);
+                const Vec3 xc = colmap::rotationFromQuaternion(image.qvec, "test") * world +
+                                Vec3(image.tvec[0], image.tvec[1], image.tvec[2]);
+                const double u = xc.x / xc.z, v = xc.y / xc.z, r2 = u * u + v * v;
+                double du = 0, dv = 0;
+                if (simple) {
+                    du = u * p[3] * r2;
+                    dv = v * p[3] * r2;
+                } else {
+                    const double radialTerm = p[4] * r2 + p[5] * r2 * r2;
+                    du = u * radialTerm + 2 * p[6] * u * v + p[7] * (r2 + 2 * u * u);
+                    dv = v * radialTerm + 2 * p[7] * u * v + p[6] * (r2 + 2 * v * v);
+                }
+                const double fx = p[0], fy = simple ? p[0] : p[1];
+                const double cx = simple ? p[1] : p[2], cy = simple ? p[2] : p[3];
+                const double uColmap = fx * (u + du) + cx, vColmap = fy * (v + dv) + cy;
+                // The imported camera's pixel, and where the resampling reads it from.
+                double ui = 0, vi = 0, depth = 0;
+                ASSERT_TRUE(imported.project(world, ui, vi, depth));
+                double xd = 0, yd = 0;
+                lens.distort((ui - pinhole.cx) / pinhole.fx, (vi - pinhole.cy) / pinhole.fy, xd,
+                             yd);
+                EXPECT_NEAR(lens.fx * xd + lens.cx + 0.5, uColmap, 1e-9);
+                EXPECT_NEAR(lens.fy * yd + lens.cy + 0.5, vColmap, 1e-9);
+            }
     }
 }
 
