@@ -8,12 +8,16 @@
 //                        --max-links N, --max-memory MiB, --time-budget S, --display-pixels P,
 //                        --no-pixel-light, --all-photos
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
+//   relight import colmap <sparse_dir> --image NAME --images DIR --mesh FILE
+//                   [--lights FILE] [--objects FILE] [--lights-on A,B] -o SCENE_DIR
+//   relight export colmap <scene_dir> -o SPARSE_DIR [--binary] [--name NAME]
 // Errors print one clear line naming the file (and the line or key); the exit code says
 // which kind (relight/errors.h): 2 the input is wrong (the command line's options too), 3
 // an output cannot be written, 1 anything else.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "relight/cli/commands.h"
 #include "relight/cli/validators.h"
@@ -160,6 +164,76 @@ CLI::App* addPrepareCommand(CLI::App& app, cli::PrepareArgs& pa) {
     return prepare;
 }
 
+/// `import colmap`: the options of relight/io/colmap_import.h, with the paths as strings
+/// (CLI11 reads them so) and the optional values that have no "unset" value of their own.
+struct ImportArgs {
+    ColmapImportOptions o;
+    std::string sparse, images, mesh, lights, objects, output;
+    std::vector<std::string> lightsOn;
+    double averageReflectance = -1;
+
+    ColmapImportOptions options() const {
+        ColmapImportOptions r = o;
+        r.sparseDir = sparse;
+        r.imagesDir = images;
+        r.mesh = mesh;
+        r.lights = lights;
+        r.objects = objects;
+        r.output = output;
+        if (!lightsOn.empty()) r.lightsOn = lightsOn;
+        if (averageReflectance >= 0) r.averageReflectance = averageReflectance;
+        return r;
+    }
+};
+
+CLI::App* addImportCommand(CLI::App& app, ImportArgs& ia) {
+    auto* import = app.add_subcommand("import", "make a scene package from another tool's model");
+    import->require_subcommand(1);
+    auto* colmap = import->add_subcommand(
+        "colmap", "a scene from a COLMAP model: one image's camera and photo, a mesh, lights");
+    colmap
+        ->add_option("sparse_dir", ia.sparse,
+                     "COLMAP model folder: cameras.txt and images.txt, or cameras.bin and "
+                     "images.bin")
+        ->required();
+    colmap->add_option("--image", ia.o.image, "the image's NAME in the model")->required();
+    colmap->add_option("--images", ia.images, "COLMAP's image folder (the photo is DIR/NAME)")
+        ->required();
+    colmap->add_option("--mesh", ia.mesh, "the room's mesh: OBJ, PLY, glTF")->required();
+    colmap->add_option("--lights", ia.lights,
+                       "the real lights: the scene format's \"lights\" array, or a JSON object "
+                       "holding one (default: none)");
+    colmap->add_option("--objects", ia.objects,
+                       "per-object settings: the format's \"objects\", or a scene.json holding "
+                       "them");
+    colmap->add_option("--lights-on", ia.lightsOn, "the lights on in the photo (default: all)")
+        ->delimiter(',');
+    colmap
+        ->add_option("--average-reflectance", ia.averageReflectance,
+                     "the user's guess of the scene's mean reflectance")
+        ->check(CLI::Range(0.0, 0.999));
+    colmap
+        ->add_option("--encoding", ia.o.encoding,
+                     "the photo's encoding (default: from its file type)")
+        ->check(CLI::IsMember({"linear", "srgb"}));
+    colmap->add_flag("--link", ia.o.link, "link the photo and the mesh instead of copying them");
+    colmap->add_flag("--force", ia.o.force, "write into a folder that is not empty");
+    colmap->add_option("-o,--output", ia.output, "the scene folder to write")->required();
+    return colmap;
+}
+
+CLI::App* addExportCommand(CLI::App& app, cli::ExportColmapArgs& ea) {
+    auto* exportApp = app.add_subcommand("export", "write a scene's camera for another tool");
+    exportApp->require_subcommand(1);
+    auto* colmap = exportApp->add_subcommand(
+        "colmap", "the scene's camera as a COLMAP model (one PINHOLE camera, one image)");
+    colmap->add_option("scene_dir", ea.scene, "scene folder holding scene.json")->required();
+    colmap->add_option("-o,--output", ea.output, "the model folder to write")->required();
+    colmap->add_flag("--binary", ea.binary, "cameras.bin and images.bin (default: text)");
+    colmap->add_option("--name", ea.name, "the image's NAME (default: the photo's file name)");
+    return colmap;
+}
+
 /// A command line CLI11 could not parse: --help (exit code 0) as CLI11 prints it. A bad
 /// option is bad input like any other: one line and exit code 2, not CLI11's own codes (105
 /// for a value that fails its check, 106 for a missing one, ...), which scripts could not
@@ -172,7 +246,9 @@ int parseFailure(CLI::App& app, const CLI::ParseError& e, int argc, char** argv)
     const std::string first = argc > 1 ? argv[1] : "";
     if (given.empty() && !first.empty() && first[0] != '-')
         std::fprintf(stderr,
-                     "error: unknown command \"%s\" (solve, prepare, render or eval); see "
+                     "error: unknown command \"%s\" (solve, prepare, render, eval, import or "
+                     "export); "
+                     "see "
                      "relight --help\n",
                      first.c_str());
     else
@@ -193,6 +269,10 @@ int main(int argc, char** argv) {
     const CLI::App* eval = addEvalCommand(app, ea);
     const CLI::App* render = addRenderCommand(app, ra);
     const CLI::App* prepare = addPrepareCommand(app, pa);
+    ImportArgs ia;
+    const CLI::App* importColmap = addImportCommand(app, ia);
+    cli::ExportColmapArgs xa;
+    const CLI::App* exportColmap = addExportCommand(app, xa);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -206,6 +286,8 @@ int main(int argc, char** argv) {
         if (*render) return cli::runRender(ra);
         if (*prepare) return cli::runPrepare(pa);
         if (*eval) return cli::runEval(ea.scene, ea.edit, ea.image, ea.errorMap);
+        if (*importColmap) return cli::runImportColmap(ia.options());
+        if (*exportColmap) return cli::runExportColmap(xa);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return exitCode(e);

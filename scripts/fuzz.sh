@@ -3,7 +3,8 @@
 # executions (default 100000). Each starts from the bundled scenes' files of its kind
 # (data/*/scene.json, data/*/edits/*.json, data/*/*.obj and data/*/objects/*.obj, copied
 # here at each run) and from fuzz/corpus/<target>/ (inputs that once failed, kept so that
-# they are tried again). Prints per target the executions, the time and the findings;
+# they are tried again; for colmap, whose inputs are a COLMAP model's files behind a byte
+# that picks the file, its seeds too). Prints per target the executions, the time and the findings;
 # libFuzzer writes a finding to build-fuzz/findings/. Exits non-zero when any target has a
 # finding.
 #   bash scripts/fuzz.sh [RUNS]
@@ -29,11 +30,14 @@ seed() {
 seed scene_json data/*/scene.json
 seed edit_json data/*/edits/*.json
 seed obj data/*/*.obj data/*/objects/*.obj
+# COLMAP models: the first byte picks the file (fuzz/colmap_fuzz.cpp); their seeds are
+# in fuzz/corpus/colmap/.
+seed colmap
 
 failed=0
 printf '%-12s %10s %8s %9s  %s\n' target executions seconds findings seeds \
     >build-fuzz/fuzz-summary.txt
-for target in scene_json edit_json obj; do
+for target in scene_json edit_json obj colmap; do
     # The corpus libFuzzer grows starts empty, so that every run starts from the same seeds.
     rm -rf "build-fuzz/corpus/$target" "build-fuzz/findings/$target"
     mkdir -p "build-fuzz/corpus/$target" "build-fuzz/findings/$target" build-fuzz/logs

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <functional>
 
 namespace relight::viewer {
@@ -16,7 +17,7 @@ namespace {
 
 constexpr float kPanelWidth = 360.0f;  ///< window pixels
 
-enum class Tool { select, light, box, remove };
+enum class Tool { select, light, box, remove, lamp };
 
 /// Where the photo is drawn in the window (window coordinates, y down): the area left of
 /// the panel, at the photo's aspect, centred.
@@ -57,6 +58,8 @@ class App {
     void lightsPanel();
     void objectsPanel();
     void displayPanel();
+    void lampsPanel();
+    void drawLamps(const PhotoRect& r);
     void statsOverlay(const PhotoRect& r);
     void mouse(const PhotoRect& r);
     void act(const char* what, const std::function<void()>& f);
@@ -72,6 +75,8 @@ class App {
     bool wasDown_ = false;
     double lastMx_ = -1, lastMy_ = -1;
     std::string windowShot_;
+    int movingLamp_ = -1;            ///< the real lamp the next click moves, or -1
+    float newLampSize_[2] = {0, 0};  ///< metres; 0: the size of the scene's lamps
 };
 
 /// The window's back buffer (sRGB-encoded bytes) as a linear image, rows from the top.
@@ -176,6 +181,87 @@ void App::objectsPanel() {
         act("bringing the object back", [&] { session_.restoreRealObject(restore); });
 }
 
+void App::lampsPanel() {
+    if (!ImGui::CollapsingHeader("Real lamps (scene.json)", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (ImGui::RadioButton("place real lamps", tool_ == Tool::lamp)) tool_ = Tool::lamp;
+    if (ImGui::DragFloat2("new lamp size (m)", newLampSize_, 0.005f, 0.0f, 10.0f, "%.3f"))
+        for (float& side : newLampSize_) side = std::max(0.0f, side);
+    // Wrapped: the hints are longer than the panel is wide.
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s", movingLamp_ >= 0
+                                  ? "click where the lamp goes"
+                                  : "click where a lamp is in the photo: a quad on the surface, "
+                                    "facing out (size 0: the scene's lamps' size)");
+    ImGui::PopTextWrapPos();
+    auto& lamps = session_.placedLamps();
+    int remove = -1;
+    for (size_t i = 0; i < lamps.size(); ++i) {
+        PlacedLamp& l = lamps[i];
+        ImGui::PushID(2000 + static_cast<int>(i));
+        char name[128];
+        std::snprintf(name, sizeof name, "%s", l.name.c_str());
+        if (ImGui::InputText("name", name, sizeof name)) l.name = name;
+        float size[2] = {static_cast<float>(l.width), static_cast<float>(l.height)};
+        if (ImGui::DragFloat2("size (m)", size, 0.005f, 0.01f, 10.0f, "%.3f")) {
+            l.width = std::max(0.01f, size[0]);
+            l.height = std::max(0.01f, size[1]);
+        }
+        ImGui::Checkbox("estimate radiance from the photo", &l.estimate);
+        if (!l.estimate) {
+            float c[3] = {static_cast<float>(l.radiance.r), static_cast<float>(l.radiance.g),
+                          static_cast<float>(l.radiance.b)};
+            if (ImGui::DragFloat3("radiance", c, 0.05f, 0.0f, 1e4f, "%.2f"))
+                l.radiance = Rgb{std::max(0.0f, c[0]), std::max(0.0f, c[1]), std::max(0.0f, c[2])};
+        }
+        ImGui::Checkbox("on in the photo", &l.onInPhoto);
+        if (ImGui::SmallButton("move")) {
+            movingLamp_ = static_cast<int>(i);
+            tool_ = Tool::lamp;
+        }
+        ImGui::SameLine();
+        if (ImGui::SmallButton("remove")) remove = static_cast<int>(i);
+        ImGui::Separator();
+        ImGui::PopID();
+    }
+    if (remove >= 0) {
+        lamps.erase(lamps.begin() + remove);
+        movingLamp_ = -1;
+    }
+    if (!lamps.empty() && ImGui::Button("Save lamps into scene.json")) {
+        const std::filesystem::path dir = session_.relighting().scene.dir;
+        act("saving the lamps", [&] {
+            session_.saveLamps(dir);
+            status_ = "added the lamps to " + (dir / "scene.json").string() +
+                      "; open the scene again to relight with them";
+        });
+    }
+}
+
+/// The real lamps placed, outlined over the photo (the window's coordinates).
+void App::drawLamps(const PhotoRect& r) {
+    const PreparedImage& p = session_.prepared();
+    const Camera& camera = session_.relighting().scene.camera;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    // Within the photo: a lamp partly out of the picture must not draw over the panel.
+    draw->PushClipRect(ImVec2(static_cast<float>(r.x), static_cast<float>(r.y)),
+                       ImVec2(static_cast<float>(r.x + r.w), static_cast<float>(r.y + r.h)));
+    for (size_t i = 0; i < session_.placedLamps().size(); ++i) {
+        std::vector<ImVec2> points;
+        for (const Vec3& c : session_.placedLamps()[i].corners()) {
+            double u = 0, v = 0, depth = 0;
+            if (!camera.project(c, u, v, depth)) break;
+            points.emplace_back(static_cast<float>(r.x + (u + 0.5) / p.photo.width * r.w),
+                                static_cast<float>(r.y + (v + 0.5) / p.photo.height * r.h));
+        }
+        if (points.size() != 4) continue;  // behind the camera: nothing to draw
+        const ImU32 colour = static_cast<int>(i) == movingLamp_ ? IM_COL32(255, 80, 80, 255)
+                                                                : IM_COL32(255, 220, 60, 255);
+        draw->AddPolyline(points.data(), 4, colour, ImDrawFlags_Closed, 2.0f);
+        draw->AddText(points[3], colour, session_.placedLamps()[i].name.c_str());
+    }
+    draw->PopClipRect();
+}
+
 void App::displayPanel() {
     if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
     int fb = frame_.framebuffer == Framebuffer::float32 ? 0 : 1;
@@ -209,6 +295,7 @@ void App::panel() {
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     lightsPanel();
     objectsPanel();
+    lampsPanel();
     displayPanel();
     if (ImGui::CollapsingHeader("Save", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::InputText("file", savePath_, sizeof savePath_);
@@ -263,6 +350,14 @@ void App::mouse(const PhotoRect& r) {
             act("adding a light", [&] { session_.addLightAt(pick); });
         else if (tool_ == Tool::box)
             act("adding a box", [&] { session_.addBoxAt(pick); });
+        else if (tool_ == Tool::lamp && movingLamp_ >= 0)
+            act("moving the lamp", [&] {
+                session_.moveLampTo(movingLamp_, pick);
+                movingLamp_ = -1;
+            });
+        else if (tool_ == Tool::lamp)
+            act("placing a lamp",
+                [&] { session_.placeLampAt(pick, newLampSize_[0], newLampSize_[1]); });
         else if (tool_ == Tool::remove && pick.realObject.empty())
             status_ = "no removable object there (scene.json marks which are)";
         else if (tool_ == Tool::remove)
@@ -300,6 +395,7 @@ void App::run() {
         panel();
         mouse(r);
         statsOverlay(r);
+        drawLamps(r);
         if (session_.generation() != lastGeneration) {
             lastUpdate_ = session_.updateSeconds();
             lastGeneration = session_.generation();

@@ -10,6 +10,9 @@
 //   drag:U0,V0:U1,V1   grabs the object under (U0, V0) and drags it to (U1, V1)
 //   remove:U,V         takes out the removable real object under (U, V)
 //   restore:NAME       brings back the real object NAME
+//   lamp:U,V[:W,H]     a real lamp on the surface under (U, V), W x H metres (default: the
+//                      size of the scene's lamps), its radiance estimated from the photo;
+//                      --save-lamps adds the lamps placed to scene.json
 // Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option, a
 // screenshot that cannot be written) print one clear line and exit with 2 for bad input, 3
 // for an output that cannot be written, 1 otherwise (relight/errors.h).
@@ -42,6 +45,7 @@ struct Args {
     std::string display = "ratio";
     std::vector<std::string> actions;
     std::string windowShot;
+    bool saveLamps = false;
     double exposure = 0, epsilon = RelightOptions{}.epsilon;
     int spp = 16;
 };
@@ -57,8 +61,9 @@ void parsePoint(const std::string& text, const std::string& action, double& u, d
 /// One --do action, parsed before the preparation so that a typo fails at once.
 struct Action {
     std::string text;  ///< as given, for messages
-    enum class Kind { light, box, drag, remove, restore } kind = Kind::light;
+    enum class Kind { light, box, drag, remove, restore, lamp } kind = Kind::light;
     double u = 0, v = 0, u1 = 0, v1 = 0;  ///< pixel; drag: from (u, v) to (u1, v1)
+    double width = 0, height = 0;         ///< lamp: its size in metres (0: the default)
     std::string name;                     ///< restore: the object
 };
 
@@ -73,6 +78,15 @@ Action parseAction(const std::string& text) {
                  : kind == "box" ? Action::Kind::box
                                  : Action::Kind::remove;
         parsePoint(rest, text, a.u, a.v);
+    } else if (kind == "lamp") {
+        a.kind = Action::Kind::lamp;
+        const auto sep = rest.find(':');
+        parsePoint(rest.substr(0, sep), text, a.u, a.v);
+        if (sep != std::string::npos) {
+            parsePoint(rest.substr(sep + 1), text, a.width, a.height);
+            if (!(a.width > 0 && a.height > 0 && std::isfinite(a.width) && std::isfinite(a.height)))
+                throw std::invalid_argument("--do " + text + ": the size must be positive");
+        }
     } else if (kind == "restore" && !rest.empty()) {
         a.kind = Action::Kind::restore;
         a.name = rest;
@@ -86,7 +100,7 @@ Action parseAction(const std::string& text) {
     } else {
         throw std::invalid_argument("--do " + text +
                                     ": unknown action (light:U,V, box:U,V, drag:U0,V0:U1,V1, "
-                                    "remove:U,V, restore:NAME)");
+                                    "remove:U,V, restore:NAME, lamp:U,V[:W,H])");
     }
     return a;
 }
@@ -109,7 +123,9 @@ void runAction(Session& s, const Action& a) {
     }
     if (a.kind != Action::Kind::drag) {
         if (!p.hit) throw std::invalid_argument("--do " + a.text + ": no surface at that pixel");
-        if (a.kind == Action::Kind::light)
+        if (a.kind == Action::Kind::lamp)
+            s.placeLampAt(p, a.width, a.height);
+        else if (a.kind == Action::Kind::light)
             s.addLightAt(p);
         else
             s.addBoxAt(p);
@@ -180,6 +196,11 @@ int run(const Args& a) {
         session.save(a.saveEdit);
         std::printf("wrote %s\n", a.saveEdit.c_str());
     }
+    if (a.saveLamps && !interactive && !session.placedLamps().empty()) {
+        const size_t n = session.placedLamps().size();
+        session.saveLamps(a.scene);
+        std::printf("added %zu lamp%s to %s/scene.json\n", n, n == 1 ? "" : "s", a.scene.c_str());
+    }
     if (!interactive) {
         writeImage(a.screenshot, img);  // exposure already applied by the display
         std::printf("wrote %s (%dx%d, %s framebuffer, %d pass%s, draw %.1f ms)\n",
@@ -215,7 +236,11 @@ int main(int argc, char** argv) {
                    "render's default; prepares the per-pixel light)")
         ->capture_default_str()
         ->check(CLI::IsMember({"ratio", "pixel"}));
-    app.add_option("--do", a.actions, "light:U,V | box:U,V | drag:U0,V0:U1,V1 (in order)");
+    app.add_option("--do", a.actions,
+                   "light:U,V | box:U,V | drag:U0,V0:U1,V1 | remove:U,V | restore:NAME | "
+                   "lamp:U,V[:W,H] (in order)");
+    app.add_flag("--save-lamps", a.saveLamps,
+                 "with --screenshot: add the real lamps placed (--do lamp:...) to scene.json");
     app.add_option("--save-edit", a.saveEdit,
                    "with --screenshot: write the session's edit here; else the panel's default");
     app.add_option("--epsilon", a.epsilon, "BF refinement threshold")

@@ -12,6 +12,7 @@
 #include "relight/errors.h"
 #include "relight/io/edit_writer.h"
 #include "relight/io/mesh_reader.h"
+#include "relight/io/scene_lights.h"
 
 namespace relight::viewer {
 
@@ -266,6 +267,57 @@ void Session::addLightAt(const Pick& p) {
         stale_ = true;
         update();
     }
+}
+
+std::vector<Vec3> PlacedLamp::corners() const {
+    const Vec3 n = glm::normalize(normal);
+    return lampQuad(centre + n * std::max(0.005, 0.01 * std::max(width, height)), n, width, height);
+}
+
+int Session::placeLampAt(const Pick& p, double width, double height) {
+    if (!p.hit) throw std::invalid_argument("no surface there to put a lamp on");
+    const auto& scene = r_->solver->scene();
+    // The size of the scene's own lamps, as for a virtual light (addLightAt).
+    double area = 0;
+    int lamps = 0;
+    for (int l = 0; l < realLights_; ++l) {
+        const auto& light = scene.lights[static_cast<size_t>(l)];
+        for (int poly : light.polygons) area += scene.polygons[static_cast<size_t>(poly)].area;
+        lamps += light.polygons.empty() ? 0 : 1;
+    }
+    const double side = lamps > 0 && area > 0 ? std::sqrt(area / lamps) : 0.05 * diagonal_;
+    PlacedLamp lamp;
+    auto taken = [&](const std::string& name) {
+        return std::any_of(lights_.begin(), lights_.end(),
+                           [&](const LightControl& o) { return o.name == name; }) ||
+               std::any_of(placed_.begin(), placed_.end(),
+                           [&](const PlacedLamp& o) { return o.name == name; });
+    };
+    do {
+        lamp.name = numbered("L", nextLamp_++);
+    } while (taken(lamp.name));
+    lamp.centre = p.point;
+    lamp.normal = glm::normalize(p.normal);
+    lamp.width = width > 0 ? width : side;
+    lamp.height = height > 0 ? height : side;
+    placed_.push_back(lamp);
+    return static_cast<int>(placed_.size()) - 1;
+}
+
+void Session::moveLampTo(int i, const Pick& p) {
+    if (!p.hit) throw std::invalid_argument("no surface there to put the lamp on");
+    PlacedLamp& lamp = placed_.at(static_cast<size_t>(i));
+    lamp.centre = p.point;
+    lamp.normal = glm::normalize(p.normal);
+}
+
+void Session::saveLamps(const fs::path& sceneDir) {
+    std::vector<RealLamp> lamps;
+    for (const PlacedLamp& p : placed_)
+        lamps.push_back({p.name, p.corners(),
+                         p.estimate ? std::nullopt : std::optional<Rgb>(p.radiance), p.onInPhoto});
+    addLampsToScene(sceneDir, lamps);
+    placed_.clear();
 }
 
 void Session::addBoxAt(const Pick& p) {

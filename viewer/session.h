@@ -45,6 +45,22 @@ struct ObjectControl {
     bool viewerBox = false;  ///< made in the viewer: saved with a unit box OBJ beside the edit
 };
 
+/// A real lamp placed on the photo: a lamp that is in the room (seen in the photo) but not
+/// in scene.json yet. It is drawn as an outline and saved into scene.json as a real light
+/// (relight/io/scene_lights.h); the scene relights with it once it is prepared again (a
+/// real lamp is part of the photo's lighting, which the preparation solves).
+struct PlacedLamp {
+    std::string name;
+    Vec3 centre{0, 0, 0};  ///< on the surface clicked
+    Vec3 normal{0, 0, 1};  ///< the surface's, turned towards the camera: the side it lights
+    double width = 0.3, height = 0.3;  ///< metres
+    bool estimate = true;              ///< "radiance": "estimate" (from the photo), else `radiance`
+    Rgb radiance{10, 10, 10};
+    bool onInPhoto = true;  ///< lit in the photo (its first photo's lights_on)
+    /// The emitting quad, a few millimetres off the surface so that it does not sit in it.
+    std::vector<Vec3> corners() const;
+};
+
 /// What the camera ray through a pixel hits.
 struct Pick {
     bool hit = false;
@@ -88,6 +104,18 @@ class Session {
     /// A virtual box standing on the face picked (its base on the face, its up the face's
     /// normal), 6 % of the scene's diagonal on a side, reflectance 0.7, 0.2, 0.2.
     void addBoxAt(const Pick& p);
+    /// A real lamp on the face picked, facing out of it, named L1, L2, ... (a name no light
+    /// has), `width` x `height` metres (0: the size of the scene's lights, their mean area,
+    /// else 5 % of the scene's diagonal). Returns its index in placedLamps().
+    int placeLampAt(const Pick& p, double width = 0, double height = 0);
+    /// Moves placed lamp i onto the face picked, facing out of it.
+    void moveLampTo(int i, const Pick& p);
+    std::vector<PlacedLamp>& placedLamps() { return placed_; }
+    /// Adds the placed lamps to <sceneDir>/scene.json as real quad lights
+    /// (relight/io/scene_lights.h) and forgets them. Throws InputError (a name taken, an
+    /// empty one) with scene.json as it was.
+    void saveLamps(const std::filesystem::path& sceneDir);
+
     /// Starts dragging object i, grabbed at p (the object becomes the part added last).
     void beginDrag(int i, const Pick& p);
     /// Moves the dragged object so that the grabbed point follows the camera ray through
@@ -152,14 +180,15 @@ class Session {
     std::unique_ptr<DynamicRelighting> dyn_;
     std::vector<LightControl> lights_;
     std::vector<ObjectControl> objects_;
-    std::vector<std::string> removed_;                       ///< real objects taken out
+    std::vector<std::string> removed_;  ///< real objects taken out
+    std::vector<PlacedLamp> placed_;    ///< real lamps placed, not yet in scene.json
     std::vector<std::pair<size_t, size_t>> objectPolygons_;  ///< per object: its polygons
     std::vector<Rgb> applied_;  ///< radiances the solution was computed for
     bool stale_ = false;        ///< the parts changed in a way only rebuild() follows
     int realLights_ = 0;
     size_t realPolygons_ = 0;
     double diagonal_ = 1;  ///< of the scene's bounding box (metres)
-    int generation_ = 0, dragging_ = -1, nextLight_ = 1, nextBox_ = 1;
+    int generation_ = 0, dragging_ = -1, nextLight_ = 1, nextBox_ = 1, nextLamp_ = 1;
     Vec3 grab_{0, 0, 0}, dragUp_{0, 0, 1};
     double updateSeconds_ = 0;
 };

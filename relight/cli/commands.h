@@ -7,6 +7,7 @@
 #include <string>
 
 #include "radiosity/defaults.h"
+#include "relight/io/colmap_import.h"
 #include "relight/io/scene_file.h"
 #include "relight/prepared.h"
 #include "relight/relighting.h"
@@ -86,6 +87,18 @@ struct PrepareArgs {
     CacheArgs cache;
 };
 int runPrepare(const PrepareArgs& a);
+
+/// `relight import colmap`: a scene package from a COLMAP model (relight/io/colmap_import.h).
+int runImportColmap(const ColmapImportOptions& options);
+
+/// `relight export colmap`: a scene's camera as a COLMAP model of one PINHOLE camera and one
+/// image, for COLMAP's tools (and the import's round trips).
+struct ExportColmapArgs {
+    std::string scene, output;
+    std::string name;  ///< the image's NAME (default: the first photo's file name)
+    bool binary = false;
+};
+int runExportColmap(const ExportColmapArgs& a);
 
 /// The prepared state from the cache when it is valid, else prepared (with progress on
 /// stderr) and written to the cache. Says on stdout which it was, and why it prepared.

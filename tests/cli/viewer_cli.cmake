@@ -5,6 +5,7 @@
 #  - a session built by clicks (a light, a box, a drag) saved as an edit renders through
 #    `relight render` to the viewer's screenshot within the same step;
 #  - a real object removed by a click, saved, renders the same; brought back, the photo;
+#  - real lamps placed by clicks are saved into scene.json, which renders with them;
 #  - the window with its panel opens and draws;
 #  - clear messages and no output for a missing display, an OpenGL older than 3.3, a scene
 #    or edit that does not load, an edit whose display is not finite, a bad option or --do.
@@ -120,6 +121,27 @@ viewer(o 2 "${SCENE}" --do restore:table --screenshot "${WORK}/never.png")
 expect("${o}" "\"table\" is not taken out" "restoring what is there")
 viewer(o 2 "${SCENE}" --display vertex --screenshot "${WORK}/never.png")
 expect("${o}" "--display" "a display that does not exist")
+
+# Real lamps placed by clicks on the photo (--do lamp) and saved into a copy of the room's
+# scene.json as the format's quad lights, their radiance estimated from the photo; the
+# scene then renders with them.
+copy_room("${WORK}/lamps")
+viewer(o 0 "${WORK}/lamps" --epsilon 1e-3 --spp 2 --do lamp:160,20:0.3,0.2 --do lamp:60,120
+       --save-lamps --screenshot "${WORK}/lamps.png")
+expect("${o}" "added 2 lamps to [^\n]*lamps/scene.json" "lamps saved")
+file(READ "${WORK}/lamps/scene.json" json)
+string(JSON count LENGTH "${json}" lights)
+string(JSON name GET "${json}" lights 4 name)
+string(JSON radiance GET "${json}" lights 4 radiance)
+string(JSON on GET "${json}" photos 0 lights_on 5)
+if(NOT count EQUAL 6 OR NOT name STREQUAL "L1" OR NOT radiance STREQUAL "estimate"
+   OR NOT on STREQUAL "L2")
+  message(FATAL_ERROR "saved lamps: ${count} lights, ${name}, ${radiance}, ${on}:\n${json}")
+endif()
+relight(o 0 render "${WORK}/lamps" --epsilon 1e-3 --spp 2 --no-cache -o "${WORK}/lamps_render.png")
+expect("${o}" "light \"L1\": [^\n]* from [0-9]+ photo pixels on its face" "render with the lamps")
+viewer(o 1 "${SCENE}" --do lamp:160,20:0,1 --screenshot "${WORK}/never.png")
+expect("${o}" "--do lamp:160,20:0,1: the size must be positive" "a lamp of no size")
 
 # The window itself, panel included.
 viewer(o 0 "${SCENE}" --window-screenshot "${WORK}/window.png")

@@ -16,7 +16,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -24,6 +26,7 @@
 #include "relight/display/multipass.h"
 #include "relight/errors.h"
 #include "relight/io/edit_file.h"
+#include "relight/io/scene_file.h"
 #include "relight/relighting.h"
 #include "viewer/frame.h"
 #include "viewer/gl_window.h"
@@ -270,6 +273,52 @@ TEST_F(ViewerGpu, ARadianceThatOverflowsTheDisplayIsUndoneAndNamed) {
         EXPECT_NO_THROW(session.update());
         EXPECT_TRUE(finiteRatios(session));
     }
+}
+
+// A real lamp placed by a click (the viewer's "place real lamps"): its centre on the surface
+// under the pixel clicked (projecting back to it), the quad facing the camera's side, the
+// size asked for; moved by a second click; saved into a copy of the room's scene.json as a
+// light whose radiance is estimated from the photo, on in it.
+TEST_F(ViewerGpu, RealLampPlacedOnTheSurfaceUnderTheClickAndSaved) {
+    Session session(*relighting_, edit("identity"));
+    const Camera& camera = relighting_->scene.camera;
+    const int i = session.placeLampAt(session.pick(160, 20), 0.3, 0.2);
+    const PlacedLamp lamp = session.placedLamps().at(static_cast<size_t>(i));
+    EXPECT_EQ(lamp.name, "L1");
+    double u = 0, v = 0, depth = 0;
+    ASSERT_TRUE(camera.project(lamp.centre, u, v, depth));
+    EXPECT_NEAR(u, 160, 1e-6);
+    EXPECT_NEAR(v, 20, 1e-6);
+    const std::vector<Vec3> q = lamp.corners();
+    const Vec3 faceNormal = glm::cross(q[1] - q[0], q[2] - q[0]);
+    EXPECT_GT(glm::dot(faceNormal, camera.position() - lamp.centre), 0);  // it lights the room
+    EXPECT_NEAR(glm::length(faceNormal), 0.3 * 0.2, 1e-12);
+    session.moveLampTo(i, session.pick(60, 120));
+    ASSERT_TRUE(camera.project(session.placedLamps()[0].centre, u, v, depth));
+    EXPECT_NEAR(u, 60, 1e-6);
+    EXPECT_NEAR(v, 120, 1e-6);
+    // Without a size: the room's lamps' own.
+    const int j = session.placeLampAt(session.pick(100, 100));
+    EXPECT_EQ(session.placedLamps()[static_cast<size_t>(j)].name, "L2");
+    EXPECT_GT(session.placedLamps()[static_cast<size_t>(j)].width, 0.05);
+
+    namespace fs = std::filesystem;
+    const fs::path dir =
+        fs::temp_directory_path() /
+        ("viewer_lamps_" +
+         std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    fs::create_directories(dir);
+    for (const char* f : {"scene.json", "room.obj", "photo.exr"})
+        fs::copy_file(fs::path(kRoom) / f, dir / f);
+    session.saveLamps(dir);
+    EXPECT_TRUE(session.placedLamps().empty());
+    const SceneFile saved = loadScene(dir);
+    const size_t n = relighting_->scene.scene.lights.size();
+    ASSERT_EQ(saved.scene.lights.size(), n + 2);
+    EXPECT_EQ(saved.scene.lights[n].name, "L1");
+    EXPECT_TRUE(saved.estimateRadiance[n]);
+    EXPECT_TRUE(saved.lightOnInPhoto(n));
+    fs::remove_all(dir);
 }
 
 }  // namespace
