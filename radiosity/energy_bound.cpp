@@ -129,10 +129,9 @@ std::pair<double, double> seenFraction(const Visibility& vis, const Scene& scene
             Vec3 normal;
             const Vec3 org = origin(rng, normal);
             const Vec3 dir = cosineDirection(HemisphereFrame(normal), cell, k, rng);
-            const Visibility::Hit hit = vis.intersect(org, dir, tMin);
-            if (hit.polygon < 0 || hit.polygon == ownPolygon) continue;
-            const Polygon& p = scene.polygons[hit.polygon];
-            if (glm::dot(p.normal, dir) < 0) ++hits;  // a front: reflecting or a lamp
+            // A front, reflecting or a lamp (a thin part's back face hides its twin's front).
+            const FrontHit found = intersectFront(vis, scene, org, dir, tMin);
+            if (found.front && found.hit.polygon != ownPolygon) ++hits;
         }
         cast += k * k;
     };

@@ -168,19 +168,11 @@ void rayGatherLeaves(const HierarchicalSolver& solver, int polygon, const Vec3& 
     side = std::max(side, 1);
     for (int cell = 0; cell < side * side; ++cell) {
         const Vec3 d = cosineDirection(frame, cell, side, rng);
-        Visibility::Hit hit = solver.visibility().intersect(origin, d, 1e-6);
-        if (hit.polygon < 0) continue;
-        // Surfaces are one-sided: the back of a polygon sends nothing. A thin part modelled
-        // as two faces back to back is hit on either at the same distance: the one behind
-        // the back face, within a hair, is taken instead.
-        if (glm::dot(scene.polygons[static_cast<size_t>(hit.polygon)].normal, d) >= 0) {
-            const Visibility::Hit next =
-                solver.visibility().intersect(origin, d, hit.t + 1e-7, hit.t + 1e-4);
-            if (next.polygon < 0 ||
-                glm::dot(scene.polygons[static_cast<size_t>(next.polygon)].normal, d) >= 0)
-                continue;
-            hit = next;
-        }
+        // Surfaces are one-sided: the back of a polygon sends nothing (but a thin part's
+        // other face, back to back with it, does: intersectFront).
+        const FrontHit found = intersectFront(solver.visibility(), scene, origin, d, 1e-6);
+        if (!found.front) continue;
+        const Visibility::Hit& hit = found.hit;
         const int leaf = solver.hierarchy().locateLeaf(hit.polygon, origin + hit.t * d);
         if (leaf >= 0) visit(leaf);
     }

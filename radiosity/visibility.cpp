@@ -456,4 +456,22 @@ int Visibility::visibleAdaptive(const Vec3* from, const Vec3* to, int first, int
     return visible;
 }
 
+FrontHit intersectFront(const Visibility& vis, const Scene& scene, const Vec3& org, const Vec3& dir,
+                        double tMin) {
+    FrontHit out;
+    out.hit = vis.intersect(org, dir, tMin);
+    if (out.hit.polygon < 0) return out;
+    const auto facesRay = [&](int p) {
+        return glm::dot(scene.polygons[static_cast<size_t>(p)].normal, dir) < 0;
+    };
+    out.front = facesRay(out.hit.polygon);
+    if (out.front) return out;
+    const Visibility::Hit twin = vis.intersect(org, dir, out.hit.t + 1e-7, out.hit.t + kTwinGap);
+    if (twin.polygon >= 0 && facesRay(twin.polygon)) {
+        out.hit = twin;
+        out.front = true;
+    }
+    return out;
+}
+
 }  // namespace radiosity

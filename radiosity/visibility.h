@@ -120,4 +120,16 @@ class Visibility {
     std::unique_ptr<Impl> impl_;
 };
 
+/// The first front face along the ray (surfaces are one-sided: the back of a polygon shows
+/// and sends nothing). A thin part modelled as two faces back to back is hit on either at the
+/// same distance: where the first hit is a back face, a front face within kTwinGap behind it
+/// is taken instead; otherwise the hit is the back face (Hit::polygon set, `front` false).
+struct FrontHit {
+    Visibility::Hit hit;
+    bool front = false;
+};
+inline constexpr double kTwinGap = 1e-4;  ///< metres: a sheet's two faces, within rounding
+FrontHit intersectFront(const Visibility& vis, const Scene& scene, const Vec3& org, const Vec3& dir,
+                        double tMin = 0);
+
 }  // namespace radiosity

@@ -42,11 +42,13 @@ ItemBuffer castItemBuffer(const Camera& camera, const radiosity::Scene& scene,
                         const double u = x - 0.5 + ((s % k) + 0.5) / k;
                         const double v = y - 0.5 + ((s / k) + 0.5) / k;
                         const radiosity::Vec3 dir = camera.rayDirection(u, v);
-                        const auto hit = vis.intersect(eye, dir);
+                        // One-sided surfaces: the back of a polygon shows nothing, but a thin
+                        // part's other face, back to back with it, does (a frame, a banister
+                        // modelled as a sheet showed as a hole in the photo's model).
+                        const auto found = radiosity::intersectFront(vis, scene, eye, dir);
+                        const auto& hit = found.hit;
                         const int idx = items.sampleIndex(x, y, s);
-                        if (hit.polygon < 0) continue;
-                        // One-sided surfaces: the back of a polygon shows nothing.
-                        if (glm::dot(scene.polygons[hit.polygon].normal, dir) >= 0) continue;
+                        if (!found.front) continue;
                         items.polygon[idx] = hit.polygon;
                         items.point[idx] = eye + hit.t * dir;
                     }
