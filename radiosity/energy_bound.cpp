@@ -116,19 +116,29 @@ std::vector<double> HierarchicalSolver::meanOverLeaves(
 namespace {
 
 /// The fraction of cosine-distributed rays that meet the front of a surface, from points
-/// that `origin(rng, normal)` draws (each about its own normal): first side^2 stratified
-/// rays, then more^2 where they disagree. Returns (seen, its standard error).
+/// that `origin(rng, normal)` draws (each about its own normal, which `normal` holds on
+/// entry for a planar leaf and is set by `origin` otherwise): first side^2 stratified rays,
+/// then more^2 where they disagree. Returns (seen, its standard error). A planar leaf's
+/// direction is drawn before its point (the order its measure always had).
 template <class Origin>
 std::pair<double, double> seenFraction(const Visibility& vis, const Scene& scene, double tMin,
                                        uint64_t seed, int side, int more, int ownPolygon,
-                                       const Origin& origin) {
+                                       const Vec3* planarNormalIn, const Origin& origin) {
+    const bool planar = planarNormalIn != nullptr;
+    const Vec3 planarNormal = planar ? *planarNormalIn : Vec3{0, 0, 1};
+    const HemisphereFrame planarFrame(planarNormal);
     Rng rng(0xC0FFEEull ^ (seed * 0x9E3779B97F4A7C15ull));
     int hits = 0, cast = 0;
     const auto castRays = [&](int k) {
         for (int cell = 0; cell < k * k; ++cell) {
-            Vec3 normal;
-            const Vec3 org = origin(rng, normal);
-            const Vec3 dir = cosineDirection(HemisphereFrame(normal), cell, k, rng);
+            Vec3 normal = planarNormal, dir, org;
+            if (planar) {
+                dir = cosineDirection(planarFrame, cell, k, rng);
+                org = origin(rng, normal);
+            } else {
+                org = origin(rng, normal);
+                dir = cosineDirection(HemisphereFrame(normal), cell, k, rng);
+            }
             // A front, reflecting or a lamp (a thin part's back face hides its twin's front).
             const FrontHit found = intersectFront(vis, scene, org, dir, tMin);
             if (found.front && found.hit.polygon != ownPolygon) ++hits;
@@ -157,8 +167,9 @@ void HierarchicalSolver::measureSeen(const std::vector<int>& leaves, int side, i
             normal = e.normal;
             return pointOnElement(e, rng.uniform(), rng.uniform());
         };
-        std::tie(e.seen, e.seenError) = seenFraction(
-            *vis_, scene_, tMin, static_cast<uint64_t>(leaves[i]), side, more, e.polygon, origin);
+        std::tie(e.seen, e.seenError) =
+            seenFraction(*vis_, scene_, tMin, static_cast<uint64_t>(leaves[i]), side, more,
+                         e.polygon, &e.normal, origin);
     });
 }
 
@@ -174,7 +185,8 @@ void HierarchicalSolver::measureSeenByPatch(const std::vector<int>& leaves) {
     for (int l : leaves) {
         const Node& e = h_.nodes[l];
         const int patch = e.polygon >= 0 ? h_.polygonPatch[e.polygon] : -1;
-        if (patch >= 0 && h_.polygonRoot[e.polygon] == l)
+        if (patch >= 0 && h_.polygonRoot[e.polygon] == l &&
+            h_.nodes[patch].polyEnd - h_.nodes[patch].polyBegin >= kSeenPatchPolygons)
             byPatch.emplace_back(patch, l);
         else
             single.push_back(l);
@@ -193,8 +205,8 @@ void HierarchicalSolver::measureSeenByPatch(const std::vector<int>& leaves) {
             const double u = rng.uniform(), v = rng.uniform(), w = rng.uniform();
             return h_.samplePoint(patch, u, v, w, &normal);
         };
-        const auto [seen, error] =
-            seenFraction(*vis_, scene_, tMin, static_cast<uint64_t>(patch), 8, 16, -1, origin);
+        const auto [seen, error] = seenFraction(*vis_, scene_, tMin, static_cast<uint64_t>(patch),
+                                                8, 16, -1, nullptr, origin);
         for (size_t i = start[r]; i < start[r + 1]; ++i) {
             h_.nodes[byPatch[i].second].seen = seen;
             h_.nodes[byPatch[i].second].seenError = error;

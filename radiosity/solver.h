@@ -348,6 +348,9 @@ class HierarchicalSolver {
     static constexpr double kNearFieldPower = 0.1;
     /// Strata per side of the rays that measure a lamp face's `seen` (measureSeen).
     static constexpr int kLampSeenSide = 64;
+    /// Smallest face cluster whose polygons take its `seen`, measured once
+    /// (measureSeenByPatch): below it, a few large polygons are measured one by one.
+    static constexpr int kSeenPatchPolygons = 8;
     /// Largest factor by which the energy bound scales a leaf's gather up.
     static constexpr double kMaxRenormalisation = 2.0;
     /// The energy bound's balance: at most this many column/row alternations...
