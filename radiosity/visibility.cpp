@@ -405,8 +405,8 @@ int Visibility::visibleBatch(const Vec3* from, const Vec3* to, int n, bool* out,
     return visibleCount;
 }
 
-Visibility::Hit Visibility::intersect(const Vec3& org, const Vec3& dir, double tMin,
-                                      double tMax) const {
+Visibility::Hit Visibility::intersect(const Vec3& org, const Vec3& dir, double tMin, double tMax,
+                                      int ignore) const {
     RTCRayHit rayHit;
     RTCRay& ray = rayHit.ray;
     const Vec3 localOrg = org - impl_->origin;
@@ -430,9 +430,8 @@ Visibility::Hit Visibility::intersect(const Vec3& org, const Vec3& dir, double t
     rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     Hit result;
     if (!(ray.tnear < ray.tfar)) return result;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcIntersect1(impl_->scene, &context, &rayHit);
+    EndContext context(ignore, -1, impl_->geomFirst);
+    rtcIntersect1(impl_->scene, &context.context, &rayHit);
     impl_->check("rtcIntersect1");
     if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return result;
     result.polygon = impl_->polygonOf(rayHit.hit.geomID, rayHit.hit.primID);
@@ -466,7 +465,10 @@ FrontHit intersectFront(const Visibility& vis, const Scene& scene, const Vec3& o
     };
     out.front = facesRay(out.hit.polygon);
     if (out.front) return out;
-    const Visibility::Hit twin = vis.intersect(org, dir, out.hit.t + 1e-7, out.hit.t + kTwinGap);
+    // The twin face may lie at the very same distance (the same corners, reversed): search
+    // from just before the back face, passing it through.
+    const Visibility::Hit twin = vis.intersect(org, dir, std::max(tMin, out.hit.t - kTwinGap),
+                                               out.hit.t + kTwinGap, out.hit.polygon);
     if (twin.polygon >= 0 && facesRay(twin.polygon)) {
         out.hit = twin;
         out.front = true;

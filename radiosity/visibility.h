@@ -88,7 +88,9 @@ class Visibility {
         int polygon = -1;  ///< index into Scene::polygons; -1 when nothing is hit
         double t = 0;      ///< ray parameter of the hit (metres for a unit dir)
     };
-    Hit intersect(const Vec3& org, const Vec3& dir, double tMin = 0, double tMax = 1e30) const;
+    /// Hits on polygon `ignore` (>= 0) are passed through.
+    Hit intersect(const Vec3& org, const Vec3& dir, double tMin = 0, double tMax = 1e30,
+                  int ignore = -1) const;
 
     /// Dynamic geometry (virtual objects and lights, Loscos et al. 2000, §5.1-5.2): adds
     /// `polygons` as one group whose Scene::polygons indices are firstIndex, firstIndex + 1,
@@ -122,8 +124,9 @@ class Visibility {
 
 /// The first front face along the ray (surfaces are one-sided: the back of a polygon shows
 /// and sends nothing). A thin part modelled as two faces back to back is hit on either at the
-/// same distance: where the first hit is a back face, a front face within kTwinGap behind it
-/// is taken instead; otherwise the hit is the back face (Hit::polygon set, `front` false).
+/// same distance: where the first hit is a back face, a front face within kTwinGap of it
+/// (the back face passed through) is taken instead; otherwise the hit is the back face
+/// (Hit::polygon set, `front` false).
 struct FrontHit {
     Visibility::Hit hit;
     bool front = false;

@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "radiosity/detail/rng.h"
+
 using namespace radiosity;
 
 namespace {
@@ -382,4 +384,33 @@ TEST(Visibility, HiddenScenePolygonsNeitherBlockNorAreHitUntilShown) {
     EXPECT_NEAR(back.t, 0.9, 1e-6);
     const std::vector<int> outside{3};
     EXPECT_THROW(vis.hidePolygons(outside), std::invalid_argument);
+}
+
+TEST(Visibility, IntersectFrontFindsTheFrontOfASheetModelledAsTwoFaces) {
+    // A thin part as a mesh exporter writes it: the same triangles twice, reversed, at the
+    // very same place. Whichever of the two Embree reports first, a ray from either side
+    // must get the face that looks at it; a plain one-sided face seen from behind stays a
+    // back face (a hole would be wrong for a sheet, but right for a single face's back).
+    Scene s;
+    s.objects = {"sheet", "single"};
+    const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{1, 1, 0}, d{0, 1, 0};
+    s.polygons.push_back(makePolygon({a, b, c, d}, 0, Rgb::gray(0.5)));  // faces +z
+    s.polygons.push_back(makePolygon({a, d, c, b}, 0, Rgb::gray(0.5)));  // faces -z
+    const Vec3 off{3, 0, 0};
+    s.polygons.push_back(makePolygon({a + off, b + off, c + off, d + off}, 1, Rgb::gray(0.5)));
+    const Visibility vis(s);
+    Rng rng(11);
+    for (int i = 0; i < 200; ++i) {
+        const double x = 0.05 + 0.9 * rng.uniform(), y = 0.05 + 0.9 * rng.uniform();
+        const FrontHit down = intersectFront(vis, s, {x, y, 2}, {0, 0, -1});
+        ASSERT_TRUE(down.front) << i;
+        EXPECT_EQ(down.hit.polygon, 0) << i;
+        EXPECT_NEAR(down.hit.t, 2.0, 1e-6) << i;
+        const FrontHit up = intersectFront(vis, s, {x, y, -2}, {0, 0, 1});
+        ASSERT_TRUE(up.front) << i;
+        EXPECT_EQ(up.hit.polygon, 1) << i;
+        const FrontHit back = intersectFront(vis, s, Vec3{x, y, -2} + off, {0, 0, 1});
+        EXPECT_FALSE(back.front) << i;
+        EXPECT_EQ(back.hit.polygon, 2) << i;
+    }
 }
