@@ -249,9 +249,11 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
 }
 
 bool HierarchicalSolver::outOfTime(size_t queued) {
+    // Only solve() sets a deadline: dynamic updates refine their own links in full, also
+    // after a preparation whose refinement ran out of time.
+    if (refineDeadline_ == Clock::time_point::max()) return false;
     if (timeBudgetReached_) return true;
-    if (refineDeadline_ == Clock::time_point::max() || clockCalls_++ % kClockStride != 0)
-        return false;
+    if (clockCalls_++ % kClockStride != 0) return false;
     const auto now = Clock::now();
     // What is queued or accepted still needs its visibility: stop while there is time for
     // it (a real stair hall's second round queued 37 M links in a minute).
@@ -494,9 +496,12 @@ void HierarchicalSolver::solve() {
     }
     const auto start = Clock::now();
     lastProgress_ = start;
-    if (options_.refineSeconds > 0 && !timeBudgetReached_)
-        refineDeadline_ = start + std::chrono::duration_cast<Clock::duration>(
-                                      std::chrono::duration<double>(options_.refineSeconds));
+    // A later solve() (the reflectance rounds) refines nothing more once the time is out.
+    if (options_.refineSeconds > 0)
+        refineDeadline_ = timeBudgetReached_
+                              ? start
+                              : start + std::chrono::duration_cast<Clock::duration>(
+                                            std::chrono::duration<double>(options_.refineSeconds));
     for (int round = 0; round < options_.maxRefineRounds; ++round) {
         auto t0 = Clock::now();
         const size_t refined = refineAll();
