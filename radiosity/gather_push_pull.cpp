@@ -143,7 +143,7 @@ void HierarchicalSolver::pushPull(int node, const Rgb& Hdown, const Rgb& HdDown)
         H = Hdown + n.H + (root ? fromClusterAncestors(node) : Rgb{});
         Hd = HdDown + n.Hd;
         if (n.isLeaf()) {
-            n.B = n.E + n.rho * (Hd + H * n.gatherScale);
+            n.B = n.E + n.rho * (Hd + n.Hx + H * n.gatherScale);
             n.Bsent = n.B * n.sendScale;
             return;
         }

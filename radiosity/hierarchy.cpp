@@ -324,6 +324,7 @@ bool Hierarchy::subdivide(int node) {
         child.gatherScale = parent.gatherScale;
         child.sendScale = parent.sendScale;
         child.lightCorrection = parent.lightCorrection;
+        child.Hx = parent.Hx;  // until measured on the child (updateDirectIrradiance)
         child.Bsent = parent.Bsent;
         finishGeometry(child);
         nodes.push_back(child);

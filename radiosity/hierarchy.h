@@ -81,6 +81,12 @@ struct Node {
     /// Kept so that a link from a light that gets its visibility again (a dynamic update
     /// cut it) or is split to the children keeps the correction.
     double lightCorrection = 1;
+    /// Leaf element: the direct irradiance of the lights that are not faces (the
+    /// solver's emitters: sun, point lamps, sky; radiosity/emitter.h), the mean over the
+    /// element with visibility (radiosity units). It enters B as the lamps' Hd does.
+    Rgb Hx;
+    /// Whether Hx was measured on this element (a child inherits its parent's until then).
+    bool HxMeasured = false;
 
     bool isCluster() const { return kind == NodeKind::cluster; }
     bool isLeaf() const { return childCount == 0; }

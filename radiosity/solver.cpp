@@ -443,7 +443,7 @@ int HierarchicalSolver::gatherPushPull() {
     // reflectance). Stopping when the last change is small is not enough for rho -> 1:
     // the error left is about delta q / (1 - q). That estimate, with q measured from two
     // successive changes, is what must fall below `tolerance` (relative).
-    if (!(scene_.emittedPower().maxComponent() > 0)) {
+    if (!(sourcePower() > 0)) {
         // No light on: the solution is B = 0 (E = 0 everywhere). Sweeps would only decay
         // towards it geometrically, never meeting a relative tolerance.
         for (Node& n : h_.nodes) {
@@ -476,7 +476,8 @@ int HierarchicalSolver::gatherPushPull() {
 }
 
 void HierarchicalSolver::solve() {
-    const double emitted = scene_.emittedPower().maxComponent();
+    updateDirectIrradiance();
+    const double emitted = sourcePower();
     if (powerThreshold_ <= 0) powerThreshold_ = options_.epsilon * emitted;
     if (!started_) {
         links_.clear();
@@ -494,6 +495,7 @@ void HierarchicalSolver::solve() {
         pushPullAll();
         return;
     }
+    if (!emitters_.empty()) pushPullAll();  // B of the lit leaves, for the first oracle
     const auto start = Clock::now();
     lastProgress_ = start;
     // A later solve() (the reflectance rounds) refines nothing more once the time is out.
@@ -518,6 +520,7 @@ void HierarchicalSolver::solve() {
         normaliseLamps();
         boundGather(0, /*balance=*/last);  // the sends once the links are final
         timing_.timeRefine += secondsSince(t0);
+        updateDirectIrradiance();  // the leaves the round made
         ++timing_.refineRounds;
         const int sweeps = gatherPushPull();
         char msg[256];
@@ -567,7 +570,7 @@ bool HierarchicalSolver::addMissingLightLinks() {
         for (int p : light.polygons) {
             if (linked[p]) continue;
             if (powerThreshold_ <= 0)
-                powerThreshold_ = options_.epsilon * scene_.emittedPower().maxComponent();
+                powerThreshold_ = options_.epsilon * sourcePower();
             addLinksFromSource(h_.polygonRoot[p]);
             added = true;
         }
@@ -641,7 +644,7 @@ SolverStats HierarchicalSolver::stats() const {
     s.formFactors = transfer_->counters.formFactors.load();
     s.shaftTests = transfer_->counters.shaftTests.load();
     s.shaftEmpty = transfer_->counters.shaftEmpty.load();
-    s.emittedPower = scene_.emittedPower();
+    s.emittedPower = scene_.emittedPower() + directPower_;
     // Energy balance: what each leaf gathered in the last sweep.
     const std::vector<Rgb> H = pushDown(
         h_, [&](int n) -> const Rgb& { return h_.nodes[n].H; },
@@ -655,7 +658,8 @@ SolverStats HierarchicalSolver::stats() const {
     for (size_t n = 0; n < h_.nodes.size(); ++n) {
         const Node& e = h_.nodes[n];
         if (e.isCluster() || !e.isLeaf()) continue;
-        s.absorbedPower += (Rgb::gray(1.0) - e.rho) * (Hd[n] + H[n] * e.gatherScale) * e.area;
+        s.absorbedPower +=
+            (Rgb::gray(1.0) - e.rho) * (Hd[n] + e.Hx + H[n] * e.gatherScale) * e.area;
         s.radiosityPower += e.B * e.area;
     }
     s.boundedLeaves = boundedLeaves_;

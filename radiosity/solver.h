@@ -95,6 +95,7 @@
 #include "radiosity/active_links.h"
 #include "radiosity/defaults.h"
 #include "radiosity/detail/transfer.h"
+#include "radiosity/emitter.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/link.h"
 #include "radiosity/scene.h"
@@ -130,6 +131,10 @@ struct SolverOptions {
     int maxSweeps = 2000;     ///< gather/push-pull sweeps per solve, a safety bound
     int maxRefineRounds = 8;  ///< refine/solve rounds
     int maxPolygonsPerCluster = 4;
+    /// The emitters' direct light on a leaf (updateDirectIrradiance): the mean over this
+    /// many stratified points of the element, each with directRays rays per emitter.
+    int directPoints = 16;
+    int directRays = 16;
     bool forceLightLinksToLeaves = true;
     /// Balance what each leaf sends as well as what it gathers (energy bound).
     bool balanceSends = true;
@@ -152,7 +157,9 @@ struct SolverStats {
     int refineRounds = 0, sweeps = 0;
     uint64_t rays = 0, formFactors = 0, shaftTests = 0, shaftEmpty = 0;
     double timeBuild = 0, timeRefine = 0, timeGather = 0, timePushPull = 0;  ///< seconds
-    Rgb emittedPower;    ///< sum E A over lights (radiosity units x m^2)
+    /// sum E A over lights (radiosity units x m^2), plus what the emitters deliver to the
+    /// leaves (sum Hx A)
+    Rgb emittedPower;
     Rgb absorbedPower;   ///< sum (1 - rho) H A over leaves
     Rgb radiosityPower;  ///< sum B A over leaves
     /// Energy bound: leaves whose gather was scaled by more than 5 % (seen / G), and the
@@ -196,6 +203,23 @@ class HierarchicalSolver {
     /// One gather over all links (H of every receiver node), then one push-pull.
     /// Returns the new total radiosity power (max channel).
     double sweep();
+
+    /// Lights that are not emitting faces (radiosity/emitter.h: sun, point lamp, sky).
+    /// Their direct light enters as each leaf's direct irradiance Hx, measured over the
+    /// element with visibility, B = E + rho (Hd + Hx + H); what the leaves reflect of it
+    /// is carried by the links like any light (gather/push-pull), and the refinement's
+    /// oracle weighs it with the rest (its power threshold counts sum Hx A). Added before
+    /// solve(), or followed by gatherPushPull(). Returns the emitter's index.
+    int addEmitter(std::unique_ptr<Emitter> emitter);
+    int emitterCount() const { return static_cast<int>(emitters_.size()); }
+    const Emitter& emitter(int i) const { return *emitters_.at(static_cast<size_t>(i)); }
+    const std::vector<std::unique_ptr<Emitter>>& emitters() const { return emitters_; }
+    /// Applies `edit` to emitter i (throws as Emitter::apply), measures every leaf's Hx
+    /// again and gathers again; links and subdivision are kept (as setLightRadiance).
+    void editEmitter(int i, const EmitterEdit& edit);
+    /// Measures Hx on the leaves that lack it (all with `all`), in parallel, each leaf's
+    /// rays seeded by its node id (the same result with any thread count).
+    void updateDirectIrradiance(bool all = false);
 
     /// Emittance edit: keeps subdivision and links, re-gathers. A light that had no links
     /// (it was off when refined) gets its links refined first.
@@ -488,6 +512,11 @@ class HierarchicalSolver {
     std::vector<Link> passive_;  ///< refined-away links, kept for dynamic updates
     double minArea_ = 0;
     double powerThreshold_ = 0;  ///< epsilon * emitted power (max channel)
+    std::vector<std::unique_ptr<Emitter>> emitters_;
+    Rgb directPower_;  ///< sum Hx A over the leaves (radiosity units x m^2)
+    /// The faces' emitted power plus directPower_ (max channel): what the oracle and the
+    /// convergence test measure against.
+    double sourcePower() const;
     double meanB_ = 0;  ///< area-weighted mean radiosity of the reflecting leaves (max channel)
     size_t maxLinks_ = 0, maxMemory_ = 0;  ///< the budget in force
     bool budgetReached_ = false;

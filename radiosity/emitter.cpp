@@ -1,0 +1,351 @@
+#include "radiosity/emitter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "radiosity/detail/form_factor.h"
+#include "radiosity/detail/hemisphere.h"
+
+namespace radiosity {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+bool finite(const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool finiteNonNegative(const Rgb& c) {
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(c[k]) || c[k] < 0) return false;
+    return true;
+}
+
+/// A unit vector along `d`; throws when it has no direction.
+Vec3 unitDirection(const Vec3& d, const std::string& what) {
+    const double len = glm::length(d);
+    if (!finite(d) || !(len > 1e-12))
+        throw std::invalid_argument(what + ": direction must be finite and non-zero");
+    return d / len;
+}
+
+double boundingRadius(const Bounds3& b) {
+    return b.empty() ? 0.0 : 0.5 * glm::length(b.diagonal());
+}
+
+/// A point of the unit disc, uniform, in stratum `cell` of a k x k grid (polar map: the
+/// area of a ring grows with r, hence sqrt).
+void discPoint(int cell, int k, Rng& rng, double& x, double& y) {
+    const double r = std::sqrt(((cell % k) + rng.uniform()) / k);
+    const double phi = 2 * kPi * ((cell / k) + rng.uniform()) / k;
+    x = r * std::cos(phi);
+    y = r * std::sin(phi);
+}
+
+class Sun final : public Emitter {
+  public:
+    Sun(std::string name, const Vec3& direction, double angleDegrees, const Rgb& irradiance)
+        : Emitter(std::move(name)), E_(irradiance) {
+        setDirection(direction);
+        if (!std::isfinite(angleDegrees) || angleDegrees < 0 || angleDegrees >= 180)
+            throw std::invalid_argument("sun '" + this->name() +
+                                        "': angle must be in [0, 180) degrees");
+        tanHalf_ = std::tan(0.5 * angleDegrees * kPi / 180);
+        if (!finiteNonNegative(E_))
+            throw std::invalid_argument("sun '" + this->name() +
+                                        "': irradiance must be finite and >= 0");
+    }
+    const char* type() const override { return "sun"; }
+
+    Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int rays,
+                   Rng& rng) const override {
+        // Directions towards points of the disc, uniform over it: for the small discs of a
+        // sun (tan of the half angle << 1) the tangent-plane disc is the cone to within
+        // (tan a)^2 (the real sun: 2e-5), and cos and V are averaged over it.
+        const int k = tanHalf_ > 0 ? strataSide(std::max(rays, 1)) : 1;
+        const HemisphereFrame f(d_);
+        double sum = 0;
+        for (int cell = 0; cell < k * k; ++cell) {
+            Vec3 w = d_;
+            if (tanHalf_ > 0) {
+                double x = 0, y = 0;
+                discPoint(cell, k, rng, x, y);
+                w = glm::normalize(d_ + tanHalf_ * (x * f.t + y * f.b));
+            }
+            const double c = glm::dot(p.n, w);
+            if (c <= 0) continue;
+            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += c;
+        }
+        return E_ * (sum / (k * k));
+    }
+    Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
+        return E_ * std::max(0.0, glm::dot(p.n, d_));
+    }
+    Rgb power(const Bounds3& b) const override {
+        const double R = boundingRadius(b);
+        return E_ * (kPi * R * R);
+    }
+    bool on() const override { return E_.maxComponent() > 0; }
+    void apply(const EmitterEdit& e) override {
+        if (e.sh9) refuse("sh9");
+        if (e.position) refuse("position");
+        if (e.rotate) refuse("rotate");
+        if (e.direction) setDirection(*e.direction);
+        if (e.strength) E_ = checked(*e.strength, "irradiance");
+        if (e.scale) E_ = checked(E_ * *e.scale, "scale");
+    }
+    std::unique_ptr<Emitter> clone() const override { return std::make_unique<Sun>(*this); }
+
+  private:
+    void setDirection(const Vec3& d) { d_ = unitDirection(d, "sun '" + name() + "'"); }
+    Rgb checked(const Rgb& c, const char* field) const {
+        if (!finiteNonNegative(c))
+            throw std::invalid_argument("light '" + name() + "': " + field +
+                                        " must give a finite, non-negative irradiance");
+        return c;
+    }
+    Vec3 d_;
+    double tanHalf_ = 0;
+    Rgb E_;
+};
+
+class PointLamp final : public Emitter {
+  public:
+    PointLamp(std::string name, const Vec3& position, const Rgb& intensity)
+        : Emitter(std::move(name)) {
+        setPosition(position);
+        I_ = checked(intensity, "intensity");
+    }
+    const char* type() const override { return "point"; }
+
+    Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int, Rng&) const override {
+        // A point casts hard shadows: one ray decides.
+        const Rgb e = unoccludedIrradiance(p);
+        if (!(e.maxComponent() > 0)) return {};
+        return vis.visible(p.x, pos_, p.polygon) ? e : Rgb{};
+    }
+    Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
+        const Vec3 v = pos_ - p.x;
+        const double d2 = glm::dot(v, v);
+        if (!(d2 > 1e-18)) return {};  // guard: the lamp on the point itself
+        const double c = glm::dot(p.n, v) / std::sqrt(d2);
+        return c > 0 ? I_ * (c / d2) : Rgb{};  // I cos(theta) / d^2
+    }
+    Rgb power(const Bounds3&) const override { return I_ * (4 * kPi); }
+    bool on() const override { return I_.maxComponent() > 0; }
+    void apply(const EmitterEdit& e) override {
+        if (e.sh9) refuse("sh9");
+        if (e.direction) refuse("direction");
+        if (e.rotate) refuse("rotate");
+        if (e.position) setPosition(*e.position);
+        if (e.strength) I_ = checked(*e.strength, "intensity");
+        if (e.scale) I_ = checked(I_ * *e.scale, "scale");
+    }
+    std::unique_ptr<Emitter> clone() const override { return std::make_unique<PointLamp>(*this); }
+
+  private:
+    void setPosition(const Vec3& p) {
+        if (!finite(p))
+            throw std::invalid_argument("point lamp '" + name() + "': position must be finite");
+        pos_ = p;
+    }
+    Rgb checked(const Rgb& c, const char* field) const {
+        if (!finiteNonNegative(c))
+            throw std::invalid_argument("light '" + name() + "': " + field +
+                                        " must give a finite, non-negative intensity");
+        return c;
+    }
+    Vec3 pos_;
+    Rgb I_;
+};
+
+class Environment final : public Emitter {
+  public:
+    Environment(std::string name, const Sh9Rgb& L) : Emitter(std::move(name)) { set(L); }
+    const char* type() const override { return "environment"; }
+
+    Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int rays,
+                   Rng& rng) const override {
+        // E = integral of L V cos dw = pi E[L V] over cosine-distributed directions
+        // (stratified: radiosity/detail/hemisphere.h), as sky_transfer.h does per basis.
+        const int k = strataSide(std::max(rays, 1));
+        const HemisphereFrame f(p.n);
+        Rgb sum;
+        for (int cell = 0; cell < k * k; ++cell) {
+            const Vec3 w = cosineDirection(f, cell, k, rng);
+            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += sh9Eval(L_, w);
+        }
+        return sum * (kPi / (k * k));
+    }
+    Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
+        return sh9Irradiance(L_, p.n);  // R&H 2001, Eq. 7
+    }
+    Rgb power(const Bounds3& b) const override {
+        // Through a sphere of radius R: pi R^2 times the integral of L over all directions,
+        // L00 times the integral of Y00 = 2 sqrt(pi).
+        const double R = boundingRadius(b);
+        return L_.c[0] * (kPi * R * R * 2 * std::sqrt(kPi));
+    }
+    bool on() const override { return L_.c[0].maxComponent() > 0; }
+    void apply(const EmitterEdit& e) override {
+        if (e.direction) refuse("direction");
+        if (e.position) refuse("position");
+        if (e.strength) refuse("irradiance or intensity");
+        if (e.sh9) set(*e.sh9);
+        if (e.rotate) set(sh9RotateAboutAxis(L_, e.rotate->axis, e.rotate->degrees));
+        if (e.scale) {
+            if (!std::isfinite(*e.scale) || *e.scale < 0)
+                throw std::invalid_argument("light '" + name() + "': scale must be >= 0");
+            Sh9Rgb s = L_;
+            for (Rgb& c : s.c) c *= *e.scale;
+            set(s);
+        }
+    }
+    std::unique_ptr<Emitter> clone() const override { return std::make_unique<Environment>(*this); }
+
+  private:
+    void set(const Sh9Rgb& L) {
+        for (const Rgb& c : L.c)
+            for (int k = 0; k < 3; ++k)
+                if (!std::isfinite(c[k]))
+                    throw std::invalid_argument("environment '" + name() +
+                                                "': sh9 coefficients must be finite");
+        L_ = L;
+    }
+    Sh9Rgb L_;
+};
+
+/// A point of polygon `c` (3 or 4 corners) for (u, v) in [0, 1)^2: bilinear on a quad, the
+/// square folded onto a triangle (uniform by area for a triangle and a parallelogram).
+Vec3 polygonPoint(const std::vector<Vec3>& c, double u, double v) {
+    if (c.size() == 3) {
+        const double su = std::sqrt(u);
+        return (1 - su) * c[0] + su * (1 - v) * c[1] + su * v * c[2];
+    }
+    return (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
+}
+
+class QuadLamp final : public Emitter {
+  public:
+    QuadLamp(std::string name, std::vector<std::vector<Vec3>> faces, std::vector<int> polygons,
+             const Rgb& radiance)
+        : Emitter(std::move(name)), faces_(std::move(faces)), polygons_(std::move(polygons)) {
+        if (!polygons_.empty() && polygons_.size() != faces_.size())
+            throw std::invalid_argument("quad lamp '" + this->name() +
+                                        "': one polygon index per face, or none");
+        for (const auto& f : faces_) {
+            if (f.size() != 3 && f.size() != 4)
+                throw std::invalid_argument("quad lamp '" + this->name() +
+                                            "': faces have 3 or 4 corners");
+            const Vec3 n = glm::cross(f[1] - f[0], f[2] - f[0]);
+            const double len = glm::length(n);
+            if (!(len > 0))
+                throw std::invalid_argument("quad lamp '" + this->name() + "': a face has no area");
+            normals_.push_back(n / len);
+            double area = 0.5 * len;
+            if (f.size() == 4) area += 0.5 * glm::length(glm::cross(f[2] - f[0], f[3] - f[0]));
+            areas_.push_back(area);
+        }
+        L_ = checked(radiance, "radiance");
+    }
+    const char* type() const override { return "quad"; }
+
+    Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int rays,
+                   Rng& rng) const override {
+        const int k = strataSide(std::max(rays, 1));
+        double G = 0;  // sum_q F(x -> q) V_q
+        for (size_t q = 0; q < faces_.size(); ++q) {
+            const double F = formFactor(p, q);
+            if (!(F > 0)) continue;
+            const int own = polygons_.empty() ? -1 : polygons_[q];
+            int seen = 0;
+            for (int cell = 0; cell < k * k; ++cell) {
+                const Vec3 y = polygonPoint(faces_[q], ((cell % k) + rng.uniform()) / k,
+                                            ((cell / k) + rng.uniform()) / k);
+                seen += vis.visible(p.x, y, p.polygon, own) ? 1 : 0;
+            }
+            G += F * seen / (k * k);
+        }
+        return L_ * (kPi * G);
+    }
+    Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
+        double G = 0;
+        for (size_t q = 0; q < faces_.size(); ++q) G += formFactor(p, q);
+        return L_ * (kPi * G);
+    }
+    Rgb power(const Bounds3&) const override {
+        double A = 0;
+        for (double a : areas_) A += a;
+        return L_ * (kPi * A);  // E A, E = pi L (scene.h)
+    }
+    bool on() const override { return L_.maxComponent() > 0; }
+    void apply(const EmitterEdit& e) override {
+        if (e.sh9) refuse("sh9");
+        if (e.direction) refuse("direction");
+        if (e.position) refuse("position");
+        if (e.rotate) refuse("rotate");
+        if (e.strength) L_ = checked(*e.strength, "radiance");
+        if (e.scale) L_ = checked(L_ * *e.scale, "scale");
+    }
+    std::unique_ptr<Emitter> clone() const override { return std::make_unique<QuadLamp>(*this); }
+
+  private:
+    double formFactor(const ReceiverPoint& p, size_t q) const {
+        return pointToPolygon(p.x, p.n, faces_[q].data(), static_cast<int>(faces_[q].size()),
+                              normals_[q]);
+    }
+    Rgb checked(const Rgb& c, const char* field) const {
+        if (!finiteNonNegative(c))
+            throw std::invalid_argument("light '" + name() + "': " + field +
+                                        " must give a finite, non-negative radiance");
+        return c;
+    }
+    std::vector<std::vector<Vec3>> faces_;
+    std::vector<int> polygons_;
+    std::vector<Vec3> normals_;
+    std::vector<double> areas_;
+    Rgb L_;
+};
+
+}  // namespace
+
+void Emitter::refuse(const char* field) const {
+    throw std::invalid_argument(std::string("light '") + name_ + "' (" + type() + ") has no " +
+                                field);
+}
+
+std::unique_ptr<Emitter> makeSun(std::string name, const Vec3& direction, double angleDegrees,
+                                 const Rgb& irradiance) {
+    return std::make_unique<Sun>(std::move(name), direction, angleDegrees, irradiance);
+}
+
+std::unique_ptr<Emitter> makePointLamp(std::string name, const Vec3& position,
+                                       const Rgb& intensity) {
+    return std::make_unique<PointLamp>(std::move(name), position, intensity);
+}
+
+std::unique_ptr<Emitter> makeEnvironment(std::string name, const Sh9Rgb& sh9) {
+    return std::make_unique<Environment>(std::move(name), sh9);
+}
+
+std::unique_ptr<Emitter> makeQuadLamp(std::string name, std::vector<std::vector<Vec3>> faces,
+                                      std::vector<int> polygons, const Rgb& radiance) {
+    return std::make_unique<QuadLamp>(std::move(name), std::move(faces), std::move(polygons),
+                                      radiance);
+}
+
+Rgb totalIrradiance(const std::vector<std::unique_ptr<Emitter>>& emitters, const Visibility& vis,
+                    const ReceiverPoint& p, int rays, uint64_t seed) {
+    Rgb sum;
+    for (size_t i = 0; i < emitters.size(); ++i) {
+        if (!emitters[i]->on()) continue;
+        Rng rng(seed * 0x9E3779B97F4A7C15ull + i + 1);
+        sum += emitters[i]->irradiance(vis, p, rays, rng);
+    }
+    return sum;
+}
+
+}  // namespace radiosity

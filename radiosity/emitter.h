@@ -1,0 +1,117 @@
+// Emitter: the one model of a light source (as Mitsuba's Emitter): what every layer asks of
+// a light, whatever its type. The format's four types (docs/scene-format.md, "lights"):
+//   quad         emitting polygons of one radiance L (the scene's emitting faces);
+//   sun          parallel light from a disc at infinity: direction towards it, angular
+//                diameter, irradiance at normal incidence;
+//   point        an isotropic point lamp: position, intensity I (irradiance I cos / d^2);
+//   environment  the sky, L(w) = sum_k sh9[k] Y_k(w) (radiosity/sh9.h), occluded by the scene.
+//
+// Each answers
+//   irradiance(x, n)  the direct irradiance at point x with unit normal n, shadows included
+//                     (Embree rays through radiosity/visibility.h), in radiosity units: a
+//                     white Lambertian surface there has radiosity B = irradiance (scene.h);
+//   power()           what it emits (radiosity units x m^2), for the solver's scale and to
+//                     tell whether it is on;
+//   apply(edit)       the edit's fields (docs/scene-format.md, "Edit"): scale; radiance,
+//                     irradiance, intensity or sh9 set; direction (sun), position (point),
+//                     rotate (environment). A field the type does not have is refused,
+//                     naming the light and the field.
+// The type-specific code lives in the implementations (emitter.cpp), never in a switch
+// in the layers that use them.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "radiosity/detail/rng.h"
+#include "radiosity/rgb.h"
+#include "radiosity/sh9.h"
+#include "radiosity/vec.h"
+#include "radiosity/visibility.h"
+
+namespace radiosity {
+
+/// One light's edit (docs/scene-format.md, "Edit"): each field that is set applies, in the
+/// order scale last (a scale multiplies the strength the other fields leave).
+struct EmitterEdit {
+    std::optional<double> scale;
+    std::optional<Rgb> strength;    ///< radiance (quad), irradiance (sun), intensity (point)
+    std::optional<Sh9Rgb> sh9;      ///< environment
+    std::optional<Vec3> direction;  ///< sun: towards it (any non-zero length)
+    std::optional<Vec3> position;   ///< point lamp (metres)
+    struct Rotation {
+        Vec3 axis;
+        double degrees = 0;
+    };
+    std::optional<Rotation> rotate;  ///< environment
+};
+
+/// Where a light's irradiance is asked for: a point on a surface.
+struct ReceiverPoint {
+    Vec3 x;            ///< metres
+    Vec3 n;            ///< unit front normal
+    int polygon = -1;  ///< Scene::polygons index x lies on (never its own blocker), or -1
+};
+
+class Emitter {
+  public:
+    explicit Emitter(std::string name) : name_(std::move(name)) {}
+    virtual ~Emitter() = default;
+
+    const std::string& name() const { return name_; }
+    /// "quad", "sun", "point" or "environment": the format's word, for messages and reports.
+    virtual const char* type() const = 0;
+
+    /// Direct irradiance at `p`, visibility included, radiosity units, from about `rays`
+    /// shadow rays (at least 1) drawn from `rng`.
+    virtual Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int rays,
+                           Rng& rng) const = 0;
+    /// The same without blockers (the light a point would get with nothing in the way).
+    virtual Rgb unoccludedIrradiance(const ReceiverPoint& p) const = 0;
+
+    /// Emitted power, radiosity units x m^2. A light at infinity emits without bound; its
+    /// power is what crosses the bounding sphere of `sceneBounds` (radius R): the sun
+    /// E pi R^2, the sky pi R^2 times the mean irradiance over the sphere's directions.
+    virtual Rgb power(const Bounds3& sceneBounds) const = 0;
+    /// Whether it gives any light (its strength is not zero).
+    virtual bool on() const = 0;
+
+    /// Applies `edit`; throws std::invalid_argument naming the light and the field when
+    /// the type lacks it or the value is out of range.
+    virtual void apply(const EmitterEdit& edit) = 0;
+    virtual std::unique_ptr<Emitter> clone() const = 0;
+
+  protected:
+    [[noreturn]] void refuse(const char* field) const;
+
+  private:
+    std::string name_;
+};
+
+/// A sun of `irradiance` (radiosity units: irradiance on a surface facing it) in
+/// `direction` (towards the sun, non-zero), a disc of angular diameter `angleDegrees`
+/// (0: a point, hard shadows; < 180). Its disc is sampled by stratified directions
+/// (soft shadows). Throws std::invalid_argument for a bad direction, angle or irradiance.
+std::unique_ptr<Emitter> makeSun(std::string name, const Vec3& direction, double angleDegrees,
+                                 const Rgb& irradiance);
+/// An isotropic point lamp of `intensity` (irradiance I cos / d^2) at `position`.
+std::unique_ptr<Emitter> makePointLamp(std::string name, const Vec3& position,
+                                       const Rgb& intensity);
+/// A sky of radiance L(w) = sum_k sh9[k] Y_k(w), occluded by the scene: its irradiance is
+/// pi times the mean of L V over cosine-distributed directions (stratified).
+std::unique_ptr<Emitter> makeEnvironment(std::string name, const Sh9Rgb& sh9);
+/// A quad lamp: emitting polygons (corners counter-clockwise seen from the front) of one
+/// radiance; its irradiance is pi L sum_q F(x -> q) V_q (exact form factor, Lambert's
+/// contour integral; V_q the fraction of rays to points of q that arrive). `polygons`:
+/// the Scene::polygons indices of the faces (they do not block their own light), or empty.
+std::unique_ptr<Emitter> makeQuadLamp(std::string name, std::vector<std::vector<Vec3>> faces,
+                                      std::vector<int> polygons, const Rgb& radiance);
+
+/// The sum of every emitter's irradiance at `p` (one rng per emitter, seeded from `seed`
+/// and its index, so that the answer does not depend on the others).
+Rgb totalIrradiance(const std::vector<std::unique_ptr<Emitter>>& emitters, const Visibility& vis,
+                    const ReceiverPoint& p, int rays, uint64_t seed);
+
+}  // namespace radiosity
