@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "radiosity/detail/form_factor.h"
 #include "radiosity/detail/rng.h"
@@ -28,6 +29,26 @@ bool DirectLight::shaftClear(int leaf, int q) const {
     return found;
 }
 
+size_t DirectLight::emitterGeometry(size_t l, int polygon, const Vec3& x, uint64_t base, double* G,
+                                    double* unoccluded) const {
+    // All components of the emitter from the same rays (a sky's 9 coefficients share its
+    // directions: the transfer vector); G is per unit radiance, H = pi L G, so the unit
+    // irradiance is divided by pi.
+    const Scene& scene = solver_.scene();
+    const Emitter& e = *scene.lights[l].emitter;
+    const size_t n = std::min(static_cast<size_t>(e.components()), scene.lights.size() - l);
+    const ReceiverPoint p{x, scene.polygons[polygon].normal, polygon};
+    double out[kMaxEmitterComponents] = {};
+    Rng rng(Rng(base ^ (static_cast<uint64_t>(l + 1) * 0xA0761D6478BD642Full)).next());
+    e.unitIrradiance(solver_.visibility(), p, options_.maxRays, rng, out);
+    for (size_t c = 0; c < n; ++c) G[l + c] = out[c] / std::numbers::pi;
+    if (unoccluded) {
+        e.unitUnoccluded(p, out);
+        for (size_t c = 0; c < n; ++c) unoccluded[l + c] = out[c] / std::numbers::pi;
+    }
+    return std::max<size_t>(n, 1);
+}
+
 void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G, double* unoccluded,
                            int firstLight) const {
     const Scene& scene = solver_.scene();
@@ -38,6 +59,10 @@ void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
     const int k = strataSide(maxRays);
     uint64_t rays = 0;
     for (size_t l = static_cast<size_t>(std::max(firstLight, 0)); l < scene.lights.size(); ++l) {
+        if (scene.lights[l].emitter) {
+            l += emitterGeometry(l, polygon, x, base, G, unoccluded) - 1;
+            continue;
+        }
         double g = 0, g0 = 0;
         for (int qi : scene.lights[l].polygons) {
             if (qi == polygon) continue;  // an emitting face does not light itself

@@ -13,6 +13,11 @@
 // (or its ancestors) was decided VISIBLE by an empty shaft, no ray is cast. Elsewhere
 // `minRays` rays are cast; when they disagree (penumbra) up to `maxRays` in all.
 //
+// A light that is not faces (sun, point lamp, sky: Light::emitter, radiosity/emitter.h)
+// gives G = H_unit / pi, its unit-strength irradiance with shadows from maxRays rays of its
+// own (the emitter's sampling: the sun's disc, the sky's hemisphere), so that H = pi L G
+// holds for every light.
+//
 // Units: G is dimensionless (a form factor); x in metres. Deterministic: the rays of a
 // point come from a generator seeded by the caller, so results do not depend on the
 // order of evaluation or the thread count.
@@ -23,6 +28,7 @@
 #include <vector>
 
 #include "radiosity/defaults.h"
+#include "radiosity/emitter.h"
 #include "radiosity/solver.h"
 
 namespace radiosity {
@@ -52,6 +58,10 @@ class DirectLight {
     /// True when every link from an element of light polygon q to the chain of nodes above
     /// `leaf` was decided by an empty shaft (and there is at least one).
     bool shaftClear(int leaf, int q) const;
+    /// G of the components of the emitter light l starts (radiosity/emitter.h) at x, from
+    /// maxRays rays; returns how many lights it filled.
+    size_t emitterGeometry(size_t l, int polygon, const Vec3& x, uint64_t base, double* G,
+                           double* unoccluded) const;
     const HierarchicalSolver& solver_;
     DirectLightOptions options_;
     mutable std::atomic<uint64_t> rays_{0};

@@ -45,23 +45,63 @@ void discPoint(int cell, int k, Rng& rng, double& x, double& y) {
     y = r * std::sin(phi);
 }
 
-class Sun final : public Emitter {
+/// What every single-component light shares: one strength, checked >= 0.
+class SingleEmitter : public Emitter {
+  public:
+    SingleEmitter(std::string name, const char* strengthName)
+        : Emitter(std::move(name)), strengthName_(strengthName) {}
+    Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int rays,
+                   Rng& rng) const override {
+        double g = 0;
+        unitIrradiance(vis, p, rays, rng, &g);
+        return s_ * g;
+    }
+    Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
+        double g = 0;
+        unitUnoccluded(p, &g);
+        return s_ * g;
+    }
+    std::vector<Rgb> strengths() const override { return {s_}; }
+    void setStrengths(std::span<const Rgb> s) override {
+        if (s.size() != 1)
+            throw std::invalid_argument("light '" + name() + "': one strength expected");
+        set(s[0], strengthName_);
+    }
+    bool on() const override { return s_.maxComponent() > 0; }
+
+  protected:
+    /// The edit's strength fields, shared: the value set, then the scale.
+    void applyStrength(const EmitterEdit& e) {
+        if (e.strength) set(*e.strength, strengthName_);
+        if (e.scale) set(s_ * *e.scale, "scale");
+    }
+    void set(const Rgb& c, const char* field) {
+        if (!finiteNonNegative(c))
+            throw std::invalid_argument("light '" + name() + "': " + field +
+                                        " must give a finite, non-negative " + strengthName_);
+        s_ = c;
+    }
+    Rgb s_;
+
+  private:
+    const char* strengthName_;
+};
+
+class Sun final : public SingleEmitter {
   public:
     Sun(std::string name, const Vec3& direction, double angleDegrees, const Rgb& irradiance)
-        : Emitter(std::move(name)), E_(irradiance) {
+        : SingleEmitter(std::move(name), "irradiance") {
         setDirection(direction);
         if (!std::isfinite(angleDegrees) || angleDegrees < 0 || angleDegrees >= 180)
             throw std::invalid_argument("sun '" + this->name() +
                                         "': angle must be in [0, 180) degrees");
         tanHalf_ = std::tan(0.5 * angleDegrees * kPi / 180);
-        if (!finiteNonNegative(E_))
-            throw std::invalid_argument("sun '" + this->name() +
-                                        "': irradiance must be finite and >= 0");
+        set(irradiance, "irradiance");
     }
     const char* type() const override { return "sun"; }
 
-    Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int rays,
-                   Rng& rng) const override {
+    void unitIrradiance(const Visibility& vis, const ReceiverPoint& p, int rays, Rng& rng,
+                        double* out) const override {
         // Directions towards points of the disc, uniform over it: for the small discs of a
         // sun (tan of the half angle << 1) the tangent-plane disc is the cone to within
         // (tan a)^2 (the real sun: 2e-5), and cos and V are averaged over it.
@@ -79,70 +119,61 @@ class Sun final : public Emitter {
             if (c <= 0) continue;
             if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += c;
         }
-        return E_ * (sum / (k * k));
+        out[0] = sum / (k * k);
     }
-    Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
-        return E_ * std::max(0.0, glm::dot(p.n, d_));
+    void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
+        out[0] = std::max(0.0, glm::dot(p.n, d_));
     }
     Rgb power(const Bounds3& b) const override {
         const double R = boundingRadius(b);
-        return E_ * (kPi * R * R);
+        return s_ * (kPi * R * R);
     }
-    bool on() const override { return E_.maxComponent() > 0; }
     void apply(const EmitterEdit& e) override {
         if (e.sh9) refuse("sh9");
         if (e.position) refuse("position");
         if (e.rotate) refuse("rotate");
         if (e.direction) setDirection(*e.direction);
-        if (e.strength) E_ = checked(*e.strength, "irradiance");
-        if (e.scale) E_ = checked(E_ * *e.scale, "scale");
+        applyStrength(e);
     }
     std::unique_ptr<Emitter> clone() const override { return std::make_unique<Sun>(*this); }
+    const Vec3& direction() const { return d_; }
 
   private:
     void setDirection(const Vec3& d) { d_ = unitDirection(d, "sun '" + name() + "'"); }
-    Rgb checked(const Rgb& c, const char* field) const {
-        if (!finiteNonNegative(c))
-            throw std::invalid_argument("light '" + name() + "': " + field +
-                                        " must give a finite, non-negative irradiance");
-        return c;
-    }
     Vec3 d_;
     double tanHalf_ = 0;
-    Rgb E_;
 };
 
-class PointLamp final : public Emitter {
+class PointLamp final : public SingleEmitter {
   public:
     PointLamp(std::string name, const Vec3& position, const Rgb& intensity)
-        : Emitter(std::move(name)) {
+        : SingleEmitter(std::move(name), "intensity") {
         setPosition(position);
-        I_ = checked(intensity, "intensity");
+        set(intensity, "intensity");
     }
     const char* type() const override { return "point"; }
 
-    Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int, Rng&) const override {
+    void unitIrradiance(const Visibility& vis, const ReceiverPoint& p, int, Rng&,
+                        double* out) const override {
         // A point casts hard shadows: one ray decides.
-        const Rgb e = unoccludedIrradiance(p);
-        if (!(e.maxComponent() > 0)) return {};
-        return vis.visible(p.x, pos_, p.polygon) ? e : Rgb{};
+        unitUnoccluded(p, out);
+        if (out[0] > 0 && !vis.visible(p.x, pos_, p.polygon)) out[0] = 0;
     }
-    Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
+    void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
         const Vec3 v = pos_ - p.x;
         const double d2 = glm::dot(v, v);
-        if (!(d2 > 1e-18)) return {};  // guard: the lamp on the point itself
+        out[0] = 0;
+        if (!(d2 > 1e-18)) return;  // guard: the lamp on the point itself
         const double c = glm::dot(p.n, v) / std::sqrt(d2);
-        return c > 0 ? I_ * (c / d2) : Rgb{};  // I cos(theta) / d^2
+        if (c > 0) out[0] = c / d2;  // cos(theta) / d^2
     }
-    Rgb power(const Bounds3&) const override { return I_ * (4 * kPi); }
-    bool on() const override { return I_.maxComponent() > 0; }
+    Rgb power(const Bounds3&) const override { return s_ * (4 * kPi); }
     void apply(const EmitterEdit& e) override {
         if (e.sh9) refuse("sh9");
         if (e.direction) refuse("direction");
         if (e.rotate) refuse("rotate");
         if (e.position) setPosition(*e.position);
-        if (e.strength) I_ = checked(*e.strength, "intensity");
-        if (e.scale) I_ = checked(I_ * *e.scale, "scale");
+        applyStrength(e);
     }
     std::unique_ptr<Emitter> clone() const override { return std::make_unique<PointLamp>(*this); }
 
@@ -152,14 +183,7 @@ class PointLamp final : public Emitter {
             throw std::invalid_argument("point lamp '" + name() + "': position must be finite");
         pos_ = p;
     }
-    Rgb checked(const Rgb& c, const char* field) const {
-        if (!finiteNonNegative(c))
-            throw std::invalid_argument("light '" + name() + "': " + field +
-                                        " must give a finite, non-negative intensity");
-        return c;
-    }
     Vec3 pos_;
-    Rgb I_;
 };
 
 class Environment final : public Emitter {
@@ -169,19 +193,41 @@ class Environment final : public Emitter {
 
     Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int rays,
                    Rng& rng) const override {
-        // E = integral of L V cos dw = pi E[L V] over cosine-distributed directions
-        // (stratified: radiosity/detail/hemisphere.h), as sky_transfer.h does per basis.
-        const int k = strataSide(std::max(rays, 1));
-        const HemisphereFrame f(p.n);
-        Rgb sum;
-        for (int cell = 0; cell < k * k; ++cell) {
-            const Vec3 w = cosineDirection(f, cell, k, rng);
-            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += sh9Eval(L_, w);
-        }
-        return sum * (kPi / (k * k));
+        Sh9 T{};
+        unitIrradiance(vis, p, rays, rng, T.data());
+        return sh9Dot(T, L_);
     }
     Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
         return sh9Irradiance(L_, p.n);  // R&H 2001, Eq. 7
+    }
+    int components() const override { return kSh9Count; }
+    std::vector<Rgb> strengths() const override { return {L_.c.begin(), L_.c.end()}; }
+    void setStrengths(std::span<const Rgb> s) override {
+        if (s.size() != static_cast<size_t>(kSh9Count))
+            throw std::invalid_argument("environment '" + name() + "': 9 coefficients expected");
+        Sh9Rgb L;
+        std::copy(s.begin(), s.end(), L.c.begin());
+        set(L);
+    }
+    void unitIrradiance(const Visibility& vis, const ReceiverPoint& p, int rays, Rng& rng,
+                        double* out) const override {
+        // The transfer vector T_k = integral of Y_k V cos dw = pi E[Y_k V] over
+        // cosine-distributed directions (stratified: radiosity/detail/hemisphere.h), as
+        // sky_transfer.h (Sloan et al. 2002); E = sum_k L_k T_k.
+        const int k = strataSide(std::max(rays, 1));
+        const HemisphereFrame f(p.n);
+        Sh9 sum{};
+        for (int cell = 0; cell < k * k; ++cell) {
+            const Vec3 w = cosineDirection(f, cell, k, rng);
+            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon >= 0) continue;
+            const Sh9 Y = sh9Basis(w);
+            for (size_t c = 0; c < Y.size(); ++c) sum[c] += Y[c];
+        }
+        for (size_t c = 0; c < sum.size(); ++c) out[c] = sum[c] * (kPi / (k * k));
+    }
+    void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
+        const Sh9 T = sh9CosineTransfer(p.n);  // R&H 2001, Eq. 7
+        std::copy(T.begin(), T.end(), out);
     }
     Rgb power(const Bounds3& b) const override {
         // Through a sphere of radius R: pi R^2 times the integral of L over all directions,
@@ -228,11 +274,13 @@ Vec3 polygonPoint(const std::vector<Vec3>& c, double u, double v) {
     return (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
 }
 
-class QuadLamp final : public Emitter {
+class QuadLamp final : public SingleEmitter {
   public:
     QuadLamp(std::string name, std::vector<std::vector<Vec3>> faces, std::vector<int> polygons,
              const Rgb& radiance)
-        : Emitter(std::move(name)), faces_(std::move(faces)), polygons_(std::move(polygons)) {
+        : SingleEmitter(std::move(name), "radiance"),
+          faces_(std::move(faces)),
+          polygons_(std::move(polygons)) {
         if (!polygons_.empty() && polygons_.size() != faces_.size())
             throw std::invalid_argument("quad lamp '" + this->name() +
                                         "': one polygon index per face, or none");
@@ -249,12 +297,12 @@ class QuadLamp final : public Emitter {
             if (f.size() == 4) area += 0.5 * glm::length(glm::cross(f[2] - f[0], f[3] - f[0]));
             areas_.push_back(area);
         }
-        L_ = checked(radiance, "radiance");
+        set(radiance, "radiance");
     }
     const char* type() const override { return "quad"; }
 
-    Rgb irradiance(const Visibility& vis, const ReceiverPoint& p, int rays,
-                   Rng& rng) const override {
+    void unitIrradiance(const Visibility& vis, const ReceiverPoint& p, int rays, Rng& rng,
+                        double* out) const override {
         const int k = strataSide(std::max(rays, 1));
         double G = 0;  // sum_q F(x -> q) V_q
         for (size_t q = 0; q < faces_.size(); ++q) {
@@ -269,26 +317,24 @@ class QuadLamp final : public Emitter {
             }
             G += F * seen / (k * k);
         }
-        return L_ * (kPi * G);
+        out[0] = kPi * G;  // H = pi L G: E = pi L (scene.h)
     }
-    Rgb unoccludedIrradiance(const ReceiverPoint& p) const override {
+    void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
         double G = 0;
         for (size_t q = 0; q < faces_.size(); ++q) G += formFactor(p, q);
-        return L_ * (kPi * G);
+        out[0] = kPi * G;
     }
     Rgb power(const Bounds3&) const override {
         double A = 0;
         for (double a : areas_) A += a;
-        return L_ * (kPi * A);  // E A, E = pi L (scene.h)
+        return s_ * (kPi * A);  // E A, E = pi L (scene.h)
     }
-    bool on() const override { return L_.maxComponent() > 0; }
     void apply(const EmitterEdit& e) override {
         if (e.sh9) refuse("sh9");
         if (e.direction) refuse("direction");
         if (e.position) refuse("position");
         if (e.rotate) refuse("rotate");
-        if (e.strength) L_ = checked(*e.strength, "radiance");
-        if (e.scale) L_ = checked(L_ * *e.scale, "scale");
+        applyStrength(e);
     }
     std::unique_ptr<Emitter> clone() const override { return std::make_unique<QuadLamp>(*this); }
 
@@ -297,17 +343,10 @@ class QuadLamp final : public Emitter {
         return pointToPolygon(p.x, p.n, faces_[q].data(), static_cast<int>(faces_[q].size()),
                               normals_[q]);
     }
-    Rgb checked(const Rgb& c, const char* field) const {
-        if (!finiteNonNegative(c))
-            throw std::invalid_argument("light '" + name() + "': " + field +
-                                        " must give a finite, non-negative radiance");
-        return c;
-    }
     std::vector<std::vector<Vec3>> faces_;
     std::vector<int> polygons_;
     std::vector<Vec3> normals_;
     std::vector<double> areas_;
-    Rgb L_;
 };
 
 }  // namespace

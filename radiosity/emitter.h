@@ -22,6 +22,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,9 @@ struct ReceiverPoint {
     int polygon = -1;  ///< Scene::polygons index x lies on (never its own blocker), or -1
 };
 
+/// The most components a light has (a sky's 9 coefficients).
+inline constexpr int kMaxEmitterComponents = 9;
+
 class Emitter {
   public:
     explicit Emitter(std::string name) : name_(std::move(name)) {}
@@ -70,6 +74,24 @@ class Emitter {
                            Rng& rng) const = 0;
     /// The same without blockers (the light a point would get with nothing in the way).
     virtual Rgb unoccludedIrradiance(const ReceiverPoint& p) const = 0;
+
+    /// The light as a sum of components of fixed shape, each scaled by an RGB strength,
+    /// so that a change of strengths is a weighted sum of what each component gives
+    /// (superposition: the solver's per-light responses, the per-pixel light): one for a
+    /// quad (its radiance), a sun (its irradiance) and a point lamp (its intensity); nine
+    /// for a sky (its coefficients: sh9[k] scales the basis function Y_k).
+    virtual int components() const { return 1; }
+    /// Each component's strength, components() of them (a sky's may be negative).
+    virtual std::vector<Rgb> strengths() const = 0;
+    /// Sets them (throws std::invalid_argument on a count or value out of range).
+    virtual void setStrengths(std::span<const Rgb> s) = 0;
+    /// The irradiance each component gives at unit strength, out[c] for c < components(),
+    /// visibility included (rays, rng as irradiance()): irradiance() is sum_c s_c out[c].
+    /// A sky's is the point's transfer vector (Sloan, Kautz & Snyder 2002; sky_transfer.h).
+    virtual void unitIrradiance(const Visibility& vis, const ReceiverPoint& p, int rays, Rng& rng,
+                                double* out) const = 0;
+    /// The same without blockers.
+    virtual void unitUnoccluded(const ReceiverPoint& p, double* out) const = 0;
 
     /// Emitted power, radiosity units x m^2. A light at infinity emits without bound; its
     /// power is what crosses the bounding sphere of `sceneBounds` (radius R): the sun

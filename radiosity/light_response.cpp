@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +13,9 @@
 namespace radiosity {
 
 namespace {
+
+/// See the convergence test in LightResponses().
+constexpr double kPowerFloor = 1e-3;
 
 /// What stays fixed over the sweeps: the receivers' runs of links, the clusters in
 /// top-down order, the polygons' root elements, and for each root the cluster ancestors
@@ -87,8 +91,9 @@ class PerLight {
 class ResponseSweeps {
   public:
     ResponseSweeps(const Hierarchy& h, const std::vector<Link>& links, int K, PerLight& E,
-                   PerLight& B)
+                   PerLight& B, const PerLight* X = nullptr)
         : h_(h),
+          X_(X),
           links_(links),
           layout_(h, links),
           K_(K),
@@ -191,6 +196,13 @@ class ResponseSweeps {
                 B[l] = E[l] + n.rho * (HdDown[l] + Hd[l] + (Hdown[l] + H[l]) * n.gatherScale);
                 S[l] = B[l] * n.sendScale;
             }
+            if (X_) {  // the emitters' direct light reflected (HierarchicalSolver::Node::Hx)
+                const Rgb* X = (*X_)[node];
+                for (int l = 0; l < K_; ++l) {
+                    B[l] += X[l];
+                    S[l] = B[l] * n.sendScale;
+                }
+            }
             return;
         }
         std::vector<Rgb> down(2 * static_cast<size_t>(K_));
@@ -234,6 +246,7 @@ class ResponseSweeps {
     }
 
     const Hierarchy& h_;
+    const PerLight* X_;  ///< rho H_l of the emitter lights at the leaves, or null
     const std::vector<Link>& links_;
     SweepLayout layout_;
     int K_;
@@ -270,9 +283,26 @@ LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses*
         const int l = scene.polygons[e.polygon].light;
         if (l >= 0) E[n][l] = unit[l];
     }
-    ResponseSweeps sweeps(h, solver.links(), lights_, E, B);
+    // Lights that are not faces (radiosity/emitter.h): their direct light, reflected, is
+    // each leaf's source X_l = rho H_l (H_l per unit strength, the solver's Hx split).
+    std::unique_ptr<PerLight> X;
+    if (!solver.emitterLights().empty()) {
+        X = std::make_unique<PerLight>(N, lights_);
+        const std::vector<int>& lights = solver.emitterLights();
+        for (size_t n = 0; n < N; ++n) {
+            const Node& e = nodes[n];
+            if (e.isCluster() || !e.isLeaf()) continue;
+            const std::span<const double> H = solver.directUnit(static_cast<int>(n));
+            for (size_t j = 0; j < H.size(); ++j) (*X)[n][lights[j]] = e.rho * H[j];
+        }
+    }
+    ResponseSweeps sweeps(h, solver.links(), lights_, E, B, X.get());
     sweeps.pullAll(E);
     B.values() = E.values();
+    if (X) {
+        sweeps.pullAll(*X);
+        for (size_t i = 0; i < B.values().size(); ++i) B.values()[i] += X->values()[i];
+    }
     if (warm && warm->lights_ == lights_ && warm->R_.size() == B.values().size())
         for (size_t i = 0; i < B.values().size(); ++i) B.values()[i] += warm->R_[i];
     sweeps.setSent();
@@ -285,20 +315,28 @@ LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses*
         sweeps.sweep(power);
         ++sweeps_;
         bool converged = true;
+        // A sky's coefficient lights a scene with both signs (Y_k is negative over half
+        // the sphere), so its total may be near zero: its change is measured against a
+        // floor of kPowerFloor of the largest light's total too (lights with an emitter
+        // only: faces keep their own total, as before).
+        double largest = 0;
+        for (int l = 0; l < lights_; ++l) largest = std::max(largest, std::abs(power[l]));
         for (int l = 0; l < lights_; ++l) {
+            const double ref = scene.lights[l].emitter
+                                   ? std::max(std::abs(power[l]), kPowerFloor * largest)
+                                   : power[l];
             if (!std::isfinite(power[l]))
                 throw SolverError("light responses: the response to light '" +
                                   scene.lights[l].name + "' is not finite after " +
                                   std::to_string(sweeps_) + " sweeps");
-            if (previous[l] < 0) {
+            if (sweeps_ == 1) {  // (a sky's coefficient may light with a negative total)
                 converged = false;
             } else {
                 const double delta = std::abs(power[l] - previous[l]);
                 double q = previousDelta[l] > 0 ? delta / previousDelta[l] : 0.5;
                 q = std::min(q, 0.999);  // guard: a stalled change gives a huge bound
                 const double remaining = delta * q / (1.0 - q);
-                if (delta > tolerance * power[l] || remaining > tolerance * power[l])
-                    converged = false;
+                if (delta > tolerance * ref || remaining > tolerance * ref) converged = false;
                 previousDelta[l] = delta;
             }
             previous[l] = power[l];

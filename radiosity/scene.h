@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@
 #include "radiosity/vec.h"
 
 namespace radiosity {
+
+class Emitter;  // radiosity/emitter.h
 
 /// One input polygon. Built by makePolygon(), which fills normal and area.
 struct Polygon {
@@ -32,11 +35,20 @@ struct Polygon {
     Bounds3 bounds() const;
 };
 
-/// A light source: one or more emitting polygons sharing one radiance.
+/// A light source: one or more emitting polygons sharing one radiance, or one component
+/// of a light that is not faces (a sun, a point lamp, one of a sky's 9 coefficients).
 struct Light {
     std::string name;
     std::vector<int> polygons;  ///< indices into Scene::polygons
-    Rgb radiance;               ///< emitted radiance, photo units; 0 when switched off
+    /// Emitted radiance, photo units; 0 when switched off. For a component of an emitter:
+    /// its strength (irradiance, intensity, a sky's coefficient, which may be negative).
+    Rgb radiance;
+    /// A light that is not faces (radiosity/emitter.h): its shape, shared by the lights of
+    /// its components (consecutive, `component` 0, 1, ...); null for emitting faces. Its
+    /// direct irradiance per unit strength is emitter->unitIrradiance()[component]: every
+    /// layer asks the emitter, never the light's type.
+    std::shared_ptr<const Emitter> emitter{};
+    int component = 0;
     /// Emittance in radiosity units: a Lambertian emitter of radiance L has E = pi L.
     Rgb emittance() const;
 };

@@ -495,7 +495,7 @@ void HierarchicalSolver::solve() {
         pushPullAll();
         return;
     }
-    if (!emitters_.empty()) pushPullAll();  // B of the lit leaves, for the first oracle
+    if (!emitterLights_.empty()) pushPullAll();  // B of the lit leaves, for the first oracle
     const auto start = Clock::now();
     lastProgress_ = start;
     // A later solve() (the reflectance rounds) refines nothing more once the time is out.
@@ -552,6 +552,7 @@ void HierarchicalSolver::setLightRadiances(std::span<const Rgb> radiance) {
         throw std::invalid_argument("setLightRadiances: one radiance per light expected");
     for (size_t l = 0; l < radiance.size(); ++l) scene_.lights[l].radiance = radiance[l];
     h_.updateEmittance(scene_);
+    sumDirectIrradiance();
     if (!started_) return;
     addMissingLightLinks();
     gatherPushPull();
@@ -569,8 +570,7 @@ bool HierarchicalSolver::addMissingLightLinks() {
         if (!(light.radiance.maxComponent() > 0)) continue;
         for (int p : light.polygons) {
             if (linked[p]) continue;
-            if (powerThreshold_ <= 0)
-                powerThreshold_ = options_.epsilon * sourcePower();
+            if (powerThreshold_ <= 0) powerThreshold_ = options_.epsilon * sourcePower();
             addLinksFromSource(h_.polygonRoot[p]);
             added = true;
         }

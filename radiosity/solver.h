@@ -204,22 +204,35 @@ class HierarchicalSolver {
     /// Returns the new total radiosity power (max channel).
     double sweep();
 
-    /// Lights that are not emitting faces (radiosity/emitter.h: sun, point lamp, sky).
-    /// Their direct light enters as each leaf's direct irradiance Hx, measured over the
-    /// element with visibility, B = E + rho (Hd + Hx + H); what the leaves reflect of it
-    /// is carried by the links like any light (gather/push-pull), and the refinement's
-    /// oracle weighs it with the rest (its power threshold counts sum Hx A). Added before
-    /// solve(), or followed by gatherPushPull(). Returns the emitter's index.
-    int addEmitter(std::unique_ptr<Emitter> emitter);
-    int emitterCount() const { return static_cast<int>(emitters_.size()); }
-    const Emitter& emitter(int i) const { return *emitters_.at(static_cast<size_t>(i)); }
-    const std::vector<std::unique_ptr<Emitter>>& emitters() const { return emitters_; }
-    /// Applies `edit` to emitter i (throws as Emitter::apply), measures every leaf's Hx
-    /// again and gathers again; links and subdivision are kept (as setLightRadiance).
-    void editEmitter(int i, const EmitterEdit& edit);
-    /// Measures Hx on the leaves that lack it (all with `all`), in parallel, each leaf's
-    /// rays seeded by its node id (the same result with any thread count).
+    /// Lights that are not emitting faces (radiosity/emitter.h: sun, point lamp, sky),
+    /// appended to the scene's lights, one per component (Light::emitter), with the
+    /// emitter's strengths as radiances. Their direct light enters as each leaf's direct
+    /// irradiance Hx = sum_l L_l H_l, H_l the unit-strength irradiance of component l
+    /// measured over the element with visibility; B = E + rho (Hd + Hx + H). What the
+    /// leaves reflect of it is carried by the links like any light (gather/push-pull), and
+    /// the refinement's oracle weighs it with the rest (its power threshold counts
+    /// sum Hx A). Added before solve(), or followed by gatherPushPull(). Returns the index
+    /// of its first light.
+    int addEmitter(std::shared_ptr<const Emitter> emitter);
+    /// Applies `edit` to the emitter of light `light` (any of its components; its strengths
+    /// taken from their radiances), then as setLightEmitter. Throws as Emitter::apply.
+    void editEmitter(int light, const EmitterEdit& edit);
+    /// Gives the components of light `light`'s emitter a new one (moved, turned) and its
+    /// strengths as their radiances; measures every leaf's H_l again and gathers again.
+    /// Links and subdivision are kept (as setLightRadiance).
+    void setLightEmitter(int light, std::shared_ptr<const Emitter> emitter);
+    /// Measures H_l on the leaves that lack it (all with `all`), in parallel, each leaf's
+    /// rays seeded by its node id (the same result with any thread count), and sums Hx.
     void updateDirectIrradiance(bool all = false);
+    /// The scene's lights that have an emitter, in order (empty: faces only).
+    const std::vector<int>& emitterLights() const { return emitterLights_; }
+    /// Leaf `node`'s unit-strength direct irradiance of each of emitterLights(), as last
+    /// measured (radiosity units per unit strength); empty without emitter lights.
+    std::span<const double> directUnit(int node) const {
+        const size_t J = emitterLights_.size();
+        if (J == 0 || static_cast<size_t>(node) * J + J > Hunit_.size()) return {};
+        return {Hunit_.data() + static_cast<size_t>(node) * J, J};
+    }
 
     /// Emittance edit: keeps subdivision and links, re-gathers. A light that had no links
     /// (it was off when refined) gets its links refined first.
@@ -511,8 +524,11 @@ class HierarchicalSolver {
     ActiveLinks links_;          ///< active links, grouped by receiver (active_links.h)
     std::vector<Link> passive_;  ///< refined-away links, kept for dynamic updates
     double minArea_ = 0;
-    double powerThreshold_ = 0;  ///< epsilon * emitted power (max channel)
-    std::vector<std::unique_ptr<Emitter>> emitters_;
+    double powerThreshold_ = 0;       ///< epsilon * emitted power (max channel)
+    std::vector<int> emitterLights_;  ///< lights with an emitter
+    std::vector<double> Hunit_;       ///< [node * emitterLights + j], leaves only
+    /// Hx of every leaf from Hunit_ and the lights' radiances; directPower_.
+    void sumDirectIrradiance();
     Rgb directPower_;  ///< sum Hx A over the leaves (radiosity units x m^2)
     /// The faces' emitted power plus directPower_ (max channel): what the oracle and the
     /// convergence test measure against.

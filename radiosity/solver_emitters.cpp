@@ -9,20 +9,54 @@
 
 namespace radiosity {
 
-int HierarchicalSolver::addEmitter(std::unique_ptr<Emitter> emitter) {
+int HierarchicalSolver::addEmitter(std::shared_ptr<const Emitter> emitter) {
     if (!emitter) throw std::invalid_argument("addEmitter: no emitter");
-    emitters_.push_back(std::move(emitter));
-    updateDirectIrradiance(/*all=*/true);
-    return static_cast<int>(emitters_.size()) - 1;
+    const int first = static_cast<int>(scene_.lights.size());
+    const std::vector<Rgb> s = emitter->strengths();
+    for (int c = 0; c < emitter->components(); ++c) {
+        Light l;
+        l.name = emitter->name();
+        l.radiance = s.at(static_cast<size_t>(c));
+        l.emitter = emitter;
+        l.component = c;
+        emitterLights_.push_back(static_cast<int>(scene_.lights.size()));
+        scene_.lights.push_back(std::move(l));
+    }
+    updateDirectIrradiance(/*all=*/true);  // the layout of Hunit_ changed
+    return first;
 }
 
-void HierarchicalSolver::editEmitter(int i, const EmitterEdit& edit) {
-    emitters_.at(static_cast<size_t>(i))->apply(edit);
+void HierarchicalSolver::editEmitter(int light, const EmitterEdit& edit) {
+    const Light& l = scene_.lights.at(static_cast<size_t>(light));
+    if (!l.emitter) throw std::invalid_argument("editEmitter: light '" + l.name + "' is faces");
+    const int first = light - l.component;
+    std::unique_ptr<Emitter> e = l.emitter->clone();
+    std::vector<Rgb> s(static_cast<size_t>(e->components()));
+    for (size_t c = 0; c < s.size(); ++c) s[c] = scene_.lights[first + c].radiance;
+    e->setStrengths(s);
+    e->apply(edit);
+    setLightEmitter(first, std::move(e));
+}
+
+void HierarchicalSolver::setLightEmitter(int light, std::shared_ptr<const Emitter> emitter) {
+    const Light& l = scene_.lights.at(static_cast<size_t>(light));
+    if (!l.emitter || !emitter || emitter->components() != l.emitter->components())
+        throw std::invalid_argument("setLightEmitter: light '" + l.name +
+                                    "' needs an emitter of as many components");
+    const size_t first = static_cast<size_t>(light - l.component);
+    const std::vector<Rgb> s = emitter->strengths();
+    for (size_t c = 0; c < s.size(); ++c) {
+        scene_.lights[first + c].emitter = emitter;
+        scene_.lights[first + c].radiance = s[c];
+    }
     updateDirectIrradiance(/*all=*/true);
     if (started_) gatherPushPull();
 }
 
 void HierarchicalSolver::updateDirectIrradiance(bool all) {
+    const size_t J = emitterLights_.size();
+    if (J == 0) return;
+    Hunit_.resize(h_.nodes.size() * J, 0.0);
     std::vector<int> leaves;
     for (size_t n = 0; n < h_.nodes.size(); ++n) {
         const Node& e = h_.nodes[n];
@@ -30,28 +64,48 @@ void HierarchicalSolver::updateDirectIrradiance(bool all) {
         if (all || !e.HxMeasured) leaves.push_back(static_cast<int>(n));
     }
     const int side = strataSide(std::max(options_.directPoints, 1));
-    const bool any =
-        std::any_of(emitters_.begin(), emitters_.end(), [](const auto& e) { return e->on(); });
     parallelFor(leaves.size(), 16, [&](size_t i) {
         Node& e = h_.nodes[leaves[i]];
         e.HxMeasured = true;
-        e.Hx = Rgb{};
-        if (!any || !(e.rho.maxComponent() > 0)) return;  // a lamp's face reflects nothing
+        double* H = Hunit_.data() + static_cast<size_t>(leaves[i]) * J;
+        std::fill(H, H + J, 0.0);
+        if (!(e.rho.maxComponent() > 0)) return;  // a lamp's face reflects nothing
         // The mean over stratified points of the element: the sun's and the sky's light
         // changes across a leaf at a shadow's edge, which one point would miss.
         Rng rng(0x6a09e667f3bcc908ull ^ static_cast<uint64_t>(leaves[i]));
-        Rgb sum;
+        double out[kMaxEmitterComponents];
         for (int cell = 0; cell < side * side; ++cell) {
             const double u = ((cell % side) + rng.uniform()) / side;
             const double v = ((cell / side) + rng.uniform()) / side;
             const ReceiverPoint p{pointOnElement(e, u, v), e.normal, e.polygon};
-            sum += totalIrradiance(emitters_, *vis_, p, options_.directRays, rng.next());
+            for (size_t j = 0; j < J;) {
+                const Light& l = scene_.lights[static_cast<size_t>(emitterLights_[j])];
+                Rng own(rng.next());
+                l.emitter->unitIrradiance(*vis_, p, options_.directRays, own, out);
+                const size_t n = std::min(static_cast<size_t>(l.emitter->components()), J - j);
+                for (size_t c = 0; c < n; ++c) H[j + c] += out[c];
+                j += std::max<size_t>(n, 1);
+            }
         }
-        e.Hx = sum * (1.0 / (side * side));
+        for (size_t j = 0; j < J; ++j) H[j] /= side * side;
     });
+    sumDirectIrradiance();
+}
+
+void HierarchicalSolver::sumDirectIrradiance() {
+    const size_t J = emitterLights_.size();
     directPower_ = Rgb{};
-    for (const Node& e : h_.nodes)
-        if (!e.isCluster() && e.isLeaf()) directPower_ += e.Hx * e.area;
+    if (J == 0) return;
+    Hunit_.resize(h_.nodes.size() * J, 0.0);
+    for (size_t n = 0; n < h_.nodes.size(); ++n) {
+        Node& e = h_.nodes[n];
+        if (e.isCluster() || !e.isLeaf()) continue;
+        e.Hx = Rgb{};
+        for (size_t j = 0; j < J; ++j)
+            e.Hx +=
+                scene_.lights[static_cast<size_t>(emitterLights_[j])].radiance * Hunit_[n * J + j];
+        directPower_ += e.Hx * e.area;
+    }
 }
 
 double HierarchicalSolver::sourcePower() const {

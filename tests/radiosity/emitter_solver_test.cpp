@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "furnace.h"
+#include "radiosity/light_response.h"
 #include "radiosity/solver.h"
 
 using namespace radiosity;
@@ -91,7 +92,7 @@ TEST(EmitterSolver, ARoomLitOnlyThroughAnOpeningIsLitByWhatComesIn) {
     const double rho = 0.5, E = 3;
     HierarchicalSolver solver(box(rho, true), {});
     solver.addEmitter(makeSun("sun", {0, 0, 1}, 0, Rgb::gray(E)));
-    solver.addEmitter(makeEnvironment("sky", Sh9Rgb{}));  // an environment that is off
+    solver.addEmitter(makeEnvironment("sky", Sh9Rgb{}));  // a sky that is off (9 lights)
     solver.solve();
     for (int wall = 1; wall <= 4; ++wall) EXPECT_GT(meanB(solver, wall), 0.01) << wall;
     const SolverStats st = solver.stats();
@@ -115,4 +116,34 @@ TEST(EmitterSolver, ASkyDoesNotReachInsideAClosedBox) {
     solver.solve();
     EXPECT_EQ(solver.stats().emittedPower.r, 0.0);
     EXPECT_EQ(meanB(solver, 0), 0.0);
+}
+
+TEST(EmitterSolver, LightResponsesSplitTheSolutionByLight) {
+    // Radiosity is linear in the strengths (the sky's 9 coefficients each a light): the sum
+    // of each light's response times its strength is the solution. Both iterate to the same
+    // fixed point; a tolerance far below the assertion's 1e-6 keeps the convergence error
+    // out of the comparison (as light_response_test.cpp does for faces).
+    SolverOptions o;
+    o.tolerance = 1e-14;
+    HierarchicalSolver solver(box(0.5, true), o);
+    solver.addEmitter(makeSun("sun", {0.3, 0.2, 1}, 0.53, Rgb{3, 2, 1}));
+    Sh9Rgb sky;
+    sky.c[0] = Rgb::gray(0.5);
+    sky.c[2] = Rgb{0.2, 0.25, 0.3};
+    sky.c[3] = Rgb::gray(-0.05);
+    solver.addEmitter(makeEnvironment("sky", sky));
+    solver.solve();
+    const LightResponses R(solver);
+    ASSERT_EQ(R.lights(), 10);
+    std::vector<Rgb> radiance;
+    for (const Light& l : solver.scene().lights) radiance.push_back(l.radiance);
+    double maxB = 0;
+    for (const Node& n : solver.hierarchy().nodes) maxB = std::max(maxB, n.B.maxComponent());
+    ASSERT_GT(maxB, 0);
+    const auto& nodes = solver.hierarchy().nodes;
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        if (nodes[n].isCluster() || !nodes[n].isLeaf()) continue;
+        const Rgb B = R.reflected(static_cast<int>(n), radiance);
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(B[c], nodes[n].B[c], 1e-6 * maxB) << n;
+    }
 }
