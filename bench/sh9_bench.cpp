@@ -26,6 +26,7 @@
 #include "radiosity/sky_transfer.h"
 #include "radiosity/stopwatch.h"
 #include "relight/io/obj_reader.h"
+#include "tests/support/skies.h"
 
 using radiosity::Rgb;
 using radiosity::Sh9;
@@ -34,14 +35,7 @@ using radiosity::Vec3;
 
 namespace {
 
-// A clear sky, z up (the format's tools' example).
-Sh9Rgb clearSky() {
-    Sh9Rgb L;
-    L.c = {Rgb{1.00, 1.10, 1.35}, Rgb{0.05, 0.06, 0.08}, Rgb{0.55, 0.60, 0.80},
-           Rgb{0.20, 0.18, 0.12}, Rgb{0.02, 0.02, 0.02}, Rgb{0.03, 0.03, 0.04},
-           Rgb{0.10, 0.12, 0.18}, Rgb{0.10, 0.09, 0.05}, Rgb{0.04, 0.04, 0.03}};
-    return L;
-}
+using radiosity::test::clearSky;  // tests/support/skies.h
 
 // Median and 90th percentile (ms) of `frames` calls of f.
 template <class F>

@@ -310,6 +310,7 @@ int HierarchicalSolver::insertObject(const std::string& name, std::vector<Polygo
     // rest keep their scales.
     const std::vector<int> reseen = remeasureSeenNear(cluster, firstNode);
     boundGather(firstNode, /*balance=*/true, &reseen);
+    refreshEmitterLight(report);
     inserted_.back().shadowLeaves = report.shadowLeaves;
 
     const auto t0 = Clock::now();
@@ -487,6 +488,9 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
     }
     frozenNodes_ = rec.frozenNodes;
     links_.index();
+    // The emitters' direct light as before the change: measured again with the same rays
+    // (seeded by node) and the same geometry, it is what it was.
+    if (!emitterLights_.empty()) updateDirectIrradiance(/*all=*/true);
     if (report) report->shadowLeaves = std::move(rec.shadowLeaves);
 }
 

@@ -93,6 +93,7 @@ void HierarchicalSolver::removeRealObject(int object, DynamicUpdate* reportOut) 
     const std::vector<int> also =
         remeasureSeenNear(box.centre(), 0.5 * glm::length(box.diagonal()), h_.nodes.size(), object);
     if (!also.empty()) boundGather(h_.nodes.size(), /*balance=*/true, &also);
+    refreshEmitterLight(report);
     inserted_.back().shadowLeaves = report.shadowLeaves;
     report.timeLinks += secondsSince(t1);
 

@@ -214,6 +214,9 @@ class HierarchicalSolver {
     /// sum Hx A). Added before solve(), or followed by gatherPushPull(). Returns the index
     /// of its first light.
     int addEmitter(std::shared_ptr<const Emitter> emitter);
+    /// Removes the lights from `first` on, which must all have an emitter (added by
+    /// addEmitter after every inserted object is removed), and their direct light.
+    void removeEmitterLights(int first);
     /// Applies `edit` to the emitter of light `light` (any of its components; its strengths
     /// taken from their radiances), then as setLightEmitter. Throws as Emitter::apply.
     void editEmitter(int light, const EmitterEdit& edit);
@@ -529,6 +532,10 @@ class HierarchicalSolver {
     std::vector<double> Hunit_;       ///< [node * emitterLights + j], leaves only
     /// Hx of every leaf from Hunit_ and the lights' radiances; directPower_.
     void sumDirectIrradiance();
+    /// After a dynamic change of the geometry: the emitters' direct light measured again on
+    /// every leaf (an object shades the sun and the sky anywhere, not only where it cuts a
+    /// link); the leaves where it changed join report.shadowLeaves.
+    void refreshEmitterLight(DynamicUpdate& report);
     Rgb directPower_;  ///< sum Hx A over the leaves (radiosity units x m^2)
     /// The faces' emitted power plus directPower_ (max channel): what the oracle and the
     /// convergence test measure against.

@@ -2,6 +2,7 @@
 // light per leaf element (Hx), which gather/push-pull then carries as indirect light.
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "radiosity/detail/rng.h"
 #include "radiosity/parallel.h"
@@ -19,11 +20,22 @@ int HierarchicalSolver::addEmitter(std::shared_ptr<const Emitter> emitter) {
         l.radiance = s.at(static_cast<size_t>(c));
         l.emitter = emitter;
         l.component = c;
-        emitterLights_.push_back(static_cast<int>(scene_.lights.size()));
         scene_.lights.push_back(std::move(l));
     }
     updateDirectIrradiance(/*all=*/true);  // the layout of Hunit_ changed
     return first;
+}
+
+void HierarchicalSolver::removeEmitterLights(int first) {
+    if (first < 0 || static_cast<size_t>(first) > scene_.lights.size())
+        throw std::invalid_argument("removeEmitterLights: no light " + std::to_string(first));
+    for (size_t l = static_cast<size_t>(first); l < scene_.lights.size(); ++l)
+        if (!scene_.lights[l].emitter)
+            throw std::invalid_argument("removeEmitterLights: light '" + scene_.lights[l].name +
+                                        "' is faces");
+    scene_.lights.resize(static_cast<size_t>(first));
+    updateDirectIrradiance(/*all=*/true);
+    if (started_) gatherPushPull();
 }
 
 void HierarchicalSolver::editEmitter(int light, const EmitterEdit& edit) {
@@ -54,6 +66,16 @@ void HierarchicalSolver::setLightEmitter(int light, std::shared_ptr<const Emitte
 }
 
 void HierarchicalSolver::updateDirectIrradiance(bool all) {
+    // The scene's lights with an emitter (given with the scene, or added): when they
+    // change, so does the layout of Hunit_.
+    std::vector<int> now;
+    for (size_t l = 0; l < scene_.lights.size(); ++l)
+        if (scene_.lights[l].emitter) now.push_back(static_cast<int>(l));
+    if (now != emitterLights_) {
+        emitterLights_ = std::move(now);
+        Hunit_.clear();
+        all = true;
+    }
     const size_t J = emitterLights_.size();
     if (J == 0) return;
     Hunit_.resize(h_.nodes.size() * J, 0.0);
@@ -106,6 +128,26 @@ void HierarchicalSolver::sumDirectIrradiance() {
                 scene_.lights[static_cast<size_t>(emitterLights_[j])].radiance * Hunit_[n * J + j];
         directPower_ += e.Hx * e.area;
     }
+}
+
+void HierarchicalSolver::refreshEmitterLight(DynamicUpdate& report) {
+    if (emitterLights_.empty()) return;
+    const size_t J = emitterLights_.size();
+    const size_t before = Hunit_.size() / J;
+    const std::vector<double> old = Hunit_;
+    updateDirectIrradiance(/*all=*/true);
+    for (size_t n = 0; n < before && n < h_.nodes.size(); ++n) {
+        const Node& e = h_.nodes[n];
+        if (e.isCluster() || !e.isLeaf()) continue;
+        for (size_t j = 0; j < J; ++j)
+            if (old[n * J + j] != Hunit_[n * J + j]) {
+                report.shadowLeaves.push_back(static_cast<int>(n));
+                break;
+            }
+    }
+    std::sort(report.shadowLeaves.begin(), report.shadowLeaves.end());
+    report.shadowLeaves.erase(std::unique(report.shadowLeaves.begin(), report.shadowLeaves.end()),
+                              report.shadowLeaves.end());
 }
 
 double HierarchicalSolver::sourcePower() const {

@@ -77,9 +77,13 @@ std::vector<std::string> lightReachWarnings(const SceneFile& sf, const radiosity
                                             const radiosity::Visibility& vis) {
     std::vector<std::string> out;
     const std::string file = (sf.dir / "scene.json").string();
+    size_t entry = 0;  // its index in scene.json's "lights" (a sky is 9 lights here)
     for (size_t l = 0; l < faces.lights.size(); ++l) {
+        if (l > 0 && faces.lights[l].component == 0) ++entry;
+        // A light that is not faces (sun, sky, point lamp) has no face to cast from.
+        if (faces.lights[l].emitter) continue;
         std::string w =
-            reachWarning(faces, vis, l, file + ": key \"lights[" + std::to_string(l) + "]\"");
+            reachWarning(faces, vis, l, file + ": key \"lights[" + std::to_string(entry) + "]\"");
         if (!w.empty()) out.push_back(std::move(w));
     }
     return out;
@@ -91,6 +95,7 @@ std::vector<std::string> virtualLightReachWarnings(const EditFile& edit,
                                                    size_t realLights) {
     std::vector<std::string> out;
     for (size_t i = 0; i < edit.addLights.size() && realLights + i < faces.lights.size(); ++i) {
+        if (edit.addLights[i].emitter) continue;  // no face to cast from
         std::string w =
             reachWarning(faces, vis, realLights + i,
                          edit.file.string() + ": key \"add_lights[" + std::to_string(i) + "]\"");

@@ -7,6 +7,7 @@
 // without it. An edit with virtual lights or objects is also prepared in memory (their
 // insertion needs the solver: relight/dynamic/dynamic_relighting.h); the views then show the
 // real lights' part of the edit.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -72,6 +73,11 @@ Image renderWithVirtualParts(Relighting& full, const EditFile& edit,
     for (const std::string& name : edit.removeObjects) {
         dyn.removeObject(name);
         report.push_back(insertionReport(dyn, "removed object", name));
+    }
+    // Moved lights (a sun turned, a lamp moved): off where they were, virtual where they went.
+    for (const VirtualLight& l : movedLights(full.scene, edit)) {
+        dyn.addLight(l);
+        report.push_back(insertionReport(dyn, "moved light", l.name));
     }
     for (const VirtualLight& l : edit.addLights) {
         dyn.addLight(l);
@@ -181,8 +187,10 @@ int runRender(const RenderArgs& a) {
     // A folder that cannot be made fails at once too, not after the preparation.
     if (!a.debugViews.empty()) createDebugViewsFolder(a.debugViews);
     std::unique_ptr<Relighting> full;
-    const bool virtualParts =
-        !edit.addLights.empty() || !edit.addObjects.empty() || !edit.removeObjects.empty();
+    const bool virtualParts = !edit.addLights.empty() || !edit.addObjects.empty() ||
+                              !edit.removeObjects.empty() ||
+                              std::any_of(edit.lights.begin(), edit.lights.end(),
+                                          [](const auto& l) { return l.second.moves(); });
     const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false,
                                           a.debugViews.empty() && !virtualParts ? nullptr : &full);
     RenderTimes t;

@@ -72,6 +72,8 @@ DynamicRelighting::~DynamicRelighting() {
     // restores each insertion's snapshot), with the photo's radiances.
     try {
         while (solver_.insertedObjects() > 0) solver_.removeLastObject();
+        if (solver_.scene().lights.size() > static_cast<size_t>(realLights_))
+            solver_.removeEmitterLights(realLights_);  // virtual suns, lamps, skies
         solver_.setNewShadowSplits({});
         solver_.setLightRadiances(photoRadiance_);
     } catch (...) {
@@ -111,6 +113,18 @@ std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
 
 int DynamicRelighting::addLight(const VirtualLight& light) {
     rememberGatherBefore();
+    if (light.emitter) {
+        // A sun, point lamp or sky (radiosity/emitter.h): no face, no link; its direct light
+        // enters the leaves (the solver's Hx) and is carried by the links as they are.
+        const auto t0 = Clock::now();
+        const int first = solver_.addEmitter(light.emitter);
+        radiosity::DynamicUpdate u;
+        u.sweeps = solver_.gatherPushPull();
+        u.timeGather = secondsSince(t0);
+        for (const Rgb& s : light.emitter->strengths()) radiance_.push_back(s);
+        afterUpdate(u, /*allVertices=*/true);
+        return first;
+    }
     std::vector<Vec3> corners(light.corners.begin(), light.corners.end());
     radiosity::Polygon p = radiosity::makePolygon(corners, -1, Rgb{});
     radiosity::DynamicUpdate u;

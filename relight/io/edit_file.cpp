@@ -29,7 +29,7 @@ std::string lightNames(const SceneFile& sf) {
     if (sf.scene.lights.empty()) return "no lights";
     std::string names;
     for (const radiosity::Light& light : sf.scene.lights)
-        names += (names.empty() ? "" : ", ") + light.name;
+        if (light.component == 0) names += (names.empty() ? "" : ", ") + light.name;
     return names;
 }
 
@@ -39,6 +39,50 @@ std::string productText(double scale, const Rgb& c) {
     char s[128];
     std::snprintf(s, sizeof s, "%.6g x [%.6g, %.6g, %.6g]", scale, c.r, c.g, c.b);
     return s;
+}
+
+/// A sun's, point lamp's or sky's edit: its fields, then checked by applying it to the
+/// scene's light (radiosity::Emitter::apply refuses a field the type lacks, naming it).
+LightEdit readEmitterEdit(const JsonReader& r, const json& entry, const std::string& path,
+                          const radiosity::Emitter& light) {
+    r.checkKeys(entry, path,
+                {"scale", "irradiance", "intensity", "sh9", "direction", "position", "rotate"});
+    if (entry.empty()) r.fail(path, "says nothing; give \"scale\" or a field of the light's type");
+    radiosity::EmitterEdit e;
+    if (auto s = entry.find("scale"); s != entry.end()) {
+        e.scale = r.number(*s, child(path, "scale"));
+        if (*e.scale < 0) r.fail(child(path, "scale"), "scale must not be negative");
+    }
+    for (const char* key : {"irradiance", "intensity"})
+        if (auto c = entry.find(key); c != entry.end()) {
+            if (e.strength) r.fail(path, "has both \"irradiance\" and \"intensity\"");
+            e.strength = r.rgb(*c, child(path, key));
+            for (int k = 0; k < 3; ++k)
+                if ((*e.strength)[k] < 0)
+                    r.fail(element(child(path, key), static_cast<size_t>(k)),
+                           "must not be negative");
+        }
+    if (auto j = entry.find("sh9"); j != entry.end()) e.sh9 = readSh9(r, *j, child(path, "sh9"));
+    if (auto j = entry.find("direction"); j != entry.end())
+        e.direction = r.point(*j, child(path, "direction"));
+    if (auto j = entry.find("position"); j != entry.end())
+        e.position = r.point(*j, child(path, "position"));
+    if (auto j = entry.find("rotate"); j != entry.end()) {
+        const std::string rPath = child(path, "rotate");
+        r.checkKeys(*j, rPath, {"axis", "degrees"});
+        e.rotate = radiosity::EmitterEdit::Rotation{
+            r.point(r.require(*j, rPath, "axis"), child(rPath, "axis")),
+            r.number(r.require(*j, rPath, "degrees"), child(rPath, "degrees"))};
+    }
+    try {
+        light.clone()->apply(e);
+    } catch (const std::invalid_argument& ex) {
+        r.fail(path, ex.what());
+    }
+    LightEdit edit;
+    edit.scale = e.scale;
+    edit.emitter = e;
+    return edit;
 }
 
 LightEdit readLightEdit(const JsonReader& r, const json& entry, const std::string& path) {
@@ -71,7 +115,7 @@ LightEdit readLightEdit(const JsonReader& r, const json& entry, const std::strin
 
 VirtualLight readVirtualLight(const JsonReader& r, const json& lj, const std::string& path) {
     LightJson l = readLightJson(r, lj, path, /*typeRequired=*/false, /*estimateAllowed=*/false);
-    return {std::move(l.name), std::move(l.corners), l.radiance};
+    return {std::move(l.name), std::move(l.corners), l.radiance, std::move(l.emitter)};
 }
 
 VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::string& path,
@@ -122,6 +166,35 @@ VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::
     return v;
 }
 
+/// Light i's strength after `e`: its emitter with the nominal strengths of its components,
+/// edited (a sky's sh9 set, turned or scaled; a sun's irradiance; a lamp's intensity).
+/// Light i's emitter with the nominal strengths of its components, edited by `e` (a sky's
+/// sh9 set, turned or scaled; a sun's irradiance or direction; a lamp's intensity or place).
+std::unique_ptr<radiosity::Emitter> editedEmitter(const SceneFile& sf, size_t i,
+                                                  const radiosity::EmitterEdit& e,
+                                                  const std::vector<Rgb>& nominal,
+                                                  const EditFile& edit) {
+    const radiosity::Light& light = sf.scene.lights[i];
+    const size_t first = i - static_cast<size_t>(light.component);
+    std::unique_ptr<radiosity::Emitter> em = light.emitter->clone();
+    const size_t n = static_cast<size_t>(em->components());
+    em->setStrengths({nominal.data() + first, n});
+    try {
+        em->apply(e);
+    } catch (const std::invalid_argument& ex) {
+        JsonReader(edit.file.string()).fail(child("lights", light.name), ex.what());
+    }
+    return em;
+}
+
+/// Light i's strength after `e`.
+Rgb editedStrength(const SceneFile& sf, size_t i, const radiosity::EmitterEdit& e,
+                   const std::vector<Rgb>& nominal, const EditFile& edit) {
+    return editedEmitter(sf, i, e, nominal, edit)
+        ->strengths()
+        .at(static_cast<size_t>(sf.scene.lights[i].component));
+}
+
 }  // namespace
 
 void placeObject(VirtualObject& v, ObjFile obj, std::vector<std::string>& warnings) {
@@ -169,7 +242,10 @@ EditFile readEdit(const json& root, const fs::path& file, const SceneFile& sf) {
             if (sf.scene.findLight(l.key()) < 0)
                 r.fail(path,
                        "unknown light \"" + l.key() + "\" (the scene has " + lightNames(sf) + ")");
-            edit.lights[l.key()] = readLightEdit(r, l.value(), path);
+            const radiosity::Light& light = sf.scene.lights[sf.scene.findLight(l.key())];
+            edit.lights[l.key()] = light.emitter
+                                       ? readEmitterEdit(r, l.value(), path, *light.emitter)
+                                       : readLightEdit(r, l.value(), path);
         }
     }
 
@@ -249,6 +325,12 @@ std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
     for (size_t i = 0; i < lights.size(); ++i) {
         if (auto it = edit.lights.find(lights[i].name); it != edit.lights.end()) {
             const LightEdit& change = it->second;
+            if (change.emitter && lights[i].emitter) {
+                // A moved light is off where it was; movedLights() puts it where it went.
+                out[i] =
+                    change.moves() ? Rgb{} : editedStrength(sf, i, *change.emitter, nominal, edit);
+                continue;
+            }
             out[i] = change.scale ? nominal[i] * *change.scale : *change.radiance;
             // A scale may overflow the radiance (a given radiance was checked finite): an
             // infinite radiance makes every pixel it reaches inf, or NaN where inf meets 0.
@@ -262,6 +344,21 @@ std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
         }
         // The photo's state, applied to the given nominal radiance (maybe an estimated one).
         out[i] = sf.lightOnInPhoto(i) ? nominal[i] : Rgb{};
+    }
+    return out;
+}
+
+std::vector<VirtualLight> movedLights(const SceneFile& sf, const EditFile& edit) {
+    std::vector<VirtualLight> out;
+    const auto& lights = sf.scene.lights;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (!lights[i].emitter || lights[i].component != 0) continue;
+        const auto it = edit.lights.find(lights[i].name);
+        if (it == edit.lights.end() || !it->second.moves()) continue;
+        out.push_back({lights[i].name,
+                       {},
+                       Rgb{},
+                       editedEmitter(sf, i, *it->second.emitter, sf.nominalRadiance, edit)});
     }
     return out;
 }

@@ -13,26 +13,37 @@
 #include <filesystem>
 #include <iosfwd>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "radiosity/emitter.h"
 #include "relight/io/obj_reader.h"
 #include "relight/io/scene_file.h"
 
 namespace relight {
 
-/// A change to one real light; exactly one of the two is set.
+/// A change to one real light. A quad: exactly one of scale and radiance is set. A sun,
+/// point lamp or sky (radiosity/emitter.h): `emitter` holds the edit's fields (scale,
+/// irradiance, intensity, sh9, direction, position, rotate), checked against the light;
+/// `scale` repeats its scale.
 struct LightEdit {
     std::optional<double> scale;  ///< multiplies the nominal radiance (0 = off), >= 0
     std::optional<Rgb> radiance;  ///< sets the radiance, every channel >= 0
+    std::optional<radiosity::EmitterEdit> emitter{};
+    /// Whether it moves its light (a sun's direction, a point lamp's position): what the
+    /// light gives then changes in shape, not only in strength.
+    bool moves() const { return emitter && (emitter->direction || emitter->position); }
 };
 
 /// A virtual light ("add_lights": the fields of a scene light; the radiance must be given).
 struct VirtualLight {
     std::string name;
-    std::vector<radiosity::Vec3> corners;  ///< a planar convex polygon of non-zero area
-    Rgb radiance;                          ///< photo units, >= 0
+    std::vector<radiosity::Vec3> corners;  ///< quad: a planar convex polygon of non-zero area
+    Rgb radiance;                          ///< quad: photo units, >= 0
+    /// A sun, point lamp or sky (no corners), with its strengths; null for a quad.
+    std::shared_ptr<const radiosity::Emitter> emitter{};
 };
 
 /// A virtual object ("add_objects"), its faces in world space.
@@ -76,9 +87,18 @@ EditFile parseEdit(std::istream& editJson, const std::filesystem::path& file, co
 /// light gets scale * nominal, or the given radiance. Throws InputError naming the edit's
 /// file and key ("lights.A.scale") when scale * nominal is not finite (the relit image would
 /// not be), and std::invalid_argument when `nominal` has the wrong size or the edit names a
-/// light the scene lacks (an edit loaded against another scene).
+/// light the scene lacks (an edit loaded against another scene). A sun, point lamp or sky
+/// (radiosity/emitter.h) named by the edit gets the strengths of its emitter edited
+/// (scale, irradiance, intensity, sh9, rotate), or 0 when the edit moves it (movedLights()).
 std::vector<Rgb> editedRadiance(const SceneFile& sf, const EditFile& edit,
                                 const std::vector<Rgb>& nominal);
+
+/// The lights that `edit` moves (a sun's direction, a point lamp's position: LightEdit::moves)
+/// at their new places, with their edited strengths (from scene.json's), as virtual lights:
+/// a moved light is drawn as the light switched off where it was (editedRadiance gives its
+/// components 0) and a virtual light where it went, so that its new shadows and bounces are
+/// measured as a virtual light's (relight/dynamic/dynamic_relighting.h).
+std::vector<VirtualLight> movedLights(const SceneFile& sf, const EditFile& edit);
 
 /// Places an object's geometry as loadEdit does: v.transform applied to `obj`'s positions
 /// (faces turned back under a mirroring transform), faces checked and repaired with

@@ -4,53 +4,106 @@
 
 #include "radiosity/scene.h"
 
+#include <stdexcept>
+
 namespace relight {
 
 using jsonio::child;
 using jsonio::element;
 
+radiosity::Sh9Rgb readSh9(const jsonio::JsonReader& r, const nlohmann::json& j,
+                          const std::string& path) {
+    if (j.is_string())
+        r.fail(path, "\"" + j.get<std::string>() +
+                         "\" is not supported yet here: give the 9 coefficients");
+    const nlohmann::json& rows = r.array(j, path, radiosity::kSh9Count);
+    radiosity::Sh9Rgb L;
+    for (size_t k = 0; k < rows.size(); ++k) L.c[k] = r.rgb(rows[k], element(path, k));
+    return L;
+}
+
 namespace {
 
-/// The format's lights at a point or at infinity (docs/scene-format.md: sun, point,
-/// environment) are valid input that relight does not light with yet. They are refused by
-/// name and type before their keys are checked, as a quad's: "unknown key direction" would
-/// not say what is wrong.
-void refuseTypesNotSupportedYet(const jsonio::JsonReader& r, const nlohmann::json& lj,
-                                const std::string& path) {
-    if (!lj.is_object()) return;  // checkKeys() says so
-    const auto t = lj.find("type");
-    if (t == lj.end() || !t->is_string()) return;
-    const std::string type = t->get<std::string>();
-    if (type != "sun" && type != "point" && type != "environment") return;
-    // Appended piece by piece: gcc 12 warns (-Wrestrict, falsely) on "'" + name + "'".
-    std::string what = "light ";
-    if (const auto n = lj.find("name"); n != lj.end() && n->is_string()) {
-        what += '\'';
-        what += n->get<std::string>();
-        what += '\'';
-    } else {
-        what += "without a name";
+/// A light's RGB strength ("irradiance", "intensity"): three finite numbers >= 0. The
+/// format's "estimate" (a fit to the photo) is refused as not supported yet.
+radiosity::Rgb readStrength(const jsonio::JsonReader& r, const nlohmann::json& lj,
+                            const std::string& path, const char* key) {
+    const std::string kPath = child(path, key);
+    const nlohmann::json& j = r.require(lj, path, key);
+    if (j.is_string())
+        r.fail(kPath, "\"" + j.get<std::string>() +
+                          "\" is not supported yet here: give the light's " + key);
+    const radiosity::Rgb c = r.rgb(j, kPath);
+    for (int k = 0; k < 3; ++k)
+        if (c[k] < 0) r.fail(element(kPath, static_cast<size_t>(k)), "must not be negative");
+    return c;
+}
+
+/// The emitter's own checks (radiosity/emitter.h) as an InputError at `path`.
+template <class Make>
+std::shared_ptr<radiosity::Emitter> made(const jsonio::JsonReader& r, const std::string& path,
+                                         Make&& make) {
+    try {
+        return make();
+    } catch (const std::invalid_argument& e) {
+        r.fail(path, e.what());
     }
-    what += ": type '";
-    what += type;
-    what += "' is not supported yet (relight lights scenes with quad lights only)";
-    r.fail(child(path, "type"), what);
+}
+
+std::shared_ptr<radiosity::Emitter> readSun(const jsonio::JsonReader& r, const nlohmann::json& lj,
+                                            const std::string& path, const std::string& name) {
+    r.checkKeys(lj, path, {"name", "type", "direction", "angle", "irradiance"});
+    const radiosity::Vec3 d = r.point(r.require(lj, path, "direction"), child(path, "direction"));
+    const double angle = r.number(r.require(lj, path, "angle"), child(path, "angle"));
+    const radiosity::Rgb E = readStrength(r, lj, path, "irradiance");
+    return made(r, path, [&] { return radiosity::makeSun(name, d, angle, E); });
+}
+
+std::shared_ptr<radiosity::Emitter> readPoint(const jsonio::JsonReader& r, const nlohmann::json& lj,
+                                              const std::string& path, const std::string& name) {
+    r.checkKeys(lj, path, {"name", "type", "position", "intensity"});
+    const radiosity::Vec3 x = r.point(r.require(lj, path, "position"), child(path, "position"));
+    const radiosity::Rgb I = readStrength(r, lj, path, "intensity");
+    return made(r, path, [&] { return radiosity::makePointLamp(name, x, I); });
+}
+
+std::shared_ptr<radiosity::Emitter> readEnvironment(const jsonio::JsonReader& r,
+                                                    const nlohmann::json& lj,
+                                                    const std::string& path,
+                                                    const std::string& name) {
+    r.checkKeys(lj, path, {"name", "type", "sh9"});
+    const radiosity::Sh9Rgb L = readSh9(r, r.require(lj, path, "sh9"), child(path, "sh9"));
+    return made(r, path, [&] { return radiosity::makeEnvironment(name, L); });
 }
 
 }  // namespace
 
 LightJson readLightJson(const jsonio::JsonReader& r, const nlohmann::json& lj,
                         const std::string& path, bool typeRequired, bool estimateAllowed) {
-    refuseTypesNotSupportedYet(r, lj, path);
-    r.checkKeys(lj, path, {"name", "type", "vertices", "radiance"});
+    if (!lj.is_object()) r.checkKeys(lj, path, {});  // says it is not an object
     LightJson l;
     l.name = r.string(r.require(lj, path, "name"), child(path, "name"));
     if (l.name.empty()) r.fail(child(path, "name"), "empty light name");
     if (auto t = lj.find("type"); typeRequired || t != lj.end()) {
         const std::string tPath = child(path, "type");
         const std::string type = r.string(typeRequired ? r.require(lj, path, "type") : *t, tPath);
-        if (type != "quad") r.fail(tPath, "light type " + type + " not supported");
+        if (type == "sun") {
+            l.emitter = readSun(r, lj, path, l.name);
+            return l;
+        }
+        if (type == "point") {
+            l.emitter = readPoint(r, lj, path, l.name);
+            return l;
+        }
+        if (type == "environment") {
+            l.emitter = readEnvironment(r, lj, path, l.name);
+            return l;
+        }
+        if (type != "quad")
+            r.fail(tPath,
+                   "light type " + type + " not supported (quad, sun, point or environment)");
     }
+    r.checkKeys(lj, path, {"name", "type", "vertices", "radiance"});
 
     const std::string vPath = child(path, "vertices");
     const nlohmann::json& vj = r.array(r.require(lj, path, "vertices"), vPath, 0, 3);

@@ -3,9 +3,11 @@
 // the scene loader and the edit loader.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "radiosity/emitter.h"
 #include "radiosity/rgb.h"
 #include "radiosity/vec.h"
 #include "relight/io/json_reader.h"
@@ -14,17 +16,26 @@ namespace relight {
 
 struct LightJson {
     std::string name;                      ///< not empty
-    std::vector<radiosity::Vec3> corners;  ///< a planar convex polygon of non-zero area
-    radiosity::Rgb radiance;               ///< >= 0; zero where it is "estimate"
-    bool estimate = false;                 ///< "radiance": "estimate"
+    std::vector<radiosity::Vec3> corners;  ///< quad: a planar convex polygon of non-zero area
+    radiosity::Rgb radiance;               ///< quad: >= 0; zero where it is "estimate"
+    bool estimate = false;                 ///< quad: "radiance": "estimate"
+    /// A sun, point lamp or environment (radiosity/emitter.h), with its strengths; null for
+    /// a quad.
+    std::shared_ptr<radiosity::Emitter> emitter;
 };
 
-/// Reads {"name", "type", "vertices", "radiance"} at `path`. `typeRequired`: scene.json
-/// needs "type" ("quad", the only type relight lights with; the format's "sun", "point" and
-/// "environment" are refused, naming the light and its type); an edit may leave it out.
-/// `estimateAllowed`: a scene light may say "estimate" (its photo calibrates it); a virtual light
-/// may not. Throws InputError naming the key.
+/// Reads a light at `path`: {"name", "type", ...} with the fields of its type
+/// (docs/scene-format.md, "lights"): quad "vertices", "radiance"; sun "direction", "angle",
+/// "irradiance"; point "position", "intensity"; environment "sh9" (9 RGB rows).
+/// `typeRequired`: scene.json needs "type"; an edit may leave it out (a quad).
+/// `estimateAllowed`: a scene quad may say "estimate" (its photo calibrates it); a virtual
+/// light may not; a sun's and a sky's "estimate" (a fit to the photo) are refused as not
+/// supported yet. Throws InputError naming the key.
 LightJson readLightJson(const jsonio::JsonReader& r, const nlohmann::json& lj,
                         const std::string& path, bool typeRequired, bool estimateAllowed);
+
+/// An environment's "sh9": 9 rows of RGB, each finite (a coefficient may be negative).
+radiosity::Sh9Rgb readSh9(const jsonio::JsonReader& r, const nlohmann::json& j,
+                          const std::string& path);
 
 }  // namespace relight

@@ -221,6 +221,21 @@ void readLights(const JsonReader& r, const json& root, SceneFile& sf) {
         light.name = lightJson.name;
         if (sf.scene.findLight(light.name) >= 0)
             r.fail(child(path, "name"), "duplicate light name \"" + light.name + "\"");
+        if (lightJson.emitter) {
+            // A sun, point lamp or sky: one light per component, no faces
+            // (radiosity::Light::emitter); their strengths are the nominal radiances.
+            const std::vector<Rgb> s = lightJson.emitter->strengths();
+            for (size_t c = 0; c < s.size(); ++c) {
+                radiosity::Light part = light;
+                part.radiance = s[c];
+                part.emitter = lightJson.emitter;
+                part.component = static_cast<int>(c);
+                sf.scene.lights.push_back(std::move(part));
+                sf.nominalRadiance.push_back(s[c]);
+                sf.estimateRadiance.push_back(false);
+            }
+            continue;
+        }
         const std::string objectName = "light:" + light.name;
         if (sf.scene.findObject(objectName) >= 0)
             r.fail(child(path, "name"),

@@ -428,12 +428,11 @@ TEST_F(LoadEdit, VirtualLightErrorsNameTheKey) {
     EXPECT_TRUE(
         contains(loadError(withList("add_lights", estimate)),
                  "key \"add_lights[0].radiance\": a virtual light's radiance must be given"));
-    // The format's other types are refused by name and type (relight lights with quads).
+    // The format's other types are read with their own fields (a sun has no "radiance").
     const json sun = {
-        {"name", "V2"}, {"type", "sun"}, {"direction", {0, 0, 1}}, {"irradiance", {1, 1, 1}}};
-    EXPECT_TRUE(
-        contains(loadError(withList("add_lights", sun)),
-                 "key \"add_lights[0].type\": light 'V2': type 'sun' is not supported yet"));
+        {"name", "V2"}, {"type", "sun"}, {"direction", {0, 0, 1}}, {"radiance", {1, 1, 1}}};
+    EXPECT_TRUE(contains(loadError(withList("add_lights", sun)),
+                         "key \"add_lights[0].radiance\": unknown key"));
     json negative = quadLight("V1");
     negative["radiance"] = {1, -1, 1};
     EXPECT_TRUE(contains(loadError(withList("add_lights", negative)),

@@ -53,6 +53,7 @@ inline EditRenders renderEditIn(const std::string& dir, const std::string& edit,
     const EditFile e = loadEdit(dir + "/edits/" + edit + ".json", r.scene);
     DynamicRelighting dyn(r, editRadiance(r.scene, e, r.prepared.photoRadiance));
     for (const auto& name : e.removeObjects) dyn.removeObject(name);
+    for (const auto& l : movedLights(r.scene, e)) dyn.addLight(l);
     for (const auto& l : e.addLights) dyn.addLight(l);
     for (const auto& obj : e.addObjects) dyn.addObject(obj);
     for (const DisplayMode mode : modes) out.images.push_back(dyn.render(mode));

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "radiosity/emitter.h"
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -701,30 +703,63 @@ TEST_F(LoadScene, UnsupportedLightTypeAndDuplicateNames) {
     EXPECT_TRUE(contains(msg, "key \"lights[1].name\": duplicate light name \"L\"")) << msg;
 }
 
-TEST_F(LoadScene, TheFormatsOtherLightTypesAreRefusedByNameAndType) {
+TEST_F(LoadScene, TheFormatsOtherLightTypesAreRead) {
     // docs/scene-format.md's sun, point and environment lights, as the format writes them:
-    // relight does not light with them yet and says so, naming the file, the key, the light
-    // and its type (not "unknown key direction").
-    const json others = json::parse(R"([
-      {"name": "sun", "type": "sun", "direction": [0.4, -0.3, 0.5], "angle": 0.53,
-       "irradiance": [3, 2.9, 2.7]},
-      {"name": "P", "type": "point", "position": [0.5, 0.5, 0.5], "intensity": [1, 1, 1]},
-      {"name": "sky", "type": "environment", "sh9": "estimate"}
-    ])");
-    for (const json& light : others) {
+    // one light per component (a sky's 9 coefficients are 9 lights of one name), no faces,
+    // their strengths as nominal radiances.
+    scene = baseScene();
+    scene["lights"].push_back(json::parse(R"({"name": "sun", "type": "sun",
+        "direction": [0.4, -0.3, 0.5], "angle": 0.53, "irradiance": [3, 2.9, 2.7]})"));
+    scene["lights"].push_back(json::parse(
+        R"({"name": "P", "type": "point", "position": [0.5, 0.5, 0.5], "intensity": [1, 2, 3]})"));
+    json sky = {{"name", "sky"}, {"type", "environment"}, {"sh9", json::array()}};
+    for (int k = 0; k < 9; ++k) sky["sh9"].push_back({0.1 * k, 0.2, -0.05});
+    scene["lights"].push_back(sky);
+    const SceneFile sf = load();
+    const auto& lights = sf.scene.lights;
+    ASSERT_EQ(lights.size(), 1u + 1 + 1 + 9);
+    EXPECT_TRUE(lights[1].polygons.empty());
+    ASSERT_TRUE(lights[1].emitter);
+    EXPECT_STREQ(lights[1].emitter->type(), "sun");
+    EXPECT_EQ(sf.nominalRadiance[1].g, 2.9);
+    EXPECT_STREQ(lights[2].emitter->type(), "point");
+    EXPECT_EQ(sf.nominalRadiance[2].b, 3.0);
+    for (int k = 0; k < 9; ++k) {
+        EXPECT_EQ(lights[3 + k].name, "sky");
+        EXPECT_EQ(lights[3 + k].component, k);
+        EXPECT_EQ(lights[3 + k].emitter, lights[3].emitter);
+        EXPECT_EQ(sf.nominalRadiance[3 + k].r, 0.1 * k);
+        EXPECT_EQ(sf.nominalRadiance[3 + k].b, -0.05);
+    }
+}
+
+TEST_F(LoadScene, TheOtherLightTypesBadFieldsAreNamed) {
+    const std::vector<std::pair<json, std::string>> bad = {
+        {json::parse(R"({"name": "sun", "type": "sun", "direction": [0, 0, 0], "angle": 0.53,
+                         "irradiance": [1, 1, 1]})"),
+         "key \"lights[1]\": sun 'sun': direction must be finite and non-zero"},
+        {json::parse(R"({"name": "sun", "type": "sun", "direction": [0, 0, 1], "angle": 0.53,
+                         "irradiance": "estimate"})"),
+         "key \"lights[1].irradiance\": \"estimate\" is not supported yet"},
+        {json::parse(R"({"name": "P", "type": "point", "position": [0, 0, 1],
+                         "intensity": [1, -1, 1]})"),
+         "key \"lights[1].intensity[1]\": must not be negative"},
+        {json::parse(R"({"name": "sky", "type": "environment", "sh9": "estimate"})"),
+         "key \"lights[1].sh9\": \"estimate\" is not supported yet"},
+        {json::parse(R"({"name": "sky", "type": "environment", "sh9": [[1, 1, 1]]})"),
+         "key \"lights[1].sh9\""},
+        {json::parse(R"({"name": "P", "type": "point", "position": [0, 0, 1],
+                         "intensity": [1, 1, 1], "direction": [0, 0, 1]})"),
+         "key \"lights[1].direction\""},
+        {json::parse(R"({"name": "X", "type": "spot"})"),
+         "key \"lights[1].type\": light type spot not supported"},
+    };
+    for (const auto& [light, expected] : bad) {
         scene = baseScene();
         scene["lights"].push_back(light);
-        const std::string name = light["name"], type = light["type"];
         const std::string msg = loadError();
-        EXPECT_TRUE(contains(msg, jsonFile() + ": key \"lights[1].type\": light '" + name +
-                                      "': type '" + type + "' is not supported yet"))
-            << msg;
+        EXPECT_TRUE(contains(msg, jsonFile() + ": " + expected)) << msg;
     }
-    // Without a name it still says which entry and type.
-    scene = baseScene();
-    scene["lights"].push_back({{"type", "sun"}, {"direction", {0, 0, 1}}});
-    const std::string msg = loadError();
-    EXPECT_TRUE(contains(msg, "key \"lights[1].type\": light without a name: type 'sun'")) << msg;
 }
 
 TEST_F(LoadScene, ReflectanceOfOneIsClampedWithWarning) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "radiosity/sky_transfer.h"
+#include "tests/support/skies.h"
 
 namespace relight {
 namespace {
@@ -23,14 +24,7 @@ using radiosity::Sh9Rgb;
 using radiosity::Vec3;
 constexpr double kPi = std::numbers::pi;
 
-// A clear sky, z up: bright overhead and towards +x (the example of the format's tools).
-Sh9Rgb clearSky() {
-    Sh9Rgb L;
-    L.c = {Rgb{1.00, 1.10, 1.35}, Rgb{0.05, 0.06, 0.08}, Rgb{0.55, 0.60, 0.80},
-           Rgb{0.20, 0.18, 0.12}, Rgb{0.02, 0.02, 0.02}, Rgb{0.03, 0.03, 0.04},
-           Rgb{0.10, 0.12, 0.18}, Rgb{0.10, 0.09, 0.05}, Rgb{0.04, 0.04, 0.03}};
-    return L;
-}
+using radiosity::test::clearSky;  // tests/support/skies.h
 
 // The radiance of the model, I = (rho / pi) (T.L + f s): how the test renders its image.
 Rgb render(const SkyFitPixel& px, const Sh9Rgb& L, const Rgb& sun) {
