@@ -5,11 +5,13 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "radiosity/emitter.h"
 #include "relight/display/metric.h"
 #include "relight/dynamic/dynamic_relighting.h"
+#include "relight/errors.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/scene_file.h"
 #include "relight/prepared.h"
@@ -88,4 +90,68 @@ TEST(Courtyard, TheSunMovedMatchesTheTruth) {
     std::printf("sun_moved, pixel display: rel_rmse %.4f, changed %.4f\n", s.relRmse,
                 s.changedRelRmse);
     EXPECT_LE(s.relRmse, kLightEditBound);
+}
+
+namespace {
+
+EditFile editOf(const SceneFile& sf, const std::string& text) {
+    std::istringstream in(text);
+    return parseEdit(in, kCourtyard + "/edits/test.json", sf);
+}
+
+std::string editError(const SceneFile& sf, const std::string& text) {
+    try {
+        editOf(sf, text);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(Courtyard, EditsOfTheSunAndTheSkyGiveTheirStrengthsOrMoveThem) {
+    const SceneFile sf = loadScene(kCourtyard);
+    // The sky turned: its 9 lights get the coefficients of the turned sky
+    // (radiosity::sh9RotateAboutAxis, tested against closed forms in sh9_test.cpp).
+    const EditFile turn = editOf(
+        sf,
+        R"({"format": "relight-edit/1", "lights": {"sky": {"rotate": {"axis": [0, 0, 1], "degrees": 120}}}})");
+    const std::vector<Rgb> r = editedRadiance(sf, turn, sf.nominalRadiance);
+    radiosity::Sh9Rgb sky;
+    for (int k = 0; k < 9; ++k) sky.c[static_cast<size_t>(k)] = sf.nominalRadiance[1 + k];
+    const radiosity::Sh9Rgb want = radiosity::sh9RotateAboutAxis(sky, {0, 0, 1}, 120);
+    for (int k = 0; k < 9; ++k)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(r[1 + k][c], want.c[static_cast<size_t>(k)][c]) << k;
+    EXPECT_EQ(r[0].r, sf.nominalRadiance[0].r);  // the sun as in the photo
+    EXPECT_TRUE(movedLights(sf, turn).empty());
+
+    // The sun turned and scaled: off where it was, one virtual sun at the new direction
+    // with the scaled irradiance.
+    const EditFile move = editOf(
+        sf,
+        R"({"format": "relight-edit/1", "lights": {"sun": {"direction": [0, 0, 1], "scale": 0.5}}})");
+    EXPECT_EQ(editedRadiance(sf, move, sf.nominalRadiance)[0].r, 0.0);
+    const std::vector<VirtualLight> moved = movedLights(sf, move);
+    ASSERT_EQ(moved.size(), 1u);
+    EXPECT_EQ(moved[0].emitter->strengths()[0].r, 0.5 * sf.nominalRadiance[0].r);
+    // Straight up: a floor (normal +z) gets the whole (scaled) irradiance, unoccluded.
+    EXPECT_NEAR(moved[0].emitter->unoccludedIrradiance({{0, 0, 0}, {0, 0, 1}, -1}).r,
+                0.5 * sf.nominalRadiance[0].r, 1e-12);
+
+    // A field the light's type lacks, named with the light and the key.
+    EXPECT_NE(
+        editError(sf, R"({"format": "relight-edit/1", "lights": {"sun": {"position": [0, 0, 1]}}})")
+            .find("key \"lights.sun\": light 'sun' (sun) has no position"),
+        std::string::npos);
+    EXPECT_NE(
+        editError(sf, R"({"format": "relight-edit/1", "lights": {"sky": {"radiance": [1, 1, 1]}}})")
+            .find("key \"lights.sky.radiance\": unknown key"),
+        std::string::npos);
+    EXPECT_NE(
+        editError(
+            sf,
+            R"({"format": "relight-edit/1", "lights": {"sky": {"rotate": {"axis": [0, 0, 0], "degrees": 90}}}})")
+            .find("key \"lights.sky\""),
+        std::string::npos);
 }
