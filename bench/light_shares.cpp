@@ -16,7 +16,8 @@
 // cache is read whatever binary made it (its key is taken from its own header). With --out,
 // per edit: the per-pixel display's render (EDIT.exr, to score with `relight eval`) and
 // EDIT_shares.png: the render, the truth, and model/truth of the edit's irradiance per pixel
-// (grey 1, red up to 2 and more, blue down to 1/2 and less), side by side. --box: the sums
+// (grey 1, red up to 2 and more, blue down to 1/2 and less), side by side; and on the
+// terminal the error by scale (blockError) and the 16 px regions that hold most of it. --box: the sums
 // over those pixels only (x in [X0, X1), y in [Y0, Y1)).
 #include <algorithm>
 #include <cmath>
@@ -99,6 +100,59 @@ double blockError(const Image& a, const Image& b, const std::vector<uint8_t>& ke
             }
         }
     return sb > 0 ? std::sqrt(se / n) / (sb / n) : 0.0;
+}
+
+/// Where the metric's squared error is: the 4 px blocks' (kept as in blockError) summed
+/// per region of 16 x 16 px; prints the `top` regions with their share of the whole and the
+/// ratio of the render to the photo beside that of the truth to the truth's identity.
+void worstRegions(const Image& img, const Image& truth, const Image& photo, const Image& identity,
+                  const std::vector<uint8_t>& keep, int top) {
+    constexpr int kBlock = 4, kRegion = 16;
+    struct Region {
+        double err = 0, r = 0, t = 0, p = 0, i = 0;
+        int x = 0, y = 0;
+    };
+    const int rw = img.width / kRegion, rh = img.height / kRegion;
+    std::vector<Region> regions(static_cast<size_t>(rw) * rh);
+    double total = 0;
+    for (int by = 0; by + kBlock <= rh * kRegion; by += kBlock)
+        for (int bx = 0; bx + kBlock <= rw * kRegion; bx += kBlock) {
+            bool kept = true;
+            for (int y = by; y < by + kBlock; ++y)
+                for (int x = bx; x < bx + kBlock; ++x)
+                    kept = kept && keep[static_cast<size_t>(y) * img.width + x] != 0;
+            if (!kept) continue;
+            Region& g = regions[static_cast<size_t>(by / kRegion) * rw + bx / kRegion];
+            g.x = bx / kRegion * kRegion;
+            g.y = by / kRegion * kRegion;
+            for (int c = 0; c < 3; ++c) {
+                double m[4] = {0, 0, 0, 0};
+                for (int y = by; y < by + kBlock; ++y)
+                    for (int x = bx; x < bx + kBlock; ++x) {
+                        m[0] += static_cast<double>(img.at(x, y)[c]);
+                        m[1] += static_cast<double>(truth.at(x, y)[c]);
+                        m[2] += static_cast<double>(photo.at(x, y)[c]);
+                        m[3] += static_cast<double>(identity.at(x, y)[c]);
+                    }
+                const double e = (m[0] - m[1]) * (m[0] - m[1]);
+                g.err += e;
+                total += e;
+                g.r += m[0];
+                g.t += m[1];
+                g.p += m[2];
+                g.i += m[3];
+            }
+        }
+    std::sort(regions.begin(), regions.end(),
+              [](const Region& a, const Region& b) { return a.err > b.err; });
+    for (int k = 0; k < top && k < static_cast<int>(regions.size()); ++k) {
+        const Region& g = regions[static_cast<size_t>(k)];
+        std::printf(
+            "    16 px region at (%d, %d): %.0f %% of the squared error; render/photo "
+            "%.3f, truth/identity %.3f\n",
+            g.x, g.y, total > 0 ? 100 * g.err / total : 0.0, g.p > 0 ? g.r / g.p : 0.0,
+            g.i > 0 ? g.t / g.i : 0.0);
+    }
 }
 
 }  // namespace
@@ -209,6 +263,7 @@ int main(int argc, char** argv) {
                 blockError(img, truth, keep, 40), std::sqrt(n2),
                 std::sqrt(std::max(0.0, e4 * e4 - n2)),
                 blockError(img, carried, keep, 4) / std::sqrt(2.0));
+            worstRegions(img, truth, P.photo, identity, keep, 4);
             for (int y = 0; y < img.height; ++y)
                 for (int x = 0; x < W; ++x)
                     for (int c = 0; c < 3; ++c) {

@@ -118,10 +118,14 @@ int main() {
                                p);
             gathered = std::max(gathered, H[1].maxComponent());
         }
+        // The light the outside's surfaces receive from the lamp, all bounces: what they
+        // reflect over their reflectance (0.5 everywhere).
         std::printf(
             "refineSeconds %g: links %d; the lamp's reflected radiosity inside %.4g, "
-            "outside %.4g (area means); outward gather max %.4g\n",
-            seconds, solver.stats().links, inside / areaIn, outside / areaOut, gathered);
+            "outside %.4g (area means); the outside receives %.2f %% of the lamp's power; "
+            "outward gather max %.4g\n",
+            seconds, solver.stats().links, inside / areaIn, outside / areaOut,
+            100 * outside / 0.5 / emitted, gathered);
     }
     return 0;
 }
