@@ -1,0 +1,131 @@
+// A lamp in a closed shade whose walls are thin sheets (two back-to-back faces on the same
+// corners, as the staircase's lamp shade and an imported model's thin parts come): no light
+// of that lamp may reach anything outside the shade, however coarse the links. This measures
+// how much does, and through which links: those whose source is a cluster holding the
+// shade's inner faces (a cluster sends the area mean of its surfaces' radiosity the same
+// way in every direction, Sillion's isotropic cluster, so the bright inner faces' light
+// leaves through the outer ones), or an element.
+//
+//   ./build/bench/shaded_lamp
+// prints, with no time budget and with none at all (the coarsest links), the lamp's
+// reflected radiosity inside and outside the shade (area means per unit radiance), the
+// light the links out of the shade carry, and the largest indirect irradiance a ray gather
+// finds on the shade's outer faces. All of the outside figures should be 0.
+
+#include <algorithm>
+#include <cstdio>
+
+#include "radiosity/final_gather.h"
+#include "radiosity/light_response.h"
+#include "radiosity/solver.h"
+#include "tests/support/cut_room.h"
+
+using namespace radiosity;
+
+namespace {
+
+/// The cut room with a second lamp, a 10 cm quad facing down, inside a closed 40 x 40 x
+/// 30 cm shade standing 0.8 m above the floor; each face of the shade cut 2 x 2, as a
+/// sheet: a face outward (object "shade_out") and its twin inward ("shade_in").
+Scene shadedLampRoom(int cut) {
+    Scene s = test::cutRoom(cut, 0.5, /*box=*/false);
+    s.objects.push_back("shade_out");   // 3
+    s.objects.push_back("shade_in");    // 4
+    s.objects.push_back("table_lamp");  // 5
+    const Vec3 o{1.8, 1.3, 0.8};
+    for (auto f : test::boxFacesInward(0.4, 0.4, 0.3)) {
+        for (Vec3& p : f) p += o;
+        test::addCutQuad(s, f, 2, 4, Rgb::gray(0.5));  // inward: the lamp's side
+        std::reverse(f.begin(), f.end());
+        test::addCutQuad(s, f, 2, 3, Rgb::gray(0.5));  // outward: the room's side
+    }
+    Polygon lamp = makePolygon({{o.x + 0.15, o.y + 0.15, o.z + 0.25},
+                                {o.x + 0.15, o.y + 0.25, o.z + 0.25},
+                                {o.x + 0.25, o.y + 0.25, o.z + 0.25},
+                                {o.x + 0.25, o.y + 0.15, o.z + 0.25}},
+                               5, Rgb{});
+    lamp.light = 1;
+    s.lights.push_back({"table_lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(100.0)});
+    s.polygons.push_back(lamp);
+    return s;
+}
+
+}  // namespace
+
+int main() {
+    std::printf("command: ./build/bench/shaded_lamp\n");
+    const Scene scene = shadedLampRoom(8);
+    for (const double seconds : {0.0, 1e-9}) {
+        SolverOptions o;
+        o.epsilon = 1e-4;
+        o.refineSeconds = seconds;
+        HierarchicalSolver solver(scene, o);
+        solver.solve();
+        const LightResponses R(solver);
+        const auto& nodes = solver.hierarchy().nodes;
+        double inside = 0, outside = 0, areaIn = 0, areaOut = 0;
+        for (size_t n = 0; n < nodes.size(); ++n) {
+            const Node& e = nodes[n];
+            if (e.isCluster() || !e.isLeaf()) continue;
+            const int obj = scene.polygons[e.polygon].object;
+            const double r = R.reflected(static_cast<int>(n))[1].maxComponent();
+            (obj == 4 ? inside : outside) += r * e.area;
+            (obj == 4 ? areaIn : areaOut) += e.area;
+        }
+        // Which links carry the lamp's light out: those whose source holds inner faces
+        // and whose receiver holds none, by the source's kind.
+        std::vector<char> in(nodes.size(), 0), out(nodes.size(), 0);
+        for (size_t n = nodes.size(); n-- > 0;) {
+            const Node& e = nodes[n];
+            if (!e.isCluster() && e.isLeaf()) {
+                const int obj = scene.polygons[e.polygon].object;
+                in[n] = obj == 4;
+                out[n] = obj != 4 && obj != 5;
+            }
+        }
+        for (int pass = 0; pass < 64; ++pass)
+            for (size_t n = 0; n < nodes.size(); ++n)
+                for (int k = 0; k < nodes[n].childCount; ++k) {
+                    in[n] |= in[nodes[n].firstChild + k];
+                    out[n] |= out[nodes[n].firstChild + k];
+                }
+        double viaCluster = 0, viaElement = 0;
+        int nc = 0, ne = 0;
+        for (const Link& l : solver.links()) {
+            if (!in[l.source] || in[l.receiver]) continue;
+            const double t = l.F * static_cast<double>(l.V) *
+                             R.reflected(l.source)[1].maxComponent() * nodes[l.receiver].area;
+            if (nodes[l.source].isCluster()) {
+                viaCluster += t;
+                ++nc;
+            } else {
+                viaElement += t;
+                ++ne;
+            }
+        }
+        // Against what the lamp emits: pi L A for its 10 cm quad at unit radiance.
+        const double emitted = 3.141592653589793 * 0.01;
+        std::printf(
+            "  out of the shade: %d links from clusters carry %.4g (%.2f %% of the lamp's "
+            "power), %d from elements %.4g\n",
+            nc, viaCluster, 100 * viaCluster / emitted, ne, viaElement);
+        // Gather at the middle of each outward face.
+        double gathered = 0;
+        for (size_t p = 0; p < scene.polygons.size(); ++p) {
+            if (scene.polygons[p].object != 3) continue;
+            Rgb H[2];
+            rayGatherResponses(solver, R, static_cast<int>(p), scene.polygons[p].centroid(), H, 8,
+                               p);
+            gathered = std::max(gathered, H[1].maxComponent());
+        }
+        // The light the outside's surfaces receive from the lamp, all bounces: what they
+        // reflect over their reflectance (0.5 everywhere).
+        std::printf(
+            "refineSeconds %g: links %d; the lamp's reflected radiosity inside %.4g, "
+            "outside %.4g (area means); the outside receives %.2f %% of the lamp's power; "
+            "outward gather max %.4g\n",
+            seconds, solver.stats().links, inside / areaIn, outside / areaOut,
+            100 * outside / 0.5 / emitted, gathered);
+    }
+    return 0;
+}
