@@ -213,6 +213,17 @@ radiosity::Rgb DynamicRelighting::indirectAt(int leaf, const Vec3& x) const {
     return sum;
 }
 
+radiosity::Rgb DynamicRelighting::removedIndirect(const RemovedRegion& gone, size_t pixel,
+                                                  size_t i) const {
+    if (gone.lights <= 0 || gone.indirect.empty()) return indirectAt(gone.leaf[i], gone.point[i]);
+    // Gathered at the revealed point itself, with the objects out, for the edit's radiances.
+    const size_t L = static_cast<size_t>(std::min(gone.lights, realLights_));
+    Rgb sum;
+    for (size_t l = 0; l < L; ++l)
+        sum += radiance_[l] * gone.indirect[pixel * static_cast<size_t>(gone.lights) + l];
+    return sum;
+}
+
 void DynamicRelighting::markChangedLeaves(const std::vector<int>& leaves) {
     if (leafPending_.empty()) {
         leafPending_.assign(realNodes_, 0);
@@ -558,7 +569,7 @@ VirtualOverlay DynamicRelighting::overlay() {
                         continue;
                     }
                     if (gone.leaf[i] < 0) continue;
-                    const Rgb Hs = gone.direct[i] + indirectAt(gone.leaf[i], gone.point[i]);
+                    const Rgb Hs = gone.direct[i] + removedIndirect(gone, g, i);
                     for (int c = 0; c < 3; ++c)
                         added[c] +=
                             static_cast<double>(gone.reflectance[3 * g + static_cast<size_t>(c)]) *

@@ -133,6 +133,8 @@ class DynamicRelighting {
     void refreshDirect(const std::vector<int>& vertices, bool virtualOnly);
     void refreshIndirect(bool full);  ///< and the virtual objects' surfaces
     std::vector<Rgb> gatherAtVertices(bool byRays = false) const;
+    /// The indirect light at a removed region's box pixel and its sample i (object_removal.h).
+    Rgb removedIndirect(const RemovedRegion& gone, size_t pixel, size_t i) const;
     /// indirectPixel_ where the per-pixel display has its own, indirect_ otherwise.
     const std::vector<Rgb>& pixelIndirect() const {
         return indirectPixel_.empty() ? indirect_ : indirectPixel_;

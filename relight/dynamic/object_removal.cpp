@@ -1,5 +1,6 @@
 #include "relight/dynamic/object_removal.h"
 #include "relight/dynamic/overlay_samples.h"
+#include "relight/dynamic/rectified_fill.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +8,7 @@
 #include <unordered_map>
 
 #include "radiosity/direct_light.h"
+#include "radiosity/final_gather.h"
 #include "radiosity/parallel.h"
 #include "relight/pipeline/pixel_light.h"
 #include "relight/pipeline/texture_fill.h"
@@ -65,6 +67,54 @@ std::vector<char> dilate(const std::vector<char>& m, int w, int h, int g) {
     return out;
 }
 
+/// The region's indirect light per box pixel and real light: side^2 rays per sample, the
+/// photo's gather of a vertex over a pixel's samples, then averaged over the pixels within
+/// 2 `block` of it that see the same surface (indirect light varies slowly along a surface;
+/// 25 pixels' worth of rays bring the noise to a fifth of one pixel's).
+void gatherRegionIndirect(RemovedRegion& region, const Relighting& r,
+                          const std::vector<int>& nowSurface, int bw, int bh, int block) {
+    const auto& solver = *r.solver;
+    const size_t L = static_cast<size_t>(std::max(0, r.responses->lights()));
+    const size_t kk = static_cast<size_t>(region.k * region.k);
+    const size_t boxPixels = static_cast<size_t>(bw) * static_cast<size_t>(bh);
+    const int side = std::max(2, r.gatherSide / region.k);
+    std::vector<Rgb> own(boxPixels * L, Rgb{});
+    std::vector<int> count(boxPixels, 0);
+    radiosity::parallelForChunks(boxPixels, 4, [&](size_t first, size_t last) {
+        std::vector<Rgb> H(L);
+        for (size_t b = first; b != last; ++b)
+            for (size_t s = 0; s < kk; ++s) {
+                const size_t i = b * kk + s;
+                if (region.leaf[i] < 0) continue;
+                radiosity::rayGatherResponses(solver, *r.responses, region.polygon[i],
+                                              region.point[i], H.data(), side,
+                                              kRegionSeed ^ (i * 0x9E3779B9ull));
+                for (size_t l = 0; l < L; ++l) own[b * L + l] += H[l];
+                ++count[b];
+            }
+    });
+    const int R = 2 * std::max(1, block);
+    region.lights = static_cast<int>(L);
+    region.indirect.assign(boxPixels * L, Rgb{});
+    radiosity::parallelFor(static_cast<size_t>(bh), 1, [&](size_t row) {
+        const int y = static_cast<int>(row);
+        for (int x = 0; x < bw; ++x) {
+            const size_t b = static_cast<size_t>(y * bw + x);
+            int n = 0;
+            for (int dy = std::max(0, y - R); dy <= std::min(bh - 1, y + R); ++dy)
+                for (int dx = std::max(0, x - R); dx <= std::min(bw - 1, x + R); ++dx) {
+                    const size_t c = static_cast<size_t>(dy * bw + dx);
+                    if (count[c] == 0 || nowSurface[c] != nowSurface[b]) continue;
+                    for (size_t l = 0; l < L; ++l) region.indirect[b * L + l] += own[c * L + l];
+                    n += count[c];
+                }
+            if (n > 0)
+                for (size_t l = 0; l < L; ++l)
+                    region.indirect[b * L + l] = region.indirect[b * L + l] * (1.0 / n);
+        }
+    });
+}
+
 }  // namespace
 
 int defaultMaskGrowth(int width, int height) {
@@ -73,7 +123,7 @@ int defaultMaskGrowth(int width, int height) {
 }
 
 RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& removed,
-                                 size_t realNodes, int grow) {
+                                 size_t realNodes, int grow, SurfaceSynthesis synthesis) {
     RemovedRegion region;
     const ItemBuffer& items = r.items;
     const PreparedImage& P = r.prepared;
@@ -171,6 +221,10 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
         }
     });
 
+    // The indirect light at the revealed points, per real light (the header's `indirect`).
+    if (r.responses && r.gatherSide > 0)
+        gatherRegionIndirect(region, r, nowSurface, bw, bh, defaultFillBlock(W, H));
+
     // The mask: the covered pixels, and the ring around them on the surfaces they revealed.
     std::vector<char> boxCore(boxPixels, 0);
     std::vector<int> revealed;
@@ -195,7 +249,7 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
     const int wh = std::min(H - 1, by0 + bh - 1 + margin) - wy0 + 1;
     const size_t windowPixels = static_cast<size_t>(ww) * static_cast<size_t>(wh);
     std::vector<float> value(3 * windowPixels, 0.0f);
-    std::vector<int> regionId(windowPixels, -1);
+    std::vector<int> regionId(windowPixels, -1), shownPolygon(windowPixels, -1);
     std::vector<FillRole> role(windowPixels, FillRole::none);
     std::vector<double> light(windowPixels, 0.0);
     const auto inBoxMask = [&](int x, int y) {
@@ -231,10 +285,11 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             int s0 = -2;
             bool one = true;
             for (int s = 0; s < items.spp && one; ++s) {
-                const int sf =
-                    surfaceOf(items.polygon[static_cast<size_t>(items.sampleIndex(x, y, s))]);
+                const int p = items.polygon[static_cast<size_t>(items.sampleIndex(x, y, s))];
+                const int sf = surfaceOf(p);
                 one = sf >= 0 && (s0 == -2 || sf == s0);
                 s0 = sf;
+                if (s == 0) shownPolygon[w] = p;
             }
             if (!one) continue;
             const Rgb Hp = photoIrradiance(P, px);
@@ -262,6 +317,41 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             role[w] = FillRole::none;
     TextureFillOptions fillOptions;
     fillOptions.block = defaultFillBlock(W, H);
+    // Each hidden plane rebuilt from its own visible part, rectified (rectified_fill.h); the
+    // photo-space fill below only for the pixels it leaves (a plane the photo shows nowhere).
+    const PhotoWindow photoWindow{wx0, wy0, ww, wh, value, regionId, shownPolygon, role};
+    std::vector<HiddenPoint> hidden;
+    std::vector<size_t> hiddenPixel;
+    for (size_t b = 0; b < boxPixels; ++b) {
+        if (!mask[b] || nowSurface[b] < 0) continue;
+        for (size_t s = 0; s < kk; ++s) {
+            const size_t i = b * kk + s;
+            const int sf = surfaceOf(region.polygon[i]);
+            if (region.leaf[i] < 0 || sf < 0) continue;
+            hidden.push_back({region.point[i], region.polygon[i], sf});
+            hiddenPixel.push_back(b);
+        }
+    }
+    RectifiedFillOptions rectOptions;
+    rectOptions.synthesis = synthesis;
+    rectOptions.block = fillOptions.block;
+    rectOptions.bridge = 2 * (2 * grow + 1) + 2;  // the guard band, twice for a grazing plane
+    rectOptions.margin = std::max({kSampleMargin, bw, bh});
+    rectOptions.planeTolerance = 1e-5 * diag;
+    const RectifiedFillResult rect = fillRectified(camera, scene, photoWindow, hidden, rectOptions);
+    std::vector<float> rectSum(3 * boxPixels, 0.0f);
+    std::vector<int> rectCount(boxPixels, 0);
+    for (size_t i = 0; i < hidden.size(); ++i) {
+        if (!rect.filled[i]) continue;
+        const size_t b = hiddenPixel[i];
+        for (size_t c = 0; c < 3; ++c) rectSum[3 * b + c] += rect.value[3 * i + c];
+        ++rectCount[b];
+    }
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx)
+            if (rectCount[static_cast<size_t>(by * bw + bx)] > 0)
+                role[static_cast<size_t>(by0 + by - wy0) * static_cast<size_t>(ww) +
+                     static_cast<size_t>(bx0 + bx - wx0)] = FillRole::none;
     const TextureFillResult fill = fillTexture({ww, wh, value, regionId, role}, fillOptions);
 
     // The region: the box, the fill's reflectance; the leaf's model where the photo shows
@@ -278,7 +368,13 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             if (!mask[b] || nowSurface[b] < 0) continue;
             const size_t w = static_cast<size_t>(by0 + by - wy0) * static_cast<size_t>(ww) +
                              static_cast<size_t>(bx0 + bx - wx0);
-            if (!fill.unfilled[w]) {
+            if (const int n = rectCount[b]; n > 0) {
+                for (size_t c = 0; c < 3; ++c)
+                    region.reflectance[3 * b + c] = rectSum[3 * b + c] / static_cast<float>(n);
+                ++region.filled;
+                continue;
+            }
+            if (!fill.unfilled[w] && role[w] == FillRole::fill) {
                 for (int c = 0; c < 3; ++c)
                     region.reflectance[3 * b + static_cast<size_t>(c)] =
                         fill.value[3 * w + static_cast<size_t>(c)];
