@@ -12,6 +12,7 @@
 #include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 #include "room_fixture.h"
+#include "temp_dir.h"
 
 using namespace relight;
 
@@ -273,4 +274,40 @@ TEST(ObjectRemoval, TheCabinetAgainstTwoWallsLeavesNoGhost) {
     dyn.removeLast();
     const Image back = dyn.render(DisplayMode::pixel);
     EXPECT_EQ(back.rgb, before.rgb);  // bit for bit
+}
+
+TEST(ObjectRemoval, ACabinetCutByTheImageBorderLeavesNoGhost) {
+    // The room's photo cropped so that the cabinet's silhouette runs off its left border
+    // (the camera's principal point moved with the crop, the photo's pixels unchanged): the
+    // hidden walls' visible parts lie on one side only, and the hole reaches the border.
+    constexpr int kCrop = 122;  // the cabinet spans about x = 105..140 of the 320 pixels
+    test::TempDir dir("removal_border");
+    SceneFile sf = loadScene(kRoom);
+    const Image full = readImage(kRoom + "/photo.exr");
+    Image cropped(full.width - kCrop, full.height);
+    for (int y = 0; y < cropped.height; ++y)
+        for (int x = 0; x < cropped.width; ++x)
+            std::copy_n(full.at(x + kCrop, y), 3, cropped.at(x, y));
+    writeImage(dir.path() / "photo.exr", cropped);
+    sf.photos.at(0).file = dir.path() / "photo.exr";
+    sf.camera.width = cropped.width;
+    sf.camera.cx -= kCrop;
+    RelightOptions o = options();
+    o.epsilon = 1e-4;
+    o.spp = 16;
+    auto r = prepareRelighting(std::move(sf), o);
+    const std::vector<radiosity::Rgb> radiance(r->prepared.photoRadiance.begin(),
+                                               r->prepared.photoRadiance.end());
+    DynamicRelighting dyn(*r, radiance);
+    const Image before = dyn.render(DisplayMode::pixel);
+    dyn.removeObject("cabinet");
+    const RemovedRegion& g = dyn.removedRegion();
+    ASSERT_FALSE(g.empty());
+    EXPECT_EQ(g.x0, 0);  // the hole touches the border
+    EXPECT_EQ(g.modelled, 0);
+    const Image without = dyn.render(DisplayMode::pixel);
+    EXPECT_EQ(keptColour(*r, g, without, "cabinet"), 0);
+    EXPECT_GT(keptColour(*r, g, before, "cabinet"), 50);
+    dyn.removeLast();
+    EXPECT_EQ(dyn.render(DisplayMode::pixel).rgb, before.rgb);  // bit for bit
 }
