@@ -182,7 +182,7 @@ void DynamicRelighting::refreshRemoved(const radiosity::DynamicUpdate& u, bool a
     // light again where they may have changed it.
     const bool fresh = removed != regionObjects_;
     if (fresh) {
-        removed_ = buildRemovedRegion(r_, removed, realNodes_, maskGrowth_);
+        removed_ = buildRemovedRegion(r_, removed, realNodes_, maskGrowth_, synthesis_);
         regionObjects_ = removed;
     }
     if (fresh || allLights) {
@@ -215,7 +215,8 @@ radiosity::Rgb DynamicRelighting::indirectAt(int leaf, const Vec3& x) const {
 
 radiosity::Rgb DynamicRelighting::removedIndirect(const RemovedRegion& gone, size_t pixel,
                                                   size_t i) const {
-    if (gone.lights <= 0 || gone.indirect.empty()) return indirectAt(gone.leaf[i], gone.point[i]);
+    if (gone.lights <= 0 || gone.gathered.empty() || !gone.gathered[pixel])
+        return indirectAt(gone.leaf[i], gone.point[i]);
     // Gathered at the revealed point itself, with the objects out, for the edit's radiances.
     const size_t L = static_cast<size_t>(std::min(gone.lights, realLights_));
     Rgb sum;

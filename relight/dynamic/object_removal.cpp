@@ -78,39 +78,64 @@ void gatherRegionIndirect(RemovedRegion& region, const Relighting& r,
     const size_t kk = static_cast<size_t>(region.k * region.k);
     const size_t boxPixels = static_cast<size_t>(bw) * static_cast<size_t>(bh);
     const int side = std::max(2, r.gatherSide / region.k);
-    std::vector<Rgb> own(boxPixels * L, Rgb{});
+    // The responses are the photo's solution's; the solver's own, solved again with the
+    // objects out, holds the light they blocked from the surfaces around (their shadows
+    // gone): the same rays read it too, and the ratio of the two corrects the responses.
+    const auto& lights = solver.scene().lights;
+    std::vector<Rgb> own(boxPixels * L, Rgb{}), now(boxPixels, Rgb{}), then(boxPixels, Rgb{});
     std::vector<int> count(boxPixels, 0);
+    // On a larger photo, the pixels of a lattice of step `block` only: the rays per area of
+    // the scene stay those of a 320 x 240 photo.
+    const int step = std::max(1, block);
     radiosity::parallelForChunks(boxPixels, 4, [&](size_t first, size_t last) {
         std::vector<Rgb> H(L);
-        for (size_t b = first; b != last; ++b)
+        for (size_t b = first; b != last; ++b) {
+            const int x = region.x0 + static_cast<int>(b % static_cast<size_t>(bw));
+            const int y = region.y0 + static_cast<int>(b / static_cast<size_t>(bw));
+            if (x % step != 0 || y % step != 0) continue;
             for (size_t s = 0; s < kk; ++s) {
                 const size_t i = b * kk + s;
                 if (region.leaf[i] < 0) continue;
+                const uint64_t seed = kRegionSeed ^ (i * 0x9E3779B9ull);
                 radiosity::rayGatherResponses(solver, *r.responses, region.polygon[i],
-                                              region.point[i], H.data(), side,
-                                              kRegionSeed ^ (i * 0x9E3779B9ull));
-                for (size_t l = 0; l < L; ++l) own[b * L + l] += H[l];
+                                              region.point[i], H.data(), side, seed);
+                for (size_t l = 0; l < L; ++l) {
+                    own[b * L + l] += H[l];
+                    if (l < lights.size()) then[b] += lights[l].radiance * H[l];
+                }
+                now[b] += radiosity::rayGatherIndirect(solver, region.polygon[i], region.point[i],
+                                                       side, seed);
                 ++count[b];
             }
+        }
     });
     const int R = 2 * std::max(1, block);
     region.lights = static_cast<int>(L);
     region.indirect.assign(boxPixels * L, Rgb{});
+    region.gathered.assign(boxPixels, 0);
     radiosity::parallelFor(static_cast<size_t>(bh), 1, [&](size_t row) {
         const int y = static_cast<int>(row);
         for (int x = 0; x < bw; ++x) {
             const size_t b = static_cast<size_t>(y * bw + x);
             int n = 0;
+            Rgb sumNow, sumThen;
             for (int dy = std::max(0, y - R); dy <= std::min(bh - 1, y + R); ++dy)
                 for (int dx = std::max(0, x - R); dx <= std::min(bw - 1, x + R); ++dx) {
                     const size_t c = static_cast<size_t>(dy * bw + dx);
                     if (count[c] == 0 || nowSurface[c] != nowSurface[b]) continue;
                     for (size_t l = 0; l < L; ++l) region.indirect[b * L + l] += own[c * L + l];
+                    sumNow += now[c];
+                    sumThen += then[c];
                     n += count[c];
                 }
-            if (n > 0)
-                for (size_t l = 0; l < L; ++l)
-                    region.indirect[b * L + l] = region.indirect[b * L + l] * (1.0 / n);
+            if (n == 0) continue;
+            region.gathered[b] = 1;
+            // The correction per channel, guarded where the responses read no light.
+            Rgb f = Rgb::gray(1.0);
+            for (int ch = 0; ch < 3; ++ch)
+                if (sumThen[ch] > 1e-12 && sumNow[ch] > 0) f[ch] = sumNow[ch] / sumThen[ch];
+            for (size_t l = 0; l < L; ++l)
+                region.indirect[b * L + l] = region.indirect[b * L + l] * f * (1.0 / n);
         }
     });
 }
@@ -222,6 +247,8 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
     });
 
     // The indirect light at the revealed points, per real light (the header's `indirect`).
+    region.x0 = bx0;
+    region.y0 = by0;
     if (r.responses && r.gatherSide > 0)
         gatherRegionIndirect(region, r, nowSurface, bw, bh, defaultFillBlock(W, H));
 

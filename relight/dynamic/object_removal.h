@@ -18,6 +18,7 @@
 // (DynamicRelighting::overlay(): the pixel is replaced whole).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "radiosity/rgb.h"
@@ -44,8 +45,9 @@ struct RemovedRegion {
     /// object's faces (the room's cabinet corner read 1.7 times its light). Empty when
     /// prepared without per-pixel light: then the leaf's vertex light is read.
     std::vector<radiosity::Rgb> indirect;
-    int lights = 0;                ///< real lights in `indirect`
-    int filled = 0, modelled = 0;  ///< mask pixels textured from the photo, from the model
+    int lights = 0;                 ///< real lights in `indirect`
+    std::vector<uint8_t> gathered;  ///< per box pixel: 1 where `indirect` holds a gather
+    int filled = 0, modelled = 0;   ///< mask pixels textured from the photo, from the model
 
     bool empty() const { return width <= 0 || height <= 0; }
     bool inMask(int x, int y) const {

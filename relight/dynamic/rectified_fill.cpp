@@ -195,21 +195,33 @@ std::vector<uint8_t> inpaintGrid(const PlaneGrid& g, PlaneTexture& t) {
         }
     std::vector<uint8_t> unfilled(g.size(), any ? 0 : 1);
     if (!any) return unfilled;
+    // 16-bit channels: Debian's OpenCV 4.6 inpaints 8- and 16-bit single channels reliably
+    // (its float path gave values far outside the sources'); 60000 steps over the sources'
+    // range keep 5 significant digits.
+    float top = 0;
+    for (size_t k = 0; k < g.size(); ++k)
+        if (t.role[k] == FillRole::source)
+            for (size_t c = 0; c < 3; ++c) top = std::max(top, t.value[3 * k + c]);
+    const double scale = top > 0 ? 60000.0 / static_cast<double>(top) : 1.0;
     for (int c = 0; c < 3; ++c) {
-        cv::Mat channel(rows, cols, CV_32FC1), out;
+        cv::Mat channel(rows, cols, CV_16UC1), out;
         for (int j = 0; j < rows; ++j)
-            for (int i = 0; i < cols; ++i)
-                channel.at<float>(j, i) =
-                    t.value[3 * (static_cast<size_t>(j) * static_cast<size_t>(cols) +
-                                 static_cast<size_t>(i)) +
-                            static_cast<size_t>(c)];
+            for (int i = 0; i < cols; ++i) {
+                const size_t k =
+                    static_cast<size_t>(j) * static_cast<size_t>(cols) + static_cast<size_t>(i);
+                const double v = static_cast<double>(t.value[3 * k + static_cast<size_t>(c)]);
+                channel.at<uint16_t>(j, i) = static_cast<uint16_t>(
+                    t.role[k] == FillRole::source ? std::clamp(std::lround(v * scale), 0L, 65535L)
+                                                  : 0L);
+            }
         cv::inpaint(channel, unknown, out, 3.0, cv::INPAINT_TELEA);
         for (int j = 0; j < rows; ++j)
             for (int i = 0; i < cols; ++i) {
                 const size_t k =
                     static_cast<size_t>(j) * static_cast<size_t>(cols) + static_cast<size_t>(i);
                 if (t.role[k] == FillRole::fill)
-                    t.value[3 * k + static_cast<size_t>(c)] = out.at<float>(j, i);
+                    t.value[3 * k + static_cast<size_t>(c)] =
+                        static_cast<float>(static_cast<double>(out.at<uint16_t>(j, i)) / scale);
             }
     }
     return unfilled;
