@@ -130,10 +130,12 @@ void gatherRegionIndirect(RemovedRegion& region, const Relighting& r,
                 }
             if (n == 0) continue;
             region.gathered[b] = 1;
-            // The correction per channel, guarded where the responses read no light.
-            Rgb f = Rgb::gray(1.0);
-            for (int ch = 0; ch < 3; ++ch)
-                if (sumThen[ch] > 1e-12 && sumNow[ch] > 0) f[ch] = sumNow[ch] / sumThen[ch];
+            // The correction of the amount of light, grey: the colour stays the responses'
+            // (a per-channel ratio turned the cropped room's corner grey, where the solver's
+            // reflectances of walls the photo does not show are the objects' means).
+            // Guarded where the responses read no light.
+            const double lThen = sumThen.luminance(), lNow = sumNow.luminance();
+            const Rgb f = Rgb::gray(lThen > 1e-12 && lNow > 0 ? lNow / lThen : 1.0);
             for (size_t l = 0; l < L; ++l)
                 region.indirect[b * L + l] = region.indirect[b * L + l] * f * (1.0 / n);
         }
