@@ -68,9 +68,10 @@ std::vector<char> dilate(const std::vector<char>& m, int w, int h, int g) {
 }
 
 /// The region's indirect light per box pixel and real light: side^2 rays per sample, the
-/// photo's gather of a vertex over a pixel's samples, then averaged over the pixels within
-/// 2 `block` of it that see the same surface (indirect light varies slowly along a surface;
-/// 25 pixels' worth of rays bring the noise to a fifth of one pixel's).
+/// photo's gather of a vertex over a pixel's samples, at the pixels of a lattice of step
+/// 2 `block`, then averaged over the lattice pixels within 2 `block` that see the same
+/// surface (indirect light varies slowly along a surface: 4 to 9 pixels' worth of rays
+/// bring the noise to a half or a third of one pixel's, for a quarter of the rays).
 void gatherRegionIndirect(RemovedRegion& region, const Relighting& r,
                           const std::vector<int>& nowSurface, int bw, int bh, int block) {
     const auto& solver = *r.solver;
@@ -84,9 +85,9 @@ void gatherRegionIndirect(RemovedRegion& region, const Relighting& r,
     const auto& lights = solver.scene().lights;
     std::vector<Rgb> own(boxPixels * L, Rgb{}), now(boxPixels, Rgb{}), then(boxPixels, Rgb{});
     std::vector<int> count(boxPixels, 0);
-    // On a larger photo, the pixels of a lattice of step `block` only: the rays per area of
-    // the scene stay those of a 320 x 240 photo.
-    const int step = std::max(1, block);
+    // The lattice grows with `block`: the rays per area of the scene stay those of a
+    // 320 x 240 photo.
+    const int step = 2 * std::max(1, block);
     radiosity::parallelForChunks(boxPixels, 4, [&](size_t first, size_t last) {
         std::vector<Rgb> H(L);
         for (size_t b = first; b != last; ++b) {
