@@ -143,6 +143,43 @@ void gatherRegionIndirect(RemovedRegion& region, const Relighting& r,
     });
 }
 
+/// The rectified fill's reflectance per box pixel: the sum over the pixel's samples that a
+/// plane filled (3 per pixel) and how many there were.
+struct PlaneFill {
+    std::vector<float> sum;
+    std::vector<int> count;
+};
+
+/// The mask's samples that see a surface, rebuilt per plane (rectified_fill.h).
+template <class SurfaceOf>
+PlaneFill fillHiddenPlanes(const RemovedRegion& region, const Camera& camera,
+                           const radiosity::Scene& scene, const PhotoWindow& photo,
+                           const std::vector<char>& mask, const std::vector<int>& nowSurface,
+                           SurfaceOf surfaceOf, const RectifiedFillOptions& options) {
+    const size_t kk = static_cast<size_t>(region.k * region.k);
+    std::vector<HiddenPoint> hidden;
+    std::vector<size_t> hiddenPixel;
+    for (size_t b = 0; b < mask.size(); ++b) {
+        if (!mask[b] || nowSurface[b] < 0) continue;
+        for (size_t s = 0; s < kk; ++s) {
+            const size_t i = b * kk + s;
+            const int sf = surfaceOf(region.polygon[i]);
+            if (region.leaf[i] < 0 || sf < 0) continue;
+            hidden.push_back({region.point[i], region.polygon[i], sf});
+            hiddenPixel.push_back(b);
+        }
+    }
+    const RectifiedFillResult rect = fillRectified(camera, scene, photo, hidden, options);
+    PlaneFill out{std::vector<float>(3 * mask.size(), 0.0f), std::vector<int>(mask.size(), 0)};
+    for (size_t i = 0; i < hidden.size(); ++i) {
+        if (!rect.filled[i]) continue;
+        const size_t b = hiddenPixel[i];
+        for (size_t c = 0; c < 3; ++c) out.sum[3 * b + c] += rect.value[3 * i + c];
+        ++out.count[b];
+    }
+    return out;
+}
+
 }  // namespace
 
 int defaultMaskGrowth(int width, int height) {
@@ -350,33 +387,16 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
     // Each hidden plane rebuilt from its own visible part, rectified (rectified_fill.h); the
     // photo-space fill below only for the pixels it leaves (a plane the photo shows nowhere).
     const PhotoWindow photoWindow{wx0, wy0, ww, wh, value, regionId, shownPolygon, role};
-    std::vector<HiddenPoint> hidden;
-    std::vector<size_t> hiddenPixel;
-    for (size_t b = 0; b < boxPixels; ++b) {
-        if (!mask[b] || nowSurface[b] < 0) continue;
-        for (size_t s = 0; s < kk; ++s) {
-            const size_t i = b * kk + s;
-            const int sf = surfaceOf(region.polygon[i]);
-            if (region.leaf[i] < 0 || sf < 0) continue;
-            hidden.push_back({region.point[i], region.polygon[i], sf});
-            hiddenPixel.push_back(b);
-        }
-    }
     RectifiedFillOptions rectOptions;
     rectOptions.synthesis = synthesis;
     rectOptions.block = fillOptions.block;
     rectOptions.bridge = 2 * (2 * grow + 1) + 2;  // the guard band, twice for a grazing plane
     rectOptions.margin = std::max({kSampleMargin, bw, bh});
     rectOptions.planeTolerance = 1e-5 * diag;
-    const RectifiedFillResult rect = fillRectified(camera, scene, photoWindow, hidden, rectOptions);
-    std::vector<float> rectSum(3 * boxPixels, 0.0f);
-    std::vector<int> rectCount(boxPixels, 0);
-    for (size_t i = 0; i < hidden.size(); ++i) {
-        if (!rect.filled[i]) continue;
-        const size_t b = hiddenPixel[i];
-        for (size_t c = 0; c < 3; ++c) rectSum[3 * b + c] += rect.value[3 * i + c];
-        ++rectCount[b];
-    }
+    const PlaneFill planes = fillHiddenPlanes(region, camera, scene, photoWindow, mask, nowSurface,
+                                              surfaceOf, rectOptions);
+    const std::vector<float>& rectSum = planes.sum;
+    const std::vector<int>& rectCount = planes.count;
     for (int by = 0; by < bh; ++by)
         for (int bx = 0; bx < bw; ++bx)
             if (rectCount[static_cast<size_t>(by * bw + bx)] > 0)
