@@ -19,8 +19,8 @@
 //     median of the same rendered into a fresh image (renderEdit's returning form); the
 //     same edits in the per-pixel display (relight render's default, DisplayMode::pixel),
 //     so that the preparation measures the direct light per pixel too;
-//   - the time of taking the table out (relight/dynamic/object_removal.h) and of bringing it
-//     back, and the per-pixel frame after it;
+//   - the time of taking the table out, then the cabinet against its two walls
+//     (relight/dynamic/object_removal.h), of bringing each back, and the per-pixel frame;
 //   - the peak resident memory of the child.
 #include <sys/resource.h>
 #include <tbb/global_control.h>
@@ -189,13 +189,13 @@ int runOne(const std::string& dir, int edits, double epsilon) {
     // Taking the table out (Loscos et al. 1999, §5.3; their 0.7-2.9 s) and bringing it back,
     // 3 times: the solver's update, the fill (rays, texture synthesis, direct light at the
     // revealed samples) and the per-pixel display's first frame.
-    std::vector<double> removal, fill, frame, back;
-    int filled = 0;
-    {
+    for (const char* object : {"table", "cabinet"}) {
+        std::vector<double> removal, fill, frame, back;
+        int filled = 0;
         DynamicRelighting dyn(*r, P.photoRadiance);
         for (int k = 0; k < 3; ++k) {
             const auto t1 = Clock::now();
-            dyn.removeObject("table");
+            dyn.removeObject(object);
             removal.push_back(secondsSince(t1));
             fill.push_back(dyn.times().fill);
             filled = dyn.removedRegion().filled + dyn.removedRegion().modelled;
@@ -206,12 +206,12 @@ int runOne(const std::string& dir, int edits, double epsilon) {
             dyn.removeLast();
             back.push_back(secondsSince(t3));
         }
+        std::printf(
+            "   removing the %s (%d pixels filled): median %.3f s (the fill %.3f s), then the "
+            "per-pixel frame %.3f s; bringing it back %.3f s\n",
+            object, filled, bench::quantile(removal, 0.5), bench::quantile(fill, 0.5),
+            bench::quantile(frame, 0.5), bench::quantile(back, 0.5));
     }
-    std::printf(
-        "   removing the table (%d pixels filled): median %.3f s (the fill %.3f s), then the "
-        "per-pixel frame %.3f s; bringing it back %.3f s\n",
-        filled, bench::quantile(removal, 0.5), bench::quantile(fill, 0.5),
-        bench::quantile(frame, 0.5), bench::quantile(back, 0.5));
     std::fflush(stdout);
     return 0;
 }

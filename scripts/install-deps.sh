@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config
   libembree-dev libeigen3-dev libopenimageio-dev openimageio-tools libglfw3-dev libglm-dev
   libimgui-dev nlohmann-json3-dev libcli11-dev libgtest-dev libtbb-dev libepoxy-dev
-  libassimp-dev xvfb xauth libgl1-mesa-dri mesa-utils libegl1-mesa-dev clang-format
+  libassimp-dev libopencv-dev xvfb xauth libgl1-mesa-dri mesa-utils libegl1-mesa-dev clang-format
   clang libclang-rt-14-dev)  # the fuzz targets: clang and its libFuzzer (only recommended)
 missing=()
 for p in "${packages[@]}"; do

@@ -196,7 +196,7 @@ void DynamicRelighting::refreshRemoved(const radiosity::DynamicUpdate& u, bool a
     // light again where they may have changed it.
     const bool fresh = removed != regionObjects_;
     if (fresh) {
-        removed_ = buildRemovedRegion(r_, removed, realNodes_, maskGrowth_);
+        removed_ = buildRemovedRegion(r_, removed, realNodes_, maskGrowth_, synthesis_);
         regionObjects_ = removed;
     }
     if (fresh || allLights) {
@@ -224,6 +224,18 @@ radiosity::Rgb DynamicRelighting::indirectAt(int leaf, const Vec3& x) const {
         for (size_t l = 0; l < L; ++l) ind += radiance_[l] * indirectParts_[v * L + l];
         sum += ind * st.weight[static_cast<size_t>(i)];
     }
+    return sum;
+}
+
+radiosity::Rgb DynamicRelighting::removedIndirect(const RemovedRegion& gone, size_t pixel,
+                                                  size_t i) const {
+    if (gone.lights <= 0 || gone.gathered.empty() || !gone.gathered[pixel])
+        return indirectAt(gone.leaf[i], gone.point[i]);
+    // Gathered at the revealed point itself, with the objects out, for the edit's radiances.
+    const size_t L = static_cast<size_t>(std::min(gone.lights, realLights_));
+    Rgb sum;
+    for (size_t l = 0; l < L; ++l)
+        sum += radiance_[l] * gone.indirect[pixel * static_cast<size_t>(gone.lights) + l];
     return sum;
 }
 
@@ -572,7 +584,7 @@ VirtualOverlay DynamicRelighting::overlay() {
                         continue;
                     }
                     if (gone.leaf[i] < 0) continue;
-                    const Rgb Hs = gone.direct[i] + indirectAt(gone.leaf[i], gone.point[i]);
+                    const Rgb Hs = gone.direct[i] + removedIndirect(gone, g, i);
                     for (int c = 0; c < 3; ++c)
                         added[c] +=
                             static_cast<double>(gone.reflectance[3 * g + static_cast<size_t>(c)]) *

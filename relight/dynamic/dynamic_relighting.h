@@ -93,6 +93,9 @@ class DynamicRelighting {
     /// overlay replaces them). Throws std::invalid_argument when the scene has no such
     /// object or it is out already.
     void removeObject(const std::string& name);
+    /// How the next removal synthesises the hidden surfaces' texture (rectified_fill.h):
+    /// non-parametric sampling by default, OpenCV's inpainting for comparison (bench/).
+    void setSurfaceSynthesis(SurfaceSynthesis s) { synthesis_ = s; }
     /// Undoes the last change: removes the virtual part added last (object or light), or
     /// brings back the real object taken out last.
     void removeLast();
@@ -133,6 +136,8 @@ class DynamicRelighting {
     void refreshDirect(const std::vector<int>& vertices, bool virtualOnly);
     void refreshIndirect(bool full);  ///< and the virtual objects' surfaces
     std::vector<Rgb> gatherAtVertices(bool byRays = false) const;
+    /// The indirect light at a removed region's box pixel and its sample i (object_removal.h).
+    Rgb removedIndirect(const RemovedRegion& gone, size_t pixel, size_t i) const;
     /// indirectPixel_ where the per-pixel display has its own, indirect_ otherwise.
     const std::vector<Rgb>& pixelIndirect() const {
         return indirectPixel_.empty() ? indirect_ : indirectPixel_;
@@ -175,6 +180,7 @@ class DynamicRelighting {
     RemovedRegion removed_;
     std::vector<int> regionObjects_;  ///< the objects removed_ was built for
     int maskGrowth_ = 1;
+    SurfaceSynthesis synthesis_ = SurfaceSynthesis::exemplar;
     /// Per vertex and real light: the indirect part of its response (indirectAt).
     std::vector<Rgb> ownIndirectParts_;
     std::span<const Rgb> indirectParts_;

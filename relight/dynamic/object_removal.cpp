@@ -1,5 +1,6 @@
 #include "relight/dynamic/object_removal.h"
 #include "relight/dynamic/overlay_samples.h"
+#include "relight/dynamic/rectified_fill.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +8,7 @@
 #include <unordered_map>
 
 #include "radiosity/direct_light.h"
+#include "radiosity/final_gather.h"
 #include "radiosity/parallel.h"
 #include "relight/pipeline/pixel_light.h"
 #include "relight/pipeline/texture_fill.h"
@@ -65,6 +67,119 @@ std::vector<char> dilate(const std::vector<char>& m, int w, int h, int g) {
     return out;
 }
 
+/// The region's indirect light per box pixel and real light: side^2 rays per sample, the
+/// photo's gather of a vertex over a pixel's samples, at the pixels of a lattice of step
+/// 2 `block`, then averaged over the lattice pixels within 2 `block` that see the same
+/// surface (indirect light varies slowly along a surface: 4 to 9 pixels' worth of rays
+/// bring the noise to a half or a third of one pixel's, for a quarter of the rays).
+void gatherRegionIndirect(RemovedRegion& region, const Relighting& r,
+                          const std::vector<int>& nowSurface, int bw, int bh, int block) {
+    const auto& solver = *r.solver;
+    const size_t L = static_cast<size_t>(std::max(0, r.responses->lights()));
+    const size_t kk = static_cast<size_t>(region.k * region.k);
+    const size_t boxPixels = static_cast<size_t>(bw) * static_cast<size_t>(bh);
+    const int side = std::max(2, r.gatherSide / region.k);
+    // The responses are the photo's solution's; the solver's own, solved again with the
+    // objects out, holds the light they blocked from the surfaces around (their shadows
+    // gone): the same rays read it too, and the ratio of the two corrects the responses.
+    const auto& lights = solver.scene().lights;
+    std::vector<Rgb> own(boxPixels * L, Rgb{}), now(boxPixels, Rgb{}), then(boxPixels, Rgb{});
+    std::vector<int> count(boxPixels, 0);
+    // The lattice grows with `block`: the rays per area of the scene stay those of a
+    // 320 x 240 photo.
+    const int step = 2 * std::max(1, block);
+    radiosity::parallelForChunks(boxPixels, 4, [&](size_t first, size_t last) {
+        std::vector<Rgb> H(L);
+        for (size_t b = first; b != last; ++b) {
+            const int x = region.x0 + static_cast<int>(b % static_cast<size_t>(bw));
+            const int y = region.y0 + static_cast<int>(b / static_cast<size_t>(bw));
+            if (x % step != 0 || y % step != 0) continue;
+            for (size_t s = 0; s < kk; ++s) {
+                const size_t i = b * kk + s;
+                if (region.leaf[i] < 0) continue;
+                const uint64_t seed = kRegionSeed ^ (i * 0x9E3779B9ull);
+                radiosity::rayGatherResponses(solver, *r.responses, region.polygon[i],
+                                              region.point[i], H.data(), side, seed);
+                for (size_t l = 0; l < L; ++l) {
+                    own[b * L + l] += H[l];
+                    if (l < lights.size()) then[b] += lights[l].radiance * H[l];
+                }
+                now[b] += radiosity::rayGatherIndirect(solver, region.polygon[i], region.point[i],
+                                                       side, seed);
+                ++count[b];
+            }
+        }
+    });
+    const int R = 2 * std::max(1, block);
+    region.lights = static_cast<int>(L);
+    region.indirect.assign(boxPixels * L, Rgb{});
+    region.gathered.assign(boxPixels, 0);
+    radiosity::parallelFor(static_cast<size_t>(bh), 1, [&](size_t row) {
+        const int y = static_cast<int>(row);
+        for (int x = 0; x < bw; ++x) {
+            const size_t b = static_cast<size_t>(y * bw + x);
+            int n = 0;
+            Rgb sumNow, sumThen;
+            for (int dy = std::max(0, y - R); dy <= std::min(bh - 1, y + R); ++dy)
+                for (int dx = std::max(0, x - R); dx <= std::min(bw - 1, x + R); ++dx) {
+                    const size_t c = static_cast<size_t>(dy * bw + dx);
+                    if (count[c] == 0 || nowSurface[c] != nowSurface[b]) continue;
+                    for (size_t l = 0; l < L; ++l) region.indirect[b * L + l] += own[c * L + l];
+                    sumNow += now[c];
+                    sumThen += then[c];
+                    n += count[c];
+                }
+            if (n == 0) continue;
+            region.gathered[b] = 1;
+            // The correction of the amount of light, grey: the colour stays the responses'
+            // (a per-channel ratio turned the cropped room's corner grey, where the solver's
+            // reflectances of walls the photo does not show are the objects' means).
+            // Guarded where the responses read no light.
+            const double lThen = sumThen.luminance(), lNow = sumNow.luminance();
+            const Rgb f = Rgb::gray(lThen > 1e-12 && lNow > 0 ? lNow / lThen : 1.0);
+            for (size_t l = 0; l < L; ++l)
+                region.indirect[b * L + l] = region.indirect[b * L + l] * f * (1.0 / n);
+        }
+    });
+}
+
+/// The rectified fill's reflectance per box pixel: the sum over the pixel's samples that a
+/// plane filled (3 per pixel) and how many there were.
+struct PlaneFill {
+    std::vector<float> sum;
+    std::vector<int> count;
+};
+
+/// The mask's samples that see a surface, rebuilt per plane (rectified_fill.h).
+template <class SurfaceOf>
+PlaneFill fillHiddenPlanes(const RemovedRegion& region, const Camera& camera,
+                           const radiosity::Scene& scene, const PhotoWindow& photo,
+                           const std::vector<char>& mask, const std::vector<int>& nowSurface,
+                           SurfaceOf surfaceOf, const RectifiedFillOptions& options) {
+    const size_t kk = static_cast<size_t>(region.k * region.k);
+    std::vector<HiddenPoint> hidden;
+    std::vector<size_t> hiddenPixel;
+    for (size_t b = 0; b < mask.size(); ++b) {
+        if (!mask[b] || nowSurface[b] < 0) continue;
+        for (size_t s = 0; s < kk; ++s) {
+            const size_t i = b * kk + s;
+            const int sf = surfaceOf(region.polygon[i]);
+            if (region.leaf[i] < 0 || sf < 0) continue;
+            hidden.push_back({region.point[i], region.polygon[i], sf});
+            hiddenPixel.push_back(b);
+        }
+    }
+    const RectifiedFillResult rect = fillRectified(camera, scene, photo, hidden, options);
+    PlaneFill out{std::vector<float>(3 * mask.size(), 0.0f), std::vector<int>(mask.size(), 0)};
+    for (size_t i = 0; i < hidden.size(); ++i) {
+        if (!rect.filled[i]) continue;
+        const size_t b = hiddenPixel[i];
+        for (size_t c = 0; c < 3; ++c) out.sum[3 * b + c] += rect.value[3 * i + c];
+        ++out.count[b];
+    }
+    return out;
+}
+
 }  // namespace
 
 int defaultMaskGrowth(int width, int height) {
@@ -73,7 +188,7 @@ int defaultMaskGrowth(int width, int height) {
 }
 
 RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& removed,
-                                 size_t realNodes, int grow) {
+                                 size_t realNodes, int grow, SurfaceSynthesis synthesis) {
     RemovedRegion region;
     const ItemBuffer& items = r.items;
     const PreparedImage& P = r.prepared;
@@ -171,6 +286,12 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
         }
     });
 
+    // The indirect light at the revealed points, per real light (the header's `indirect`).
+    region.x0 = bx0;
+    region.y0 = by0;
+    if (r.responses && r.gatherSide > 0)
+        gatherRegionIndirect(region, r, nowSurface, bw, bh, defaultFillBlock(W, H));
+
     // The mask: the covered pixels, and the ring around them on the surfaces they revealed.
     std::vector<char> boxCore(boxPixels, 0);
     std::vector<int> revealed;
@@ -195,7 +316,7 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
     const int wh = std::min(H - 1, by0 + bh - 1 + margin) - wy0 + 1;
     const size_t windowPixels = static_cast<size_t>(ww) * static_cast<size_t>(wh);
     std::vector<float> value(3 * windowPixels, 0.0f);
-    std::vector<int> regionId(windowPixels, -1);
+    std::vector<int> regionId(windowPixels, -1), shownPolygon(windowPixels, -1);
     std::vector<FillRole> role(windowPixels, FillRole::none);
     std::vector<double> light(windowPixels, 0.0);
     const auto inBoxMask = [&](int x, int y) {
@@ -231,10 +352,11 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             int s0 = -2;
             bool one = true;
             for (int s = 0; s < items.spp && one; ++s) {
-                const int sf =
-                    surfaceOf(items.polygon[static_cast<size_t>(items.sampleIndex(x, y, s))]);
+                const int p = items.polygon[static_cast<size_t>(items.sampleIndex(x, y, s))];
+                const int sf = surfaceOf(p);
                 one = sf >= 0 && (s0 == -2 || sf == s0);
                 s0 = sf;
+                if (s == 0) shownPolygon[w] = p;
             }
             if (!one) continue;
             const Rgb Hp = photoIrradiance(P, px);
@@ -262,6 +384,24 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             role[w] = FillRole::none;
     TextureFillOptions fillOptions;
     fillOptions.block = defaultFillBlock(W, H);
+    // Each hidden plane rebuilt from its own visible part, rectified (rectified_fill.h); the
+    // photo-space fill below only for the pixels it leaves (a plane the photo shows nowhere).
+    const PhotoWindow photoWindow{wx0, wy0, ww, wh, value, regionId, shownPolygon, role};
+    RectifiedFillOptions rectOptions;
+    rectOptions.synthesis = synthesis;
+    rectOptions.block = fillOptions.block;
+    rectOptions.bridge = 2 * (2 * grow + 1) + 2;  // the guard band, twice for a grazing plane
+    rectOptions.margin = std::max({kSampleMargin, bw, bh});
+    rectOptions.planeTolerance = 1e-5 * diag;
+    const PlaneFill planes = fillHiddenPlanes(region, camera, scene, photoWindow, mask, nowSurface,
+                                              surfaceOf, rectOptions);
+    const std::vector<float>& rectSum = planes.sum;
+    const std::vector<int>& rectCount = planes.count;
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx)
+            if (rectCount[static_cast<size_t>(by * bw + bx)] > 0)
+                role[static_cast<size_t>(by0 + by - wy0) * static_cast<size_t>(ww) +
+                     static_cast<size_t>(bx0 + bx - wx0)] = FillRole::none;
     const TextureFillResult fill = fillTexture({ww, wh, value, regionId, role}, fillOptions);
 
     // The region: the box, the fill's reflectance; the leaf's model where the photo shows
@@ -278,7 +418,13 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             if (!mask[b] || nowSurface[b] < 0) continue;
             const size_t w = static_cast<size_t>(by0 + by - wy0) * static_cast<size_t>(ww) +
                              static_cast<size_t>(bx0 + bx - wx0);
-            if (!fill.unfilled[w]) {
+            if (const int n = rectCount[b]; n > 0) {
+                for (size_t c = 0; c < 3; ++c)
+                    region.reflectance[3 * b + c] = rectSum[3 * b + c] / static_cast<float>(n);
+                ++region.filled;
+                continue;
+            }
+            if (!fill.unfilled[w] && role[w] == FillRole::fill) {
                 for (int c = 0; c < 3; ++c)
                     region.reflectance[3 * b + static_cast<size_t>(c)] =
                         fill.value[3 * w + static_cast<size_t>(c)];

@@ -18,10 +18,12 @@
 // (DynamicRelighting::overlay(): the pixel is replaced whole).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "radiosity/rgb.h"
 #include "radiosity/vec.h"
+#include "relight/dynamic/rectified_fill.h"
 #include "relight/relighting.h"
 
 namespace relight {
@@ -36,7 +38,16 @@ struct RemovedRegion {
     std::vector<int> polygon, leaf;
     std::vector<radiosity::Vec3> point;
     std::vector<radiosity::Rgb> direct;
-    int filled = 0, modelled = 0;  ///< mask pixels textured from the photo, from the model
+    /// Per box pixel and real light ([pixel * lights + l]): the indirect irradiance per
+    /// unit radiance of light l, gathered by rays at the revealed points with the objects
+    /// out (radiosity::rayGatherResponses), smoothed along the surface. The display's vertex
+    /// indirect light cannot serve there: its vertices under the object gathered the
+    /// object's faces (the room's cabinet corner read 1.7 times its light). Empty when
+    /// prepared without per-pixel light: then the leaf's vertex light is read.
+    std::vector<radiosity::Rgb> indirect;
+    int lights = 0;                 ///< real lights in `indirect`
+    std::vector<uint8_t> gathered;  ///< per box pixel: 1 where `indirect` holds a gather
+    int filled = 0, modelled = 0;   ///< mask pixels textured from the photo, from the model
 
     bool empty() const { return width <= 0 || height <= 0; }
     bool inMask(int x, int y) const {
@@ -54,7 +65,8 @@ int defaultMaskGrowth(int width, int height);
 /// which must be out of the solver already. `realNodes`: the scene's node count (leaves
 /// below it are the scene's). Empty when nothing of them is in the photo.
 RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& removed,
-                                 size_t realNodes, int grow);
+                                 size_t realNodes, int grow,
+                                 SurfaceSynthesis synthesis = SurfaceSynthesis::exemplar);
 
 /// Step 4's direct light at the region's samples for the lights' radiances (the real lights,
 /// then the virtual ones, solver order); only at the samples whose leaf is marked in

@@ -161,7 +161,7 @@ TEST(EditWriter, RoomEditsRoundTripThroughAnotherFolder) {
         // Saving the reloaded edit again gives the same document: nothing drifts.
         EXPECT_EQ(editJson(reloaded, saved), written);
     }
-    EXPECT_EQ(edits, 10u);  // every bundled edit, not a vacuous loop
+    EXPECT_EQ(edits, 11u);  // every bundled edit, not a vacuous loop
     EXPECT_EQ(objects, 3u);
 }
 

@@ -3,12 +3,16 @@
 // and the photo given back when the table comes back.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 
 #include "relight/dynamic/dynamic_relighting.h"
 #include "relight/io/edit_file.h"
 #include "relight/relighting.h"
 #include "room_fixture.h"
+#include "temp_dir.h"
 
 using namespace relight;
 
@@ -141,4 +145,169 @@ TEST(ObjectRemoval, TakenOutAmongVirtualPartsAndUndoneInTurn) {
     EXPECT_LT(same(dyn.render(DisplayMode::pixel), box), 1e-5);
     dyn.removeLast();  // the box out
     EXPECT_LT(same(dyn.render(DisplayMode::pixel), lamp), 1e-5);
+}
+
+namespace {
+
+/// The chromaticity (r, g) / (r + g + b) of a pixel; (0, 0) for black.
+std::array<double, 2> chroma(const float* p) {
+    const double r = static_cast<double>(p[0]), g = static_cast<double>(p[1]);
+    const double s = r + g + static_cast<double>(p[2]);
+    if (!(s > 1e-6)) return {0, 0};
+    return {r / s, g / s};
+}
+
+/// The colours of a set of the photo's pixels: a histogram of their chromaticity in bins of
+/// 0.01 (the photo's noise at 16 samples per pixel moves a pixel's by less than that). A
+/// colour is one of them when its bin or a neighbour holds at least 0.2 % of the pixels
+/// (a few stray pixels on an edge do not make a colour theirs).
+struct Colours {
+    static constexpr int kBins = 100;
+    std::vector<int> count = std::vector<int>(kBins * kBins, 0);
+    int pixels = 0;
+    static int bin(double c) { return std::clamp(static_cast<int>(c * kBins), 0, kBins - 1); }
+    void add(const float* p) {
+        const auto c = chroma(p);
+        ++count[static_cast<size_t>(bin(c[0]) * kBins + bin(c[1]))];
+        ++pixels;
+    }
+    bool holds(const float* p) const {
+        const auto c = chroma(p);
+        const int i = bin(c[0]), j = bin(c[1]);
+        int n = 0;
+        for (int a = std::max(0, i - 1); a <= std::min(kBins - 1, i + 1); ++a)
+            for (int b = std::max(0, j - 1); b <= std::min(kBins - 1, j + 1); ++b)
+                n = std::max(n, count[static_cast<size_t>(a * kBins + b)]);
+        return n > 0 && n >= 0.002 * pixels;
+    }
+};
+
+/// The photo's pixels whose every item-buffer sample is on a polygon with `keep`.
+template <class Keep>
+Colours photoColours(const Relighting& r, Keep keep) {
+    Colours out;
+    for (int y = 0; y < r.items.height; ++y)
+        for (int x = 0; x < r.items.width; ++x) {
+            bool all = true;
+            for (int s = 0; s < r.items.spp && all; ++s) {
+                const int p = r.items.polygon[static_cast<size_t>(r.items.sampleIndex(x, y, s))];
+                all = p >= 0 && keep(p);
+            }
+            if (all) out.add(r.prepared.photo.at(x, y));
+        }
+    return out;
+}
+
+/// Mask pixels of `image` that keep the removed object's colour: one of the object's in the
+/// photo and none of the surface the pixel now shows (its colours in the photo where it is
+/// seen).
+int keptColour(const Relighting& r, const RemovedRegion& g, const Image& image,
+               const std::string& object) {
+    const auto& scene = r.solver->scene();
+    const int id = scene.findObject(object);
+    const Colours objectColours =
+        photoColours(r, [&](int p) { return scene.polygons[static_cast<size_t>(p)].object == id; });
+    std::map<int, Colours> surfaces;
+    int kept = 0;
+    const size_t kk = static_cast<size_t>(g.k * g.k);
+    for (int y = g.y0; y < g.y0 + g.height; ++y)
+        for (int x = g.x0; x < g.x0 + g.width; ++x) {
+            if (!g.inMask(x, y)) continue;
+            const size_t b = static_cast<size_t>((y - g.y0) * g.width + x - g.x0);
+            // The surface its samples show now; a pixel across two (a corner, the floor's
+            // line) blends their colours, in the truth too: left out.
+            int sf = -1;
+            bool one = true;
+            for (size_t s = 0; s < kk && one; ++s) {
+                const int p = g.polygon[b * kk + s];
+                const int q = p >= 0 && static_cast<size_t>(p) < r.surface.size()
+                                  ? r.surface[static_cast<size_t>(p)]
+                                  : -1;
+                one = q >= 0 && (s == 0 || q == sf);
+                sf = q;
+            }
+            if (!one) continue;
+            auto it = surfaces.find(sf);
+            if (it == surfaces.end())
+                it = surfaces
+                         .emplace(sf, photoColours(
+                                          r,
+                                          [&](int q) {
+                                              return static_cast<size_t>(q) < r.surface.size() &&
+                                                     r.surface[static_cast<size_t>(q)] == sf;
+                                          }))
+                         .first;
+            if (objectColours.holds(image.at(x, y)) && !it->second.holds(image.at(x, y))) ++kept;
+        }
+    return kept;
+}
+
+}  // namespace
+
+TEST(ObjectRemoval, TheCabinetAgainstTwoWallsLeavesNoGhost) {
+    // The cabinet stands in the back-left corner, against the brick wall and the plaster
+    // one (issue 34): its pixels must show the two walls and the floor rebuilt from their
+    // own visible parts, lit by the edited solution. Bounds: the issue's 0.08 / 0.25 (full
+    // settings: bench/RESULTS.md); the unedited photo scores 0.045 / 0.305 and the fill from
+    // the photo around the hole 0.049 / 0.361, above the changed bound.
+    RelightOptions o = options();
+    o.epsilon = 1e-4;
+    o.spp = 16;
+    auto r = prepareRelighting(loadScene(kRoom), o);
+    const std::vector<radiosity::Rgb> radiance(r->prepared.photoRadiance.begin(),
+                                               r->prepared.photoRadiance.end());
+    DynamicRelighting dyn(*r, radiance);
+    const Image before = dyn.render(DisplayMode::pixel);
+    dyn.removeObject("cabinet");
+    const RemovedRegion& g = dyn.removedRegion();
+    ASSERT_FALSE(g.empty());
+    EXPECT_EQ(g.modelled, 0);  // every hidden pixel from its own surface's photo texels
+    const Image without = dyn.render(DisplayMode::pixel);
+    const Score s = test::scoreAgainstTruth(kRoom, "remove_cabinet", without, r->prepared.photo);
+    EXPECT_LE(s.relRmse, 0.08);
+    EXPECT_LE(s.changedRelRmse, 0.25);
+    // No pixel keeps the cabinet's colour: each shows a colour of the wall or floor it now
+    // sees, as the photo shows them elsewhere (its pale grey is none of the brick's).
+    EXPECT_EQ(keptColour(*r, g, without, "cabinet"), 0);
+    // The photo there is the cabinet: the check is not vacuous.
+    EXPECT_GT(keptColour(*r, g, before, "cabinet"), 100);
+    dyn.removeLast();
+    const Image back = dyn.render(DisplayMode::pixel);
+    EXPECT_EQ(back.rgb, before.rgb);  // bit for bit
+}
+
+TEST(ObjectRemoval, ACabinetCutByTheImageBorderLeavesNoGhost) {
+    // The room's photo cropped so that the cabinet's silhouette runs off its left border
+    // (the camera's principal point moved with the crop, the photo's pixels unchanged): the
+    // hidden walls' visible parts lie on one side only, and the hole reaches the border.
+    constexpr int kCrop = 122;  // the cabinet spans about x = 105..140 of the 320 pixels
+    test::TempDir dir("removal_border");
+    SceneFile sf = loadScene(kRoom);
+    const Image full = readImage(kRoom + "/photo.exr");
+    Image cropped(full.width - kCrop, full.height);
+    for (int y = 0; y < cropped.height; ++y)
+        for (int x = 0; x < cropped.width; ++x)
+            std::copy_n(full.at(x + kCrop, y), 3, cropped.at(x, y));
+    writeImage(dir.path() / "photo.exr", cropped);
+    sf.photos.at(0).file = dir.path() / "photo.exr";
+    sf.camera.width = cropped.width;
+    sf.camera.cx -= kCrop;
+    RelightOptions o = options();
+    o.epsilon = 1e-4;
+    o.spp = 16;
+    auto r = prepareRelighting(std::move(sf), o);
+    const std::vector<radiosity::Rgb> radiance(r->prepared.photoRadiance.begin(),
+                                               r->prepared.photoRadiance.end());
+    DynamicRelighting dyn(*r, radiance);
+    const Image before = dyn.render(DisplayMode::pixel);
+    dyn.removeObject("cabinet");
+    const RemovedRegion& g = dyn.removedRegion();
+    ASSERT_FALSE(g.empty());
+    EXPECT_EQ(g.x0, 0);  // the hole touches the border
+    EXPECT_EQ(g.modelled, 0);
+    const Image without = dyn.render(DisplayMode::pixel);
+    EXPECT_EQ(keptColour(*r, g, without, "cabinet"), 0);
+    EXPECT_GT(keptColour(*r, g, before, "cabinet"), 50);
+    dyn.removeLast();
+    EXPECT_EQ(dyn.render(DisplayMode::pixel).rgb, before.rgb);  // bit for bit
 }
