@@ -329,8 +329,7 @@ void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
     }
     P.times.shadowRemoval = since(t0);
     // The vertices' gather terms served the lightings above; edits gather afresh.
-    r.direct.termStart = {};
-    r.direct.terms = {};
+    r.direct.gather = {};
     // What the confidence display needs (relight/prepared.h, relight/pipeline/confidence.h).
     P.confidence = vertexConfidence(r.direct, P.photoRadiance);
     P.modelReflectance =
