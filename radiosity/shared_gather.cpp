@@ -66,10 +66,15 @@ std::array<double, 4> affineWeights(const Node& r, const Vec3& x) {
 }
 
 /// The element receivers on the points' chains that hold far links, each given its
-/// vertexCount consecutive samples: first[node] (-1: none), in order of first meeting.
+/// vertexCount consecutive samples: first[node] (-1: none), in order of first meeting; and
+/// the indices of its near links, gathered per point (nodes[k]'s in [nearStart[k],
+/// nearStart[k + 1]) of nearIndex; ordinal[node] = k): a point then never reads the far
+/// links' sources, thousands on a wall.
 struct SampleLayout {
-    std::vector<int> first;
+    std::vector<int> first, ordinal;
     std::vector<int> nodes;
+    std::vector<size_t> nearStart{0};
+    std::vector<int> nearIndex;
     std::vector<int> leafOf;  ///< per point: its leaf (-1: no gather)
     int samples = 0;
     size_t shared = 0, near = 0;
@@ -79,6 +84,7 @@ SampleLayout layOutSamples(const HierarchicalSolver& solver, std::span<const Gat
     const Hierarchy& h = solver.hierarchy();
     SampleLayout s;
     s.first.assign(h.nodes.size(), -1);
+    s.ordinal.assign(h.nodes.size(), -1);
     std::vector<char> seen(h.nodes.size(), 0);
     s.leafOf.assign(points.size(), -1);
     for (size_t i = 0; i < points.size(); ++i) {
@@ -87,15 +93,20 @@ SampleLayout layOutSamples(const HierarchicalSolver& solver, std::span<const Gat
         for (int node = s.leafOf[i]; node >= 0; node = h.nodes[node].parent) {
             if (seen[node]) break;  // its ancestors were met with it
             seen[node] = 1;
+            const auto links = solver.linksOf(node);
             size_t shared = 0;
-            for (const Link& l : solver.linksOf(node))
-                shared += sharedLink(h, h.nodes[node], l) ? 1 : 0;
+            for (const Link& l : links) shared += sharedLink(h, h.nodes[node], l) ? 1 : 0;
             s.shared += shared;
-            s.near += solver.linksOf(node).size() - shared;
+            s.near += links.size() - shared;
             if (shared == 0) continue;
             s.first[node] = s.samples;
+            s.ordinal[node] = static_cast<int>(s.nodes.size());
             s.nodes.push_back(node);
             s.samples += h.nodes[node].vertexCount;
+            for (size_t k = 0; k < links.size(); ++k)
+                if (!sharedLink(h, h.nodes[node], links[k]))
+                    s.nearIndex.push_back(static_cast<int>(k));
+            s.nearStart.push_back(s.nearIndex.size());
         }
     }
     return s;
@@ -154,14 +165,24 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
         for (size_t i = from; i != to; ++i) {
             const GatherPoint& p = points[i];
             if (layout.leafOf[i] < 0) continue;
-            auto take = [&](int node, const Link& l) { return !sharedLink(h, h.nodes[node], l); };
-            auto all = [](int) { return true; };
+            const Vec3& n = solver.scene().polygons[p.polygon].normal;
+            const int pr = std::clamp(partialRays, 0, 64);
+            Rng rng = detail::gatherRng(p.seed);
             auto acc = record(pointTerms[i]);
-            detail::gatherWeights(solver, p.polygon, p.x, partialRays, p.seed, &cast, take, all,
-                                  acc);
+            auto gather = [&](const Link& l) {
+                if (detail::mayCarry(l))
+                    detail::gatherLink(solver, p.polygon, p.x, n, l, pr, rng, cast, acc);
+            };
             for (int node = layout.leafOf[i]; node >= 0; node = h.nodes[node].parent) {
+                const auto links = solver.linksOf(node);
+                const int k = layout.ordinal[node];
+                if (k < 0) {
+                    for (const Link& l : links) gather(l);
+                    continue;
+                }
+                for (size_t j = layout.nearStart[k]; j != layout.nearStart[k + 1]; ++j)
+                    gather(links[static_cast<size_t>(layout.nearIndex[j])]);
                 const int first = layout.first[node];
-                if (first < 0) continue;
                 const auto a = affineWeights(h.nodes[node], p.x);
                 for (int c = 0; c < h.nodes[node].vertexCount; ++c)
                     refs[i].push_back({first + c, static_cast<float>(a[c])});

@@ -96,6 +96,11 @@ void gatherLink(const HierarchicalSolver& solver, int polygon, const Vec3& x, co
         elementWeights(h, x, n, l.source, F, V, acc);
 }
 
+/// The random numbers of the gather at a point of seed `seed`.
+inline Rng gatherRng(uint64_t seed) {
+    return Rng(seed * 0xD1B54A32D192ED03ull + 0x51ED27ull);
+}
+
 /// Whether a link can carry light at all (a PARTIAL link of V 0 may still, seen from x).
 inline bool mayCarry(const Link& l) {
     return l.V > 0 || l.type == VisibilityType::partial;
@@ -111,7 +116,7 @@ void gatherWeights(const HierarchicalSolver& solver, int polygon, const Vec3& x,
     const Hierarchy& h = solver.hierarchy();
     const Vec3& n = solver.scene().polygons[polygon].normal;
     partialRays = std::clamp(partialRays, 0, 64);
-    Rng rng(seed * 0xD1B54A32D192ED03ull + 0x51ED27ull);
+    Rng rng = gatherRng(seed);
     uint64_t cast = 0;
     for (int node = h.locateLeaf(polygon, x); node >= 0; node = h.nodes[node].parent) {
         for (const Link& l : solver.linksOf(node)) {
