@@ -257,6 +257,11 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     say(o, "lighting at " + std::to_string(r.mesh->vertices().size()) + " leaf vertices");
     P.lighting =
         measureVertexLighting(*r.solver, *r.mesh, *r.responses, directLightOptions(o), r.direct);
+    say(o, "  final gather: " + std::to_string(r.direct.gather.sharedLinks) +
+               " far links gathered at " + std::to_string(r.direct.gather.samples()) +
+               " element corners, " + std::to_string(r.direct.gather.nearLinks) +
+               " near links per vertex; " + std::to_string(r.direct.gather.terms()) +
+               " terms kept");
     P.times.vertexLighting = since(t0);
 
     if (!o.leafReflectance) return;
