@@ -22,7 +22,9 @@ echo "relight prepare $dir --force --cache $cache ${extra[*]}"
 grep -v '^\s*\(Command\|User\|System\|Percent\|Average\|Major\|Minor\|Volun\|Invol\|Swaps\|File\|Socket\|Signals\|Page\|Exit\|Maximum resident\)' \
     "$work/prepare.err" | grep -v '^\s*Elapsed' || true
 cat "$work/prepare.out"
-awk '/Elapsed \(wall/ {w = $NF} /Maximum resident/ {m = $NF} END {printf "prepare %s wall, peak %d MB\n", w, m / 1024}' \
+awk '/Elapsed \(wall/ {w = $NF} /User time/ {u = $NF} /System time/ {y = $NF}
+     /Maximum resident/ {m = $NF}
+     END {printf "prepare %s wall, %.1f s CPU (user + system), peak %d MB\n", w, u + y, m / 1024}' \
     "$work/prepare.err"
 echo
 echo "edits (relight render --cache, then relight eval):"
