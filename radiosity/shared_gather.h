@@ -9,7 +9,9 @@
 //
 // The links that a receiving element r holds from a source s far from it vary smoothly over
 // r: with d the distance between their centres and R_r, R_s their bounding radii, a link is
-// "far" when d > kFar (R_r + R_s). Its transfer to a point x of r, F(x) V(x), is then a
+// "far" when d - R_s > kFar R_r for an element source (its nearest point is at least that
+// far from r's centre), d > kFar R_r for a cluster source (whose kernel, pointToNode, is
+// taken from its centre). Its transfer to a point x of r, F(x) V(x), is then a
 // smooth function of x over r, and it is gathered once per corner of r instead of once per
 // point: at each corner c (moved a hair inside r) the same per-point gather as
 // finalGatherWeights() (point form factor, visibility rays from the corner on PARTIAL
@@ -76,8 +78,8 @@ struct SharedGather {
     void addIndirect(const HierarchicalSolver& solver, Rgb* out) const;
 };
 
-/// Far links: a link whose source's centre is more than kFar times the sum of the two
-/// bounding radii from its receiving element's centre.
+/// Far links: a link whose source (an element: its nearest possible point; a cluster: its
+/// centre) is more than kFar receiver radii from its receiving element's centre.
 inline constexpr double kSharedGatherFar = 4.0;
 
 /// The terms of every point's final gather, far links shared per element (see above). In
