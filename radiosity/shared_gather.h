@@ -17,10 +17,11 @@
 // finalGatherWeights() (point form factor, visibility rays from the corner on PARTIAL
 // links) over r's far links only; a point x of r takes the affine function through the
 // corners' gathers (least squares on a quad, barycentric on a triangle; exact for a
-// transfer that is affine over r). With 1/d^2 the dominant variation, the part an affine
-// function misses is of order 3 (R_r / d)^2 at a corner, at most 3/16 of that link's small
-// share for kFar = 4 and a point source, a quarter of it after the fit (error spread over
-// the element, not concentrated at a corner); the near links, whose transfer bends over r
+// transfer that is affine over r). With 1/d^2 the dominant variation (d: from r's centre to
+// a point of the source, at least kFar R_r), the part an affine function misses is of
+// order 3 (R_r / d)^2 at a corner, at most 3/16 of that link's share for kFar = 4, a
+// quarter of it after the fit (error spread over the element, not concentrated at a
+// corner); the near links, whose transfer bends over r
 // (a floor meeting the wall, a lamp shade next to it), stay per point.
 //
 // This is Willmott, Heckbert & Garland 1999's sharing of a face cluster's gather between
