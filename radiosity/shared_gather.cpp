@@ -13,12 +13,8 @@ namespace {
 /// Whether receiver `node`'s link l is gathered at the element's corners (see the header).
 bool sharedLink(const Hierarchy& h, const Node& r, const Link& l) {
     if (r.isCluster() || r.vertexCount < 3) return false;
-    // How F(x) bends over r depends on the distance from r's points to what x sees of the
-    // source: a cluster's kernel is taken from its centre (pointToNode), an element's from
-    // its whole polygon, whose nearest point may be its radius closer.
     const Node& s = h.nodes[l.source];
-    const double reach = glm::length(s.centre - r.centre) - (s.isCluster() ? 0.0 : s.radius);
-    return reach > kSharedGatherFar * r.radius;
+    return glm::length(s.centre - r.centre) > kSharedGatherFar * (r.radius + s.radius);
 }
 
 /// Corner c of element r moved a hair (1e-4 of the way) towards its centre, as

@@ -9,19 +9,16 @@
 //
 // The links that a receiving element r holds from a source s far from it vary smoothly over
 // r: with d the distance between their centres and R_r, R_s their bounding radii, a link is
-// "far" when d - R_s > kFar R_r for an element source (its nearest point is at least that
-// far from r's centre), d > kFar R_r for a cluster source (whose kernel, pointToNode, is
-// taken from its centre). Its transfer to a point x of r, F(x) V(x), is then a
+// "far" when d > kFar (R_r + R_s). Its transfer to a point x of r, F(x) V(x), is then a
 // smooth function of x over r, and it is gathered once per corner of r instead of once per
 // point: at each corner c (moved a hair inside r) the same per-point gather as
 // finalGatherWeights() (point form factor, visibility rays from the corner on PARTIAL
 // links) over r's far links only; a point x of r takes the affine function through the
 // corners' gathers (least squares on a quad, barycentric on a triangle; exact for a
-// transfer that is affine over r). With 1/d^2 the dominant variation (d: from r's centre to
-// a point of the source, at least kFar R_r), the part an affine function misses is of
-// order 3 (R_r / d)^2 at a corner, at most 3/16 of that link's share for kFar = 4, a
-// quarter of it after the fit (error spread over the element, not concentrated at a
-// corner); the near links, whose transfer bends over r
+// transfer that is affine over r). With 1/d^2 the dominant variation, the part an affine
+// function misses is of order 3 (R_r / d)^2 at a corner, at most 3/16 of that link's small
+// share for kFar = 4 and a point source, a quarter of it after the fit (error spread over
+// the element, not concentrated at a corner); the near links, whose transfer bends over r
 // (a floor meeting the wall, a lamp shade next to it), stay per point.
 //
 // This is Willmott, Heckbert & Garland 1999's sharing of a face cluster's gather between
@@ -79,8 +76,8 @@ struct SharedGather {
     void addIndirect(const HierarchicalSolver& solver, Rgb* out) const;
 };
 
-/// Far links: a link whose source (an element: its nearest possible point; a cluster: its
-/// centre) is more than kFar receiver radii from its receiving element's centre.
+/// Far links: a link whose source's centre is more than kFar times the sum of the two
+/// bounding radii from its receiving element's centre.
 inline constexpr double kSharedGatherFar = 4.0;
 
 /// The terms of every point's final gather, far links shared per element (see above). In
