@@ -118,7 +118,8 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     // Near field, the receiver's area facing the source's centre says little (a box's side
     // facing away from the floor's centre still sees half the floor): all of it counts.
     const double Ar = F > kFarField ? R.area : transfer_->receiverArea(r, s);
-    const double value = R.rho.maxComponent() * S.B.maxComponent() * F * Ar;
+    // Weighed by what the camera sees of the receiver (Smits, Arvo & Salesin 1992).
+    const double value = R.rho.maxComponent() * S.B.maxComponent() * F * Ar * importanceOf(r);
 
     // A link with a cluster end stands for its contents by one direction and one disc
     // (transfer.h): good only in the far field. Where the source may subtend a wide
@@ -523,6 +524,10 @@ void HierarchicalSolver::solve() {
         updateDirectIrradiance();  // the leaves the round made
         ++timing_.refineRounds;
         const int sweeps = gatherPushPull();
+        if (!seenImportance_.empty() && !importanceBounced_) {
+            updateImportance(/*bounce=*/true);
+            importanceBounced_ = true;
+        }
         char msg[256];
         std::snprintf(msg, sizeof msg, "refine round %d: %zu links, %d leaves, %d sweeps, %.1f s%s",
                       round + 1, links_.size(), h_.leafCount(), sweeps, secondsSince(start),

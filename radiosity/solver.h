@@ -312,6 +312,23 @@ class HierarchicalSolver {
     /// the leaf containing x and of all its ancestors gathered in the last sweep.
     Rgb irradianceAt(int polygon, const Vec3& x) const;
 
+    /// Importance from the photo's fixed camera (Smits, Arvo & Salesin 1992), for the
+    /// refinement: `seen` holds, per input polygon, the importance it receives directly
+    /// (1 where the photo sees it, 0 where it does not). The oracle then weighs each link's
+    /// error by the importance of its receiver, so that what the photo shows is refined
+    /// first and the surfaces behind the camera cost little. After the first refinement
+    /// round the importance takes one bounce of the adjoint equation, through the links:
+    ///   I(s) = I_seen(s) + sum_r w_r rho_r I_seen(r) / sum_r w_r,  w_r = F_rs V A_r
+    /// over the links r <- s (the power s sends to r), the share of what s sends that a
+    /// seen surface reflects, so that a wall behind the camera that lights the seen ones
+    /// keeps its links (radiosity/importance.cpp). Every
+    /// importance is at least kImportanceFloor and at most 1. Empty (the default): every
+    /// receiver counts fully. Call before solve().
+    void setCameraImportance(std::vector<double> seen);
+    static constexpr double kImportanceFloor = 0.1;
+    /// The importance of a node's receiving surfaces (1 without camera importance).
+    double importanceOf(int node) const;
+
     /// The active links gathered by `node` (empty when it has none).
     std::span<const Link> linksOf(int node) const;
 
@@ -540,6 +557,14 @@ class HierarchicalSolver {
     /// The faces' emitted power plus directPower_ (max channel): what the oracle and the
     /// convergence test measure against.
     double sourcePower() const;
+    /// Camera importance (setCameraImportance): direct, per polygon; the total per polygon
+    /// and per cluster node (the largest of its polygons'); whether the bounce was taken.
+    std::vector<double> seenImportance_, polygonImportance_;
+    std::vector<float> clusterImportance_;
+    bool importanceBounced_ = false;
+    /// Sets polygonImportance_ and clusterImportance_ from seenImportance_, plus one
+    /// bounce through the active links when `bounce`.
+    void updateImportance(bool bounce);
     double meanB_ = 0;  ///< area-weighted mean radiosity of the reflecting leaves (max channel)
     size_t maxLinks_ = 0, maxMemory_ = 0;  ///< the budget in force
     bool budgetReached_ = false;

@@ -59,6 +59,9 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
     app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     app->add_flag("!--no-refinement", p.shadowRefinement,
                   "skip the texture-based refinement of shadow boundaries (§4.2)");
+    app->add_flag("--importance", p.importance,
+                  "weigh the refinement by what the photo's camera sees and what lights it "
+                  "(importance, Smits, Arvo & Salesin 1992)");
     app->add_flag("!--no-shadow-removal", p.shadowRemoval,
                   "skip real-shadow removal (§4.3-4.4): the 1997 method, D = B of the photo");
     app->add_option("--display-pixels", p.displayPixels,

@@ -160,6 +160,7 @@ void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     r.sampling = planSampling(r.scene.camera.width, r.scene.camera.height, o.spp, o.sampleBudget);
     r.items =
         castItemBuffer(r.scene.camera, r.solver->scene(), r.solver->visibility(), r.sampling.spp);
+    if (o.importance) r.solver->setCameraImportance(seenPolygons(r.items, r.solver->scene()));
     P.times.itemBuffer = since(t0);
 }
 
@@ -262,6 +263,11 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     say(o, "lighting at " + std::to_string(r.mesh->vertices().size()) + " leaf vertices");
     P.lighting =
         measureVertexLighting(*r.solver, *r.mesh, *r.responses, directLightOptions(o), r.direct);
+    say(o, "  final gather: " + std::to_string(r.direct.gather.sharedLinks) +
+               " far links gathered at " + std::to_string(r.direct.gather.samples()) +
+               " element corners, " + std::to_string(r.direct.gather.nearLinks) +
+               " near links per vertex; " + std::to_string(r.direct.gather.terms()) +
+               " terms kept");
     P.times.vertexLighting = since(t0);
 
     if (!o.leafReflectance) return;
@@ -334,8 +340,7 @@ void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
     }
     P.times.shadowRemoval = since(t0);
     // The vertices' gather terms served the lightings above; edits gather afresh.
-    r.direct.termStart = {};
-    r.direct.terms = {};
+    r.direct.gather = {};
     // What the confidence display needs (relight/prepared.h, relight/pipeline/confidence.h).
     P.confidence = vertexConfidence(r.direct, P.photoRadiance);
     P.modelReflectance =

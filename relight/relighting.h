@@ -104,6 +104,10 @@ struct RelightOptions {
     /// Eq. (3)); off: the first photo alone (better on the bundled scenes but for a lamp
     /// photographed alone).
     bool mergePhotos = false;
+    /// Weigh the refinement by the importance the photo's camera gives each surface
+    /// (radiosity/solver.h, setCameraImportance; Smits, Arvo & Salesin 1992): what the
+    /// photo sees and what lights it are refined first. Off by default while it is measured.
+    bool importance = false;
     std::function<void(const std::string&)> progress;  ///< one line per step (may be empty)
 };
 

@@ -62,6 +62,7 @@ struct PrepareOptionArgs {
     bool pixelLight = true;
     /// Merge the reflectance of all of the scene's photos per pixel (default: the first).
     bool allPhotos = false;
+    bool importance = false;
 
     /// The pipeline's options, with progress lines on stderr.
     RelightOptions relightOptions() const;

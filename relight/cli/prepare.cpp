@@ -42,6 +42,7 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     o.displayPiecePixels = displayPixels;
     o.pixelLight = pixelLight;
     o.mergePhotos = allPhotos;
+    o.importance = importance;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     return o;
 }

@@ -107,6 +107,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.i64(o.shadowRefinement ? 1 : 0);
     hashOptions(h, o.refinement);
     h.i64(o.shadowRemoval ? 1 : 0);
+    h.i64(o.importance ? 1 : 0);
     hashOptions(h, o.removal);
     h.f64(o.displayPiecePixels);
     h.i64(o.pixelLight ? 1 : 0);

@@ -58,4 +58,11 @@ ItemBuffer castItemBuffer(const Camera& camera, const radiosity::Scene& scene,
     return items;
 }
 
+std::vector<double> seenPolygons(const ItemBuffer& items, const radiosity::Scene& scene) {
+    std::vector<double> seen(scene.polygons.size(), 0.0);
+    for (const int p : items.polygon)
+        if (p >= 0 && static_cast<size_t>(p) < seen.size()) seen[static_cast<size_t>(p)] = 1.0;
+    return seen;
+}
+
 }  // namespace relight

@@ -55,4 +55,8 @@ SamplingPlan planSampling(int width, int height, int spp, int64_t budget);
 ItemBuffer castItemBuffer(const Camera& camera, const radiosity::Scene& scene,
                           const radiosity::Visibility& vis, int spp);
 
+/// The camera's direct importance per polygon of `scene`: 1 where a sample of the item
+/// buffer sees it, 0 elsewhere (HierarchicalSolver::setCameraImportance).
+std::vector<double> seenPolygons(const ItemBuffer& items, const radiosity::Scene& scene);
+
 }  // namespace relight

@@ -11,6 +11,7 @@
 #include "radiosity/final_gather.h"
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/parallel.h"
+#include "radiosity/shared_gather.h"
 #include "relight/pipeline/leaf_texture.h"
 
 namespace relight {
@@ -124,7 +125,29 @@ void thinGatherPoints(std::vector<std::vector<std::pair<int, int>>>& points) {
     }
 }
 
-using GatherTerms = std::vector<std::vector<std::vector<radiosity::GatherWeight>>>;
+/// The gather points' final gathers, far links shared per element
+/// (radiosity/shared_gather.h): polygon p's points are first[p] .. first[p + 1] - 1, in the
+/// order of PhotoSums::points.
+struct GatherTerms {
+    radiosity::SharedGather gather;
+    std::vector<size_t> first;
+};
+
+GatherTerms gatherTerms(const radiosity::HierarchicalSolver& solver, const PhotoSums& sums,
+                        const LightingBuffer& lighting) {
+    GatherTerms t;
+    const size_t np = sums.points.size();
+    t.first.assign(np + 1, 0);
+    for (size_t p = 0; p < np; ++p) t.first[p + 1] = t.first[p] + sums.points[p].size();
+    std::vector<radiosity::GatherPoint> points;
+    points.reserve(t.first[np]);
+    for (size_t p = 0; p < np; ++p)
+        for (auto [g, n] : sums.points[p])
+            points.push_back(
+                {static_cast<int>(p), lighting.gatherPosition[g], static_cast<uint64_t>(g)});
+    t.gather = radiosity::sharedFinalGather(solver, points, 4);
+    return t;
+}
 
 /// Per polygon, the irradiance summed over its usable samples with the solver's radiosities
 /// now: the direct light's sum, plus the indirect light's mean over the gather points (each
@@ -132,19 +155,15 @@ using GatherTerms = std::vector<std::vector<std::vector<radiosity::GatherWeight>
 std::vector<Rgb> sumIrradiance(const radiosity::HierarchicalSolver& solver, const PhotoSums& sums,
                                const GatherTerms& terms) {
     const int np = static_cast<int>(sums.L.size());
-    const auto& nodes = solver.hierarchy().nodes;
+    std::vector<Rgb> H(terms.gather.points());
+    terms.gather.addIndirect(solver, H.data());
     std::vector<Rgb> sumH(np);
     radiosity::parallelFor(static_cast<size_t>(np), 1, [&](size_t p) {
         Rgb sumI;
         double weight = 0;
         for (size_t i = 0; i < sums.points[p].size(); ++i) {
-            Rgb H;
-            for (const radiosity::GatherWeight& t : terms[p][i]) {
-                const radiosity::Node& S = nodes[t.node];
-                H += (S.emitting ? S.B - S.E : S.B) * t.w;
-            }
             const int n = sums.points[p][i].second;
-            sumI += H * static_cast<double>(n);
+            sumI += H[terms.first[p] + i] * static_cast<double>(n);
             weight += n;
         }
         sumH[p] = sums.direct[p] + (weight > 0 ? sumI * (sums.count[p] / weight) : Rgb{});
@@ -243,20 +262,12 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
                                              int rounds, int minSamples, double tolerance) {
     ReflectanceReport report;
     const radiosity::Scene& scene = solver.scene();
-    const int np = static_cast<int>(scene.polygons.size());
     PhotoSums sums = sumPhotoSamples(scene, items, lighting, photo);
     thinGatherPoints(sums.points);
     report.surface = surfaceOf(scene);
     const std::vector<int>& surface = report.surface;
     // The gather points' terms, once: between rounds only the radiosities change.
-    GatherTerms terms(np);
-    radiosity::parallelFor(static_cast<size_t>(np), 1, [&](size_t p) {
-        terms[p].reserve(sums.points[p].size());
-        for (auto [g, n] : sums.points[p])
-            terms[p].push_back(radiosity::finalGatherWeights(solver, static_cast<int>(p),
-                                                             lighting.gatherPosition[g], 4,
-                                                             static_cast<uint64_t>(g)));
-    });
+    const GatherTerms terms = gatherTerms(solver, sums, lighting);
     for (int round = 0; round < rounds; ++round) {
         RoundEstimates e =
             estimateFromSums(scene, surface, sums, sumIrradiance(solver, sums, terms), minSamples);

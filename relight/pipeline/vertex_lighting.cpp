@@ -29,15 +29,6 @@ VertexLighting emptyLighting(const radiosity::LeafMesh& mesh,
     return out;
 }
 
-/// h[l] += sum_t R_l(node_t) w_t: the indirect light of a final gather, by its terms.
-void addGathered(std::span<const radiosity::GatherWeight> terms,
-                 const radiosity::LightResponses& responses, int lights, Rgb* h) {
-    for (const radiosity::GatherWeight& g : terms) {
-        const auto R = responses.reflected(g.node);
-        for (int l = 0; l < lights; ++l) h[l] += R[l] * g.w;
-    }
-}
-
 }  // namespace
 
 VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver,
@@ -52,40 +43,32 @@ VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver
     direct.visible.assign(static_cast<size_t>(n) * L, 0.0);
     direct.unoccluded.assign(static_cast<size_t>(n) * L, 0.0);
     if (L == 0) return out;
-    std::atomic<uint64_t> gatherRays{0};
-    // The gather's terms, kept for the lightings that follow (regatherVertexLighting).
-    std::vector<std::vector<radiosity::GatherWeight>> terms(n);
+    // The indirect light: one final gather of every vertex, far links shared per element.
+    std::vector<radiosity::GatherPoint> points(static_cast<size_t>(n));
+    for (int v = 0; v < n; ++v) {
+        const int p = mesh.vertices()[v].polygon;
+        // A light's own emitting face is shown with the light's radiance, not lit.
+        if (solver.scene().polygons[p].light >= 0) continue;
+        points[v] = {p, mesh.insidePoint(v), static_cast<uint64_t>(v)};
+    }
+    direct.gather = radiosity::sharedFinalGather(solver, points, 4);
+    direct.gather.addResponses(responses, out.response.data());
     radiosity::parallelForChunks(static_cast<size_t>(n), 64, [&](size_t first, size_t last) {
         std::vector<double> G(static_cast<size_t>(L)), G0(static_cast<size_t>(L));
-        uint64_t rays = 0;
         for (int v = static_cast<int>(first); v != static_cast<int>(last); ++v) {
-            const int p = mesh.vertices()[v].polygon;
-            // A light's own emitting face is shown with the light's radiance, not lit.
-            if (solver.scene().polygons[p].light >= 0) continue;
-            const radiosity::Vec3 x = mesh.insidePoint(v);
+            const int p = points[v].polygon;
+            if (p < 0) continue;
             Rgb* h = out.response.data() + static_cast<size_t>(v) * L;
-            terms[v] =
-                radiosity::finalGatherWeights(solver, p, x, 4, static_cast<uint64_t>(v), &rays);
-            addGathered(terms[v], responses, L, h);
             const size_t at = static_cast<size_t>(v) * L;
-            light.geometry(p, x, static_cast<uint64_t>(v), G.data(), G0.data());
+            light.geometry(p, points[v].x, static_cast<uint64_t>(v), G.data(), G0.data());
             for (int l = 0; l < L; ++l) {
                 h[l] += Rgb::gray(std::numbers::pi * G[l]);
                 direct.visible[at + l] = std::numbers::pi * G[l];
                 direct.unoccluded[at + l] = std::numbers::pi * G0[l];
             }
         }
-        gatherRays += rays;
     });
-    direct.termStart.assign(static_cast<size_t>(n) + 1, 0);
-    for (int v = 0; v < n; ++v) direct.termStart[v + 1] = direct.termStart[v] + terms[v].size();
-    direct.terms.clear();
-    direct.terms.reserve(direct.termStart[n]);
-    for (auto& t : terms) {
-        direct.terms.insert(direct.terms.end(), t.begin(), t.end());
-        t = {};
-    }
-    out.rays = gatherRays.load() + light.raysCast();
+    out.rays = direct.gather.rays + light.raysCast();
     return out;
 }
 
@@ -98,21 +81,18 @@ VertexLighting regatherVertexLighting(const radiosity::HierarchicalSolver& solve
     const int L = out.lights;
     const int n = static_cast<int>(mesh.vertices().size());
     if (L == 0) return out;
+    const bool useTerms = direct.gather.points() == static_cast<size_t>(n);
+    if (useTerms) direct.gather.addResponses(responses, out.response.data());
     std::atomic<uint64_t> gatherRays{0};
-    const bool useTerms = direct.termStart.size() == static_cast<size_t>(n) + 1;
     radiosity::parallelForChunks(static_cast<size_t>(n), 64, [&](size_t from, size_t to) {
         uint64_t rays = 0;
         for (int v = static_cast<int>(from); v != static_cast<int>(to); ++v) {
             const int p = mesh.vertices()[v].polygon;
             if (solver.scene().polygons[p].light >= 0) continue;  // shown, not lit
             Rgb* h = out.response.data() + static_cast<size_t>(v) * L;
-            if (useTerms) {
-                const size_t first = direct.termStart[v], last = direct.termStart[v + 1];
-                addGathered(std::span(direct.terms).subspan(first, last - first), responses, L, h);
-            } else {
+            if (!useTerms)
                 radiosity::finalGatherResponses(solver, responses, p, mesh.insidePoint(v), h, 4,
                                                 static_cast<uint64_t>(v), &rays);
-            }
             const Rgb c = directScale.empty() ? Rgb::gray(1.0) : directScale[v];
             const size_t at = static_cast<size_t>(v) * L;
             for (int l = 0; l < L; ++l) h[l] += c * direct.visible[at + l];

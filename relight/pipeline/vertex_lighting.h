@@ -24,6 +24,7 @@
 #include "radiosity/final_gather.h"
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/light_response.h"
+#include "radiosity/shared_gather.h"
 #include "radiosity/solver.h"
 
 namespace relight {
@@ -44,12 +45,11 @@ struct VertexLighting {
 struct VertexDirect {
     int lights = 0;
     std::vector<double> visible, unoccluded;
-    /// The final gather's terms at every vertex (radiosity/final_gather.h), vertex v's in
-    /// [termStart[v], termStart[v + 1]): while the links stay, a later lighting of the same
-    /// mesh only weighs new responses by them (no ray, no form factor). Only needed while
+    /// The final gather's terms at every vertex, far links shared per element
+    /// (radiosity/shared_gather.h): while the links stay, a later lighting of the same mesh
+    /// only weighs new responses by them (no ray, no form factor). Only needed while
     /// preparing: clear them after.
-    std::vector<size_t> termStart;
-    std::vector<radiosity::GatherWeight> terms;
+    radiosity::SharedGather gather;
 };
 
 /// The first lighting of `mesh`'s vertices (built on `solver`'s hierarchy): h_l measured

@@ -1,0 +1,244 @@
+#include "radiosity/shared_gather.h"
+
+#include <atomic>
+#include <cmath>
+
+#include "radiosity/detail/point_gather.h"
+#include "radiosity/parallel.h"
+
+namespace radiosity {
+
+namespace {
+
+/// Whether receiver `node`'s link l is gathered at the element's corners (see the header).
+bool sharedLink(const Hierarchy& h, const Node& r, const Link& l) {
+    if (r.isCluster() || r.vertexCount < 3) return false;
+    const Node& s = h.nodes[l.source];
+    return glm::length(s.centre - r.centre) > kSharedGatherFar * (r.radius + s.radius);
+}
+
+/// Corner c of element r moved a hair (1e-4 of the way) towards its centre, as
+/// LeafMesh::insidePoint moves a vertex: rays and point location never start on an edge.
+Vec3 samplePoint(const Node& r, int c) {
+    return r.v[c] + 1e-4 * (r.centre - r.v[c]);
+}
+
+/// Weights of the samples of element r at x: the affine function through the samples'
+/// values (least squares over a quad's four, exact over a triangle's three), evaluated at x.
+/// With A the rows [1 u_c v_c] (u, v: coordinates in r's plane), the fit's value at
+/// [1 u v] is sum_c a_c f_c with a = A (A^T A)^-1 [1 u v]^T; sum a_c = 1.
+std::array<double, 4> affineWeights(const Node& r, const Vec3& x) {
+    const int k = r.vertexCount;
+    std::array<double, 4> a{0, 0, 0, 0};
+    const Vec3 t1 = glm::normalize(r.v[1] - r.v[0]), t2 = glm::cross(r.normal, t1);
+    double A[4][3], M[3][3] = {};
+    for (int c = 0; c < k; ++c) {
+        const Vec3 d = samplePoint(r, c) - r.centre;
+        A[c][0] = 1;
+        A[c][1] = glm::dot(d, t1);
+        A[c][2] = glm::dot(d, t2);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) M[i][j] += A[c][i] * A[c][j];
+    }
+    const Vec3 dx = x - r.centre;
+    const double q[3] = {1, glm::dot(dx, t1), glm::dot(dx, t2)};
+    // y = M^-1 q by Cramer's rule; a degenerate element (no area) takes the samples' mean.
+    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    const double scale = M[1][1] * M[2][2];
+    if (!(std::abs(det) > 1e-12 * std::max(scale, 1e-300)) || !std::isfinite(det)) {
+        for (int c = 0; c < k; ++c) a[c] = 1.0 / k;
+        return a;
+    }
+    double y[3];
+    for (int col = 0; col < 3; ++col) {
+        double m[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) m[i][j] = j == col ? q[i] : M[i][j];
+        y[col] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                  m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                  m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) /
+                 det;
+    }
+    for (int c = 0; c < k; ++c) a[c] = A[c][0] * y[0] + A[c][1] * y[1] + A[c][2] * y[2];
+    return a;
+}
+
+/// The element receivers on the points' chains that hold far links, each given its
+/// vertexCount consecutive samples: first[node] (-1: none), in order of first meeting; and
+/// the indices of its near links, gathered per point (nodes[k]'s in [nearStart[k],
+/// nearStart[k + 1]) of nearIndex; ordinal[node] = k): a point then never reads the far
+/// links' sources, thousands on a wall.
+struct SampleLayout {
+    std::vector<int> first, ordinal;
+    std::vector<int> nodes;
+    std::vector<size_t> nearStart{0};
+    std::vector<int> nearIndex;
+    std::vector<int> leafOf;  ///< per point: its leaf (-1: no gather)
+    int samples = 0;
+    size_t shared = 0, near = 0;
+};
+
+SampleLayout layOutSamples(const HierarchicalSolver& solver, std::span<const GatherPoint> points) {
+    const Hierarchy& h = solver.hierarchy();
+    SampleLayout s;
+    s.first.assign(h.nodes.size(), -1);
+    s.ordinal.assign(h.nodes.size(), -1);
+    std::vector<char> seen(h.nodes.size(), 0);
+    s.leafOf.assign(points.size(), -1);
+    for (size_t i = 0; i < points.size(); ++i) {
+        if (points[i].polygon < 0) continue;
+        s.leafOf[i] = h.locateLeaf(points[i].polygon, points[i].x);
+        for (int node = s.leafOf[i]; node >= 0; node = h.nodes[node].parent) {
+            if (seen[node]) break;  // its ancestors were met with it
+            seen[node] = 1;
+            const auto links = solver.linksOf(node);
+            size_t shared = 0;
+            for (const Link& l : links) shared += sharedLink(h, h.nodes[node], l) ? 1 : 0;
+            s.shared += shared;
+            s.near += links.size() - shared;
+            if (shared == 0) continue;
+            s.first[node] = s.samples;
+            s.ordinal[node] = static_cast<int>(s.nodes.size());
+            s.nodes.push_back(node);
+            s.samples += h.nodes[node].vertexCount;
+            for (size_t k = 0; k < links.size(); ++k)
+                if (!sharedLink(h, h.nodes[node], links[k]))
+                    s.nearIndex.push_back(static_cast<int>(k));
+            s.nearStart.push_back(s.nearIndex.size());
+        }
+    }
+    return s;
+}
+
+/// Concatenates per-item term lists into (start, terms), freeing them on the way.
+template <class T>
+void flatten(std::vector<std::vector<T>>& lists, std::vector<size_t>& start, std::vector<T>& out) {
+    start.assign(lists.size() + 1, 0);
+    for (size_t i = 0; i < lists.size(); ++i) start[i + 1] = start[i] + lists[i].size();
+    out.clear();
+    out.reserve(start.back());
+    for (auto& t : lists) {
+        out.insert(out.end(), t.begin(), t.end());
+        t = {};
+    }
+}
+
+}  // namespace
+
+SharedGather sharedFinalGather(const HierarchicalSolver& solver,
+                               std::span<const GatherPoint> points, int partialRays) {
+    const Hierarchy& h = solver.hierarchy();
+    SharedGather out;
+    const SampleLayout layout = layOutSamples(solver, points);
+    out.sharedLinks = layout.shared;
+    out.nearLinks = layout.near;
+    std::atomic<uint64_t> rays{0};
+    auto record = [](std::vector<GatherWeight>& v) {
+        return [&v](int s, double w) { v.push_back({s, static_cast<float>(w)}); };
+    };
+    // The corners' gathers over the far links.
+    std::vector<std::vector<GatherWeight>> sampleTerms(static_cast<size_t>(layout.samples));
+    parallelFor(layout.nodes.size(), 1, [&](size_t i) {
+        const int node = layout.nodes[i];
+        const Node& r = h.nodes[node];
+        const Vec3& n = solver.scene().polygons[r.polygon].normal;
+        const int pr = std::clamp(partialRays, 0, 64);
+        uint64_t cast = 0;
+        for (int c = 0; c < r.vertexCount; ++c) {
+            const Vec3 x = samplePoint(r, c);
+            Rng rng(static_cast<uint64_t>(node) * 4 + c + 0x5A3Dull);
+            auto acc = record(sampleTerms[static_cast<size_t>(layout.first[node] + c)]);
+            for (const Link& l : solver.linksOf(node))
+                if (detail::mayCarry(l) && sharedLink(h, r, l))
+                    detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
+        }
+        rays += cast;
+    });
+    flatten(sampleTerms, out.sampleStart, out.sampleTerms);
+    // Each point's near links, and its references to the corners above it.
+    std::vector<std::vector<GatherWeight>> pointTerms(points.size());
+    std::vector<std::vector<SharedGather::SampleRef>> refs(points.size());
+    parallelForChunks(points.size(), 64, [&](size_t from, size_t to) {
+        uint64_t cast = 0;
+        for (size_t i = from; i != to; ++i) {
+            const GatherPoint& p = points[i];
+            if (layout.leafOf[i] < 0) continue;
+            const Vec3& n = solver.scene().polygons[p.polygon].normal;
+            const int pr = std::clamp(partialRays, 0, 64);
+            Rng rng = detail::gatherRng(p.seed);
+            auto acc = record(pointTerms[i]);
+            auto gather = [&](const Link& l) {
+                if (detail::mayCarry(l))
+                    detail::gatherLink(solver, p.polygon, p.x, n, l, pr, rng, cast, acc);
+            };
+            for (int node = layout.leafOf[i]; node >= 0; node = h.nodes[node].parent) {
+                const auto links = solver.linksOf(node);
+                const int k = layout.ordinal[node];
+                if (k < 0) {
+                    for (const Link& l : links) gather(l);
+                    continue;
+                }
+                for (size_t j = layout.nearStart[k]; j != layout.nearStart[k + 1]; ++j)
+                    gather(links[static_cast<size_t>(layout.nearIndex[j])]);
+                const int first = layout.first[node];
+                const auto a = affineWeights(h.nodes[node], p.x);
+                for (int c = 0; c < h.nodes[node].vertexCount; ++c)
+                    refs[i].push_back({first + c, static_cast<float>(a[c])});
+            }
+        }
+        rays += cast;
+    });
+    flatten(pointTerms, out.pointStart, out.pointTerms);
+    flatten(refs, out.refStart, out.refs);
+    out.rays = rays.load();
+    return out;
+}
+
+namespace {
+
+/// out[i * L + l] += the gather of point i with values(node)[l] the radiosity node reflects
+/// for "light" l.
+template <class Values>
+void addGather(const SharedGather& g, int L, const Values& values, Rgb* out) {
+    std::vector<Rgb> S(g.samples() * static_cast<size_t>(L));
+    parallelFor(g.samples(), 256, [&](size_t s) {
+        Rgb* v = S.data() + s * L;
+        for (size_t t = g.sampleStart[s]; t != g.sampleStart[s + 1]; ++t) {
+            const auto R = values(g.sampleTerms[t].node);
+            for (int l = 0; l < L; ++l) v[l] += R[l] * g.sampleTerms[t].w;
+        }
+    });
+    parallelFor(g.points(), 256, [&](size_t i) {
+        Rgb* h = out + i * L;
+        for (size_t t = g.pointStart[i]; t != g.pointStart[i + 1]; ++t) {
+            const auto R = values(g.pointTerms[t].node);
+            for (int l = 0; l < L; ++l) h[l] += R[l] * g.pointTerms[t].w;
+        }
+        for (size_t t = g.refStart[i]; t != g.refStart[i + 1]; ++t) {
+            const Rgb* v = S.data() + static_cast<size_t>(g.refs[t].sample) * L;
+            for (int l = 0; l < L; ++l) h[l] += v[l] * g.refs[t].weight;
+        }
+    });
+}
+
+}  // namespace
+
+void SharedGather::addResponses(const LightResponses& responses, Rgb* out) const {
+    addGather(
+        *this, responses.lights(), [&](int node) { return responses.reflected(node); }, out);
+}
+
+void SharedGather::addIndirect(const HierarchicalSolver& solver, Rgb* out) const {
+    const auto& nodes = solver.hierarchy().nodes;
+    addGather(
+        *this, 1,
+        [&](int node) {
+            const Node& S = nodes[static_cast<size_t>(node)];
+            return std::array<Rgb, 1>{S.emitting ? S.B - S.E : S.B};
+        },
+        out);
+}
+
+}  // namespace radiosity

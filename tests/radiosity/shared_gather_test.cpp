@@ -1,0 +1,96 @@
+// sharedFinalGather: the final gather of many points with the far links gathered once per
+// corner of their receiving element and interpolated, against the same gather per point.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "furnace.h"
+#include "radiosity/final_gather.h"
+#include "radiosity/light_response.h"
+#include "radiosity/shared_gather.h"
+#include "radiosity/solver.h"
+
+using namespace radiosity;
+
+namespace {
+
+/// A long hall, 12 x 3 x 3 m (faces inward, reflectance 0.6), lit by a 0.5 m lamp under
+/// the ceiling near one end: the far end's floor gathers from sources many times farther
+/// than its elements are large (far links), the lamp's end from near ones.
+Scene hall() {
+    Scene s;
+    s.objects = {"hall", "lamp"};
+    for (const auto& f : test::boxFacesInward(12, 3, 3))
+        s.polygons.push_back(makePolygon(f, 0, Rgb{0.6, 0.5, 0.4}));
+    Polygon lamp =
+        makePolygon({{1, 1.25, 2.9}, {1, 1.75, 2.9}, {1.5, 1.75, 2.9}, {1.5, 1.25, 2.9}}, 1, Rgb{});
+    lamp.light = 0;
+    s.lights.push_back({"lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(20.0)});
+    s.polygons.push_back(lamp);
+    return s;
+}
+
+}  // namespace
+
+TEST(SharedGather, MatchesThePerPointGatherWhereLinksAreFar) {
+    SolverOptions o;
+    o.epsilon = 1e-3;
+    HierarchicalSolver solver(hall(), o);
+    solver.solve();
+    // Points over the floor (polygon 0) and the far end wall (polygon 5, x = 12).
+    std::vector<GatherPoint> points;
+    for (int i = 0; i < 24; ++i)
+        for (int j = 0; j < 6; ++j)
+            points.push_back({0, Vec3{0.25 + 0.5 * i, 0.25 + 0.5 * j, 0}, uint64_t(i * 6 + j)});
+    for (int j = 0; j < 6; ++j)
+        for (int k = 0; k < 6; ++k)
+            points.push_back({5, Vec3{12, 0.25 + 0.5 * j, 0.25 + 0.5 * k}, uint64_t(500 + j)});
+    const SharedGather g = sharedFinalGather(solver, points, 4);
+    ASSERT_EQ(g.points(), points.size());
+    // The hall has far links, and the floor's elements are met by several points each.
+    EXPECT_GT(g.sharedLinks, 0u);
+    std::vector<Rgb> shared(points.size());
+    g.addIndirect(solver, shared.data());
+    double sumShared = 0, sumPoint = 0, worst = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Rgb H =
+            finalGatherIndirect(solver, points[i].polygon, points[i].x, 4, points[i].seed);
+        ASSERT_GT(H.r, 0.0);
+        // An empty room: no PARTIAL link, so no ray, and both are deterministic.
+        worst = std::max(worst, std::abs(shared[i].r - H.r) / H.r);
+        sumShared += shared[i].r;
+        sumPoint += H.r;
+    }
+    // A far link's transfer misses its affine fit by at most about 3 (R_r / d)^2 / 4 < 5 %
+    // of itself at kFar = 4 (shared_gather.h); far links are a part of each point's light,
+    // so each point is within 5 % and the sum within 1 % (errors of both signs over an
+    // element: the fit is a least-squares one).
+    EXPECT_LT(worst, 0.05);
+    EXPECT_NEAR(sumShared / sumPoint, 1.0, 0.01);
+}
+
+TEST(SharedGather, ResponsesSumToTheIndirectGather) {
+    // Per unit radiance of the one lamp, times its radiance, the responses' gather is the
+    // radiosities' gather: the same terms, weighed by R_l instead of B.
+    SolverOptions o;
+    o.epsilon = 1e-3;
+    // Both iterate to the same fixed point; a tolerance far below the assertion's keeps the
+    // convergence error out of the comparison (as LightResponses' own test does).
+    o.tolerance = 1e-14;
+    HierarchicalSolver solver(hall(), o);
+    solver.solve();
+    const LightResponses responses(solver);
+    std::vector<GatherPoint> points;
+    for (int i = 0; i < 12; ++i) points.push_back({0, Vec3{0.5 + i, 1.5, 0}, uint64_t(i)});
+    points.push_back({-1, Vec3{}, 0});  // no gather: left at zero
+    const SharedGather g = sharedFinalGather(solver, points, 4);
+    std::vector<Rgb> byB(points.size()), byR(points.size());
+    g.addIndirect(solver, byB.data());
+    g.addResponses(responses, byR.data());
+    for (size_t i = 0; i + 1 < points.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(byR[i][c] * 20.0, byB[i][c], 1e-6 * byB[i].maxComponent()) << i << " " << c;
+    EXPECT_EQ(byB.back().r, 0.0);
+    EXPECT_EQ(byR.back().r, 0.0);
+}
