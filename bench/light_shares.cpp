@@ -17,8 +17,8 @@
 // per edit: the per-pixel display's render (EDIT.exr, to score with `relight eval`) and
 // EDIT_shares.png: the render, the truth, and model/truth of the edit's irradiance per pixel
 // (grey 1, red up to 2 and more, blue down to 1/2 and less), side by side; and on the
-// terminal the error by scale (blockError) and the 16 px regions that hold most of it. --box: the sums
-// over those pixels only (x in [X0, X1), y in [Y0, Y1)).
+// terminal the error by scale (blockError) and the 16 px regions that hold most of it. --box: the
+// sums over those pixels only (x in [X0, X1), y in [Y0, Y1)).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -70,9 +70,9 @@ std::string errorOf(F&& f) {
 
 const std::vector<std::string> kLightsOnly = {"identity", "back_off", "colours",
                                               "left_off_right_double", "right_off_left_double"};
-const std::vector<std::string> kLater = {"virtual_box", "virtual_box_moved",
+const std::vector<std::string> kLater = {"virtual_box",           "virtual_box_moved",
                                          "virtual_light_and_box", "virtual_light_only",
-                                         "remove_table", "remove_cabinet"};
+                                         "remove_table",          "remove_cabinet"};
 
 TEST(RoomEdits, EveryBundledEditIsCovered) {
     std::set<std::string> listed(kLightsOnly.begin(), kLightsOnly.end());
