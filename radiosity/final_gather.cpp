@@ -103,6 +103,9 @@ void rayGatherResponses(const HierarchicalSolver& solver, const LightResponses& 
     const int L = responses.lights();
     for (int l = 0; l < L; ++l) H[l] = Rgb{};
     rayGatherLeaves(solver, polygon, x, side, seed, rays, [&](int leaf) {
+        // A leaf added after the responses were solved (a virtual object's) has no
+        // per-light split: it reflected nothing when they were solved, so it adds nothing.
+        if (!responses.covers(leaf)) return;
         const auto r = responses.reflected(leaf);
         for (int l = 0; l < L; ++l) H[l] += r[static_cast<size_t>(l)];
     });

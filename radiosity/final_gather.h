@@ -75,7 +75,8 @@ void finalGatherResponses(const HierarchicalSolver& solver, const LightResponses
 Rgb rayGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3& x, int side,
                       uint64_t seed, uint64_t* rays = nullptr);
 /// The same per light: H[l] = indirect irradiance at x per unit radiance of light l, from
-/// `responses` (built on the same solver). H holds responses.lights() values.
+/// `responses` (built on the same solver). H holds responses.lights() values. Leaves added
+/// since the responses were solved (responses.covers() false) add nothing.
 void rayGatherResponses(const HierarchicalSolver& solver, const LightResponses& responses,
                         int polygon, const Vec3& x, Rgb* H, int side, uint64_t seed,
                         uint64_t* rays = nullptr);

@@ -33,6 +33,12 @@ class LightResponses {
     int lights() const { return lights_; }
     /// R_l(node) for l = 0..lights()-1: reflected radiosity per unit radiance of light l
     /// (radiosity units per photo unit).
+    /// Whether `node` existed when the responses were solved: nodes added since (a virtual
+    /// object's or light's, by DynamicObjects) have none.
+    bool covers(int node) const {
+        return node >= 0 && lights_ > 0 &&
+               static_cast<size_t>(node) < R_.size() / static_cast<size_t>(lights_);
+    }
     std::span<const Rgb> reflected(int node) const {
         return {R_.data() + static_cast<size_t>(node) * lights_, static_cast<size_t>(lights_)};
     }
