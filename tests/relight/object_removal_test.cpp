@@ -26,6 +26,11 @@ RelightOptions options() {
     return o;
 }
 
+/// The lights' radiances as the photo shows them: the state every removal starts from.
+std::vector<radiosity::Rgb> photoRadiance(const Relighting& r) {
+    return {r.prepared.photoRadiance.begin(), r.prepared.photoRadiance.end()};
+}
+
 }  // namespace
 
 TEST(ObjectRemoval, TheRoomWithoutItsTableMeetsTheTruth) {
@@ -51,9 +56,7 @@ TEST(ObjectRemoval, TheRoomWithoutItsTableMeetsTheTruth) {
 
 TEST(ObjectRemoval, TheMaskCoversTheObjectAndTheTableComesBackExactly) {
     auto r = prepareRelighting(loadScene(kRoom), options());
-    const std::vector<radiosity::Rgb> radiance(r->prepared.photoRadiance.begin(),
-                                               r->prepared.photoRadiance.end());
-    DynamicRelighting dyn(*r, radiance);
+    DynamicRelighting dyn(*r, photoRadiance(*r));
     const Image before = dyn.render(DisplayMode::pixel);
     dyn.removeObject("table");
     const RemovedRegion& g = dyn.removedRegion();
@@ -106,9 +109,7 @@ TEST(ObjectRemoval, TheMaskCoversTheObjectAndTheTableComesBackExactly) {
 
 TEST(ObjectRemoval, WhatCannotBeTakenOutIsRefused) {
     auto r = prepareRelighting(loadScene(kRoom), options());
-    const std::vector<radiosity::Rgb> radiance(r->prepared.photoRadiance.begin(),
-                                               r->prepared.photoRadiance.end());
-    DynamicRelighting dyn(*r, radiance);
+    DynamicRelighting dyn(*r, photoRadiance(*r));
     EXPECT_THROW(dyn.removeObject("sofa"), std::invalid_argument);
     dyn.removeObject("cabinet");
     EXPECT_THROW(dyn.removeObject("cabinet"), std::invalid_argument);
@@ -254,9 +255,7 @@ TEST(ObjectRemoval, TheCabinetAgainstTwoWallsLeavesNoGhost) {
     o.epsilon = 1e-4;
     o.spp = 16;
     auto r = prepareRelighting(loadScene(kRoom), o);
-    const std::vector<radiosity::Rgb> radiance(r->prepared.photoRadiance.begin(),
-                                               r->prepared.photoRadiance.end());
-    DynamicRelighting dyn(*r, radiance);
+    DynamicRelighting dyn(*r, photoRadiance(*r));
     const Image before = dyn.render(DisplayMode::pixel);
     dyn.removeObject("cabinet");
     const RemovedRegion& g = dyn.removedRegion();
@@ -296,9 +295,7 @@ TEST(ObjectRemoval, ACabinetCutByTheImageBorderLeavesNoGhost) {
     o.epsilon = 1e-4;
     o.spp = 16;
     auto r = prepareRelighting(std::move(sf), o);
-    const std::vector<radiosity::Rgb> radiance(r->prepared.photoRadiance.begin(),
-                                               r->prepared.photoRadiance.end());
-    DynamicRelighting dyn(*r, radiance);
+    DynamicRelighting dyn(*r, photoRadiance(*r));
     const Image before = dyn.render(DisplayMode::pixel);
     dyn.removeObject("cabinet");
     const RemovedRegion& g = dyn.removedRegion();
