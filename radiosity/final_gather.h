@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "radiosity/direct_light.h"
@@ -77,9 +78,29 @@ Rgb rayGatherIndirect(const HierarchicalSolver& solver, int polygon, const Vec3&
 /// The same per light: H[l] = indirect irradiance at x per unit radiance of light l, from
 /// `responses` (built on the same solver). H holds responses.lights() values. Leaves added
 /// since the responses were solved (responses.covers() false) add nothing.
+/// `hits` (optional, side^2 values): the leaf each ray met, -1 where it met none, for a gather
+/// of another field along the same rays later (rayGatherField's `hits`).
 void rayGatherResponses(const HierarchicalSolver& solver, const LightResponses& responses,
                         int polygon, const Vec3& x, Rgb* H, int side, uint64_t seed,
-                        uint64_t* rays = nullptr);
+                        uint64_t* rays = nullptr, int32_t* hits = nullptr);
+
+/// The two gathers of a field other than the solution's: `reflected[s]` stands for what node
+/// s reflects (B - E), for every node of the hierarchy (a change of the radiosity, say, which
+/// is zero on most nodes). Sources whose field is zero cast no rays for PARTIAL links, so a
+/// gather of a local change costs little more than its rays. Linear in the field: a gather
+/// of B_now - B_before is the difference of the two gathers, but for where a ray or a
+/// PARTIAL link's visibility changed between them.
+Rgb finalGatherField(const HierarchicalSolver& solver, std::span<const Rgb> reflected, int polygon,
+                     const Vec3& x, int partialRays = 4, uint64_t seed = 0);
+Rgb rayGatherField(const HierarchicalSolver& solver, std::span<const Rgb> reflected, int polygon,
+                   const Vec3& x, int side, uint64_t seed);
+/// The same along rays already cast from x with this side and seed: `hits` holds the leaf each
+/// ray met (rayGatherResponses' `hits`, -1: none). A leaf split since is looked up again where
+/// its ray meets its plane. Nothing is cast: of what was put in since, only the polygons
+/// `faces` (a lamp's, say) are met, by each ray again; anything else neither sends nor blocks.
+Rgb rayGatherField(const HierarchicalSolver& solver, std::span<const Rgb> reflected, int polygon,
+                   const Vec3& x, int side, uint64_t seed, std::span<const int32_t> hits,
+                   std::span<const int> faces = {});
 
 /// Irradiance at point x of `polygon` by final gather (radiosity units):
 ///   H(x) = sum_l E_l G_l(x) + H_indirect(x),

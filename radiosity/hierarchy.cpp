@@ -517,10 +517,54 @@ std::vector<int> Hierarchy::edgeNeighbours(int leaf) const {
     return out;
 }
 
+namespace {
+
+// Which side of the line a->b, in the element's plane, x lies on (> 0: left, counter-clockwise
+// about the normal n).
+double side(const Vec3& a, const Vec3& b, const Vec3& x, const Vec3& n) {
+    return glm::dot(glm::cross(b - a, x - a), n);
+}
+
+// The child of an element cut by subdivide() (childCorners) that holds x, from the parent's
+// corners alone: a quad's children are the four parts cut by the lines through opposite edge
+// midpoints (both pass through the centroid, the midpoint of either pair); a triangle's are
+// its three corner triangles, each cut off by the line through its two edge midpoints, and the
+// middle one. Points on a cut line go to the first side tested; points outside the element
+// (rounding) go to the part next to them, as they would by the nearest centroid.
+int childHolding(const Node& e, const Vec3& x) {
+    const auto& v = e.v;
+    const Vec3& n = e.normal;
+    const Vec3 m01 = 0.5 * (v[0] + v[1]), m12 = 0.5 * (v[1] + v[2]);
+    if (e.vertexCount == 4) {
+        const Vec3 m23 = 0.5 * (v[2] + v[3]), m30 = 0.5 * (v[3] + v[0]);
+        const bool top = side(m30, m12, x, n) >= 0;   // towards v2 and v3
+        const bool left = side(m01, m23, x, n) >= 0;  // towards v3 and v0
+        return top ? (left ? 3 : 2) : (left ? 0 : 1);
+    }
+    const Vec3 m20 = 0.5 * (v[2] + v[0]);
+    // The middle triangle (m12, m20, m01) lies left of each of its edges; a corner's part is
+    // right of the middle edge facing it.
+    if (side(m20, m01, x, n) < 0) return 0;
+    if (side(m01, m12, x, n) < 0) return 1;
+    if (side(m12, m20, x, n) < 0) return 2;
+    return 3;
+}
+
+}  // namespace
+
 int Hierarchy::locateLeaf(int polygon, const Vec3& x) const {
-    int node = polygonRoot[polygon];
+    return locateLeafBelow(polygonRoot[polygon], x);
+}
+
+int Hierarchy::locateLeafBelow(int node, const Vec3& x) const {
     while (!nodes[node].isLeaf()) {
         const Node& n = nodes[node];
+        if (n.childCount == 4 && (n.vertexCount == 3 || n.vertexCount == 4)) {
+            // Every element is cut by subdivide(): the child from the parent's cut lines,
+            // without reading the children (this runs once per ray of every gather).
+            node = n.firstChild + childHolding(n, x);
+            continue;
+        }
         int best = -1;
         double bestDist = 1e300;
         for (int k = 0; k < n.childCount; ++k) {

@@ -148,6 +148,8 @@ class Hierarchy {
 
     /// The leaf element of `polygon` that contains x (a point on the polygon).
     int locateLeaf(int polygon, const Vec3& x) const;
+    /// The same below element `node` (a point on it).
+    int locateLeafBelow(int node, const Vec3& x) const;
 
     /// The leaf elements of the same polygon that share part of an edge with leaf `leaf`.
     /// Found by probing just outside each edge at 1/4, 1/2 and 3/4 of its length: a leaf

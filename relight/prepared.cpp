@@ -92,7 +92,8 @@ void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& ou
         // One gather of the lights, as before the split. The per-pixel display keeps this
         // image where a pixel sees a lamp's face or nothing.
         const auto ratio = vertexRatio(p, vertexIrradiance(p, radiance));
-        renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance, out);
+        renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance, out, {},
+                    /*leafRuns=*/mode == DisplayMode::ratio || p.pixelDirect.empty());
         if (mode == DisplayMode::ratio) return;
         if (p.pixelDirect.empty())
             throw std::invalid_argument(

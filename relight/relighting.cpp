@@ -304,13 +304,17 @@ void lightPixels(Relighting& r, const RelightOptions& o) {
     const size_t L = r.responses->lights() > 0 ? static_cast<size_t>(r.responses->lights()) : 0;
     r.gatherSide = indirectRaySide(o, nv);
     P.vertexIndirect.assign(nv * L, Rgb{});
+    const size_t rays = static_cast<size_t>(r.gatherSide) * static_cast<size_t>(r.gatherSide);
+    r.vertexRayHits.clear();
+    if (nv * rays <= kMaxRayHits) r.vertexRayHits.assign(nv * rays, -1);
     radiosity::parallelForChunks(nv, 64, [&](size_t first, size_t last) {
         for (size_t v = first; v != last; ++v) {
             const int p = mesh.vertices()[v].polygon;
             if (solver.scene().polygons[static_cast<size_t>(p)].light >= 0) continue;
-            radiosity::rayGatherResponses(solver, *r.responses, p,
-                                          mesh.insidePoint(static_cast<int>(v)),
-                                          P.vertexIndirect.data() + v * L, r.gatherSide, v);
+            int32_t* hits = r.vertexRayHits.empty() ? nullptr : r.vertexRayHits.data() + v * rays;
+            radiosity::rayGatherResponses(
+                solver, *r.responses, p, mesh.insidePoint(static_cast<int>(v)),
+                P.vertexIndirect.data() + v * L, r.gatherSide, v, nullptr, hits);
         }
     });
     P.times.vertexLighting += since(t0);

@@ -146,7 +146,14 @@ struct Relighting {
     /// The side of the ray gather's grid of directions at the display vertices
     /// (indirectRaySide(); 0: prepared without per-pixel light, the links' final gather).
     int gatherSide = 0;
+    /// The leaf each of those rays met at each vertex (gatherSide^2 per vertex, -1: none), so
+    /// that an inserted light's indirect change is gathered along them without casting them
+    /// again (DynamicRelighting). Empty where they would take over kMaxRayHits entries.
+    std::vector<int32_t> vertexRayHits;
 };
+
+/// At most this many recorded ray hits (4 bytes each: 64 MiB).
+inline constexpr size_t kMaxRayHits = size_t{1} << 24;
 
 /// Below this share of its emission meeting the front of a surface (radiosity::lightReach), a
 /// light is reported: "almost none" rather than none, as a stray ray may graze an edge.

@@ -327,7 +327,7 @@ std::vector<std::array<float, 4>> asFloats(std::span<const Rgb> values) {
 
 void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb> ratio,
                  std::span<const Rgb> radianceNow, std::span<const Rgb> radianceInPhoto, Image& out,
-                 std::span<const Rgb> added) {
+                 std::span<const Rgb> added, bool leafRuns) {
     if (out.width != map.width || out.height != map.height) out = Image(map.width, map.height);
     if (!added.empty() && added.size() != ratio.size())
         throw std::invalid_argument("renderRatio: " + std::to_string(added.size()) +
@@ -395,6 +395,7 @@ void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb>
                 for (int x = run.x0; x < run.x0 + run.length; ++x) general(x, y);
                 continue;
             }
+            if (!leafRuns) continue;
             // r = r_0 + sum_i w_i (r_i - r_0): the run's vertex ratios read once.
             float d[3][3];
             const float* q0 = runDeltas(r, run, d);

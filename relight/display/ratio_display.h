@@ -51,7 +51,15 @@ struct DisplayMap {
 struct PhotoPixels {
     std::vector<float> rho;    ///< 3 per pixel: T / (H_photo + delta)
     std::vector<float> light;  ///< per pixel: luminance of H_photo + delta; 0: not drawn
+    /// Per pixel drawn per pixel and light of the photo: the indirect part of h_l(p), the
+    /// vertices' interpolated (RGB, [(pixel * lights + l) * 3 + c]), so that a light edit
+    /// reads one value a light instead of interpolating it over the pixel's vertices. Empty
+    /// above kMaxPixelTransfers values (a very large photo with many lights).
+    std::vector<float> indirect;
 };
+
+/// At most this many floats of PhotoPixels::indirect (256 MiB).
+inline constexpr size_t kMaxPixelTransfers = size_t{1} << 26;
 
 /// Fills rowRuns, runs and runWeight from the general arrays. Call it again after changing
 /// those. A pixel of a leaf run then costs 12 bytes instead of about 56 (its start, its
@@ -136,9 +144,12 @@ Image renderRatio(const DisplayMap& map, const Image& photo, std::span<const rad
 /// `added` (empty, or one per vertex): a radiance added to the modulated photo, interpolated
 /// with the same weights, signed (the confidence display's model term, relight/prepared.h):
 ///   out = max(0, T_rest * rbar + abar + sum_e f_e L_e(now)).
+/// `leafRuns` false leaves the pixels of the packed map's leaf runs as they are: the
+/// per-pixel display draws every one of them (shownPerPixel) and needs the ratio display
+/// only at the others (lamps' faces, the sky, edges).
 void renderRatio(const DisplayMap& map, const Image& photo, std::span<const radiosity::Rgb> ratio,
                  std::span<const radiosity::Rgb> radianceNow,
                  std::span<const radiosity::Rgb> radianceInPhoto, Image& out,
-                 std::span<const radiosity::Rgb> added = {});
+                 std::span<const radiosity::Rgb> added = {}, bool leafRuns = true);
 
 }  // namespace relight

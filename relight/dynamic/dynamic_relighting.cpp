@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
+#include "radiosity/detail/form_factor.h"
 #include "radiosity/direct_light.h"
 #include "radiosity/final_gather.h"
 #include "radiosity/parallel.h"
@@ -26,6 +28,12 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 // Seeds of the shadow rays of the virtual objects' vertices, apart from the scene's.
 constexpr uint64_t kObjectSeed = 0x0b1ec7ull << 24;
+
+// What a node reflects, as the final gathers read it: an emitter's own emission is direct
+// light (radiosity/final_gather.h).
+Rgb reflectedBy(const Node& e) {
+    return e.emitting ? e.B - e.E : e.B;
+}
 }  // namespace
 
 DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radiance)
@@ -51,6 +59,9 @@ DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radianc
     virtualDirect_.assign(nv, Rgb{});
     indirect_.assign(nv, Rgb{});
     indirect0_ = indirectPerNode();
+    reflected0_.resize(realNodes_);
+    for (size_t n = 0; n < realNodes_; ++n)
+        reflected0_[n] = reflectedBy(solver_.hierarchy().nodes[n]);
     // The leaves under a new shadow are split down to the display's pieces (Loscos et al.
     // 2000, Fig. 24(a)): finer than the pieces no vertex would show it.
     const radiosity::LeafMesh* mesh = r_.mesh.get();
@@ -112,7 +123,6 @@ std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
 }
 
 int DynamicRelighting::addLight(const VirtualLight& light) {
-    rememberGatherBefore();
     if (light.emitter) {
         // A sun, point lamp or sky (radiosity/emitter.h): no face, no link; its direct light
         // enters the leaves (the solver's Hx) and is carried by the links as they are.
@@ -132,22 +142,6 @@ int DynamicRelighting::addLight(const VirtualLight& light) {
     radiance_.push_back(light.radiance);
     afterUpdate(u, /*allVertices=*/true);
     return static_cast<int>(radiance_.size()) - 1;
-}
-
-void DynamicRelighting::rememberGatherBefore() {
-    // The final gather at the vertices before any virtual part: the baseline of a light's
-    // indirect change, taken at the first light (a gather at every vertex is too slow for
-    // each object). Objects inserted before it are taken out of it at the leaves' level, as
-    // refreshIndirect() counts an object's change.
-    if (!gatherBefore_.empty()) return;
-    gatherBefore_ = gatherAtVertices();
-    if (r_.gatherSide > 0) gatherBeforeRays_ = gatherAtVertices(/*byRays=*/true);
-    if (solver_.insertedObjects() == 0) return;
-    const std::vector<Rgb> now = indirectPerNode();
-    const std::vector<Rgb> objects =
-        r_.mesh->averageOfLeaves([&](int n) { return now[n] - indirect0_[n]; });
-    for (size_t v = 0; v < gatherBefore_.size(); ++v) gatherBefore_[v] -= objects[v];
-    for (size_t v = 0; v < gatherBeforeRays_.size(); ++v) gatherBeforeRays_[v] -= objects[v];
 }
 
 void DynamicRelighting::addObject(const VirtualObject& object) {
@@ -386,18 +380,89 @@ void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool vir
     });
 }
 
-std::vector<Rgb> DynamicRelighting::gatherAtVertices(bool byRays) const {
+std::vector<Rgb> DynamicRelighting::reflectedChange() const {
+    // Per node: what it reflects now less what it reflected before any virtual part. A leaf
+    // of the scene split since inherits its ancestor's "before" (the children come after
+    // their parent); a virtual part reflected nothing before; a cluster is the area-weighted
+    // mean of its children, as the solver pulls B (Hierarchy::pullAverages).
+    const auto& nodes = solver_.hierarchy().nodes;
+    std::vector<Rgb> before(nodes.size()), change(nodes.size());
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        const Node& e = nodes[n];
+        if (e.isCluster()) continue;
+        if (static_cast<size_t>(e.polygon) < realPolygons_)
+            before[n] = n < realNodes_ ? reflected0_[n] : before[static_cast<size_t>(e.parent)];
+        change[n] = reflectedBy(e) - before[n];
+    }
+    const auto pull = [&](const auto& self, int node) -> void {
+        const Node& c = nodes[static_cast<size_t>(node)];
+        if (!c.isCluster()) return;
+        Rgb sum;
+        double area = 0;
+        for (int k = 0; k < c.childCount; ++k) {
+            self(self, c.firstChild + k);
+            const Node& ch = nodes[static_cast<size_t>(c.firstChild + k)];
+            sum += ch.area * change[static_cast<size_t>(c.firstChild + k)];
+            area += ch.area;
+        }
+        change[static_cast<size_t>(node)] = area > 0 ? (1.0 / area) * sum : Rgb{};
+    };
+    pull(pull, radiosity::Hierarchy::kRoot);
+    return change;
+}
+
+std::optional<std::vector<int>> DynamicRelighting::addedLampFaces() const {
+    // The rays of the preparation still meet what they met if nothing was taken out and
+    // every part put in is a lamp's face (returned: each may block a ray); an object or a
+    // removal changes what the rays meet (nullopt).
+    if (!solver_.removedObjects().empty()) return std::nullopt;
+    const auto& polygons = solver_.scene().polygons;
+    std::vector<int> faces;
+    for (size_t p = realPolygons_; p < polygons.size(); ++p) {
+        if (polygons[p].light < 0) return std::nullopt;
+        faces.push_back(static_cast<int>(p));
+    }
+    return faces;
+}
+
+std::vector<Rgb> DynamicRelighting::gatherChangeAtVertices(std::span<const Rgb> change,
+                                                           bool byRays) const {
     const auto& mesh = *r_.mesh;
     const auto& scene = solver_.scene();
     std::vector<Rgb> out(mesh.vertices().size());
+    const size_t rays = static_cast<size_t>(r_.gatherSide) * static_cast<size_t>(r_.gatherSide);
+    const auto lamps =
+        byRays && r_.vertexRayHits.size() == out.size() * rays ? addedLampFaces() : std::nullopt;
+    // The lamps' faces that x may see (either side: the back blocks too): met by x's rays.
+    auto facesSeen = [&](const Vec3& x, const Vec3& n, std::vector<int>& seen) {
+        seen.clear();
+        for (const int f : *lamps) {
+            const auto& P = scene.polygons[static_cast<size_t>(f)];
+            bool ahead = false;
+            for (int k = 0; k < P.vertexCount; ++k)
+                ahead = ahead || glm::dot(P.v[static_cast<size_t>(k)] - x, n) > 0;
+            if (ahead) seen.push_back(f);
+        }
+    };
+    const std::span<const int32_t> hits(r_.vertexRayHits);
     parallelFor(out.size(), 16, [&](size_t v) {
         const int p = mesh.vertices()[v].polygon;
         if (scene.polygons[p].light >= 0) return;
         const radiosity::Vec3 x = mesh.insidePoint(static_cast<int>(v));
         // As the preparation gathered the photo's indirect light: through the links for the
-        // vertex lighting, by rays for the per-pixel display (Relighting::gatherSide).
-        out[v] = byRays ? radiosity::rayGatherIndirect(solver_, p, x, r_.gatherSide, v)
-                        : radiosity::finalGatherIndirect(solver_, p, x, 4, v);
+        // vertex lighting, by rays for the per-pixel display (Relighting::gatherSide). The
+        // gathers are linear in what the sources reflect: one gather of the change, where
+        // gathering before and after would cast every ray twice; where nothing new blocks
+        // them, along the preparation's own rays, without casting them.
+        if (lamps) {
+            thread_local std::vector<int> seen;
+            facesSeen(x, scene.polygons[p].normal, seen);
+            out[v] = radiosity::rayGatherField(solver_, change, p, x, r_.gatherSide, v,
+                                               hits.subspan(v * rays, rays), seen);
+            return;
+        }
+        out[v] = byRays ? radiosity::rayGatherField(solver_, change, p, x, r_.gatherSide, v)
+                        : radiosity::finalGatherField(solver_, change, p, x, 4, v);
     });
     return out;
 }
@@ -406,19 +471,18 @@ void DynamicRelighting::refreshIndirect(bool full) {
     const std::vector<Rgb> now = indirectPerNode();
     const std::vector<Rgb> leaf =
         r_.mesh->averageOfLeaves([&](int n) { return now[n] - indirect0_[n]; });
-    if (full) {
+    if (full && solver_.scene().lights.size() == static_cast<size_t>(realLights_)) {
+        // The last virtual light gone: objects count at the leaves again, as before any light
+        // came (so that taking them out too brings back the photo's light exactly).
+        gatherDelta_.clear();
+        gatherDeltaRays_.clear();
+        indirectPixel_.clear();
+    } else if (full) {
         // A light changes the indirect light everywhere: gather it per vertex, as the
         // prepared lighting does for the scene's lights.
-        const std::vector<Rgb> gathered = gatherAtVertices();
-        gatherDelta_.resize(gathered.size());
-        for (size_t v = 0; v < gathered.size(); ++v)
-            gatherDelta_[v] = gathered[v] - gatherBefore_[v];
-        if (!gatherBeforeRays_.empty()) {
-            const std::vector<Rgb> rays = gatherAtVertices(/*byRays=*/true);
-            gatherDeltaRays_.resize(rays.size());
-            for (size_t v = 0; v < rays.size(); ++v)
-                gatherDeltaRays_[v] = rays[v] - gatherBeforeRays_[v];
-        }
+        const std::vector<Rgb> change = reflectedChange();
+        gatherDelta_ = gatherChangeAtVertices(change);
+        if (r_.gatherSide > 0) gatherDeltaRays_ = gatherChangeAtVertices(change, /*byRays=*/true);
         leafAtFull_ = leaf;
     }
     for (size_t v = 0; v < indirect_.size(); ++v)

@@ -31,6 +31,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -135,14 +136,20 @@ class DynamicRelighting {
     void afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices);
     void refreshDirect(const std::vector<int>& vertices, bool virtualOnly);
     void refreshIndirect(bool full);  ///< and the virtual objects' surfaces
-    std::vector<Rgb> gatherAtVertices(bool byRays = false) const;
+    /// What may block the preparation's gather rays (Relighting::vertexRayHits) since: the
+    /// added lamps' faces (polygon indices); nullopt where an object was put in or taken out and
+    /// they do not hold.
+    std::optional<std::vector<int>> addedLampFaces() const;
+    /// Per node: what it reflects (B - E) now less before any virtual part.
+    std::vector<Rgb> reflectedChange() const;
+    /// The final gather (or, byRays, the gather by rays) of `change` at every leaf vertex.
+    std::vector<Rgb> gatherChangeAtVertices(std::span<const Rgb> change, bool byRays = false) const;
     /// The indirect light at a removed region's box pixel and its sample i (object_removal.h).
     Rgb removedIndirect(const RemovedRegion& gone, size_t pixel, size_t i) const;
     /// indirectPixel_ where the per-pixel display has its own, indirect_ otherwise.
     const std::vector<Rgb>& pixelIndirect() const {
         return indirectPixel_.empty() ? indirect_ : indirectPixel_;
     }
-    void rememberGatherBefore();
     void markChangedLeaves(const std::vector<int>& leaves);
     std::vector<Rgb> indirectPerNode() const;
 
@@ -158,15 +165,16 @@ class DynamicRelighting {
     std::vector<Rgb> virtualDirect_;  ///< per vertex: the virtual lights' direct light
     std::vector<Rgb> indirect0_;      ///< per node: H_ind before any virtual part
     std::vector<Rgb> indirect_;       ///< per vertex: H_ind(now) - H_ind(before)
-    // Per vertex: final gather (radiosity/final_gather.h) of the indirect light before any
-    // virtual part, its change at the last full update (a light added or removed), and the
-    // leaf-level change at that time; objects moved since add only their leaf-level change.
-    std::vector<Rgb> gatherBefore_, gatherDelta_, leafAtFull_;
+    std::vector<Rgb> reflected0_;     ///< per scene node: what it reflected (B - E) before
+    // Per vertex: the final gather (radiosity/final_gather.h) of the indirect light's change
+    // at the last full update (a light added or removed), and the leaf-level change at that
+    // time; objects moved since add only their leaf-level change.
+    std::vector<Rgb> gatherDelta_, leafAtFull_;
     // The same by rays (radiosity::rayGatherIndirect), for the per-pixel display when the
     // preparation gathered the photo's indirect light by rays (Relighting::gatherSide): each
     // display's change is measured as its photo light was, so that a gather's own error
     // divides out. indirectPixel_ is then the per-pixel display's indirect_.
-    std::vector<Rgb> gatherBeforeRays_, gatherDeltaRays_, indirectPixel_;
+    std::vector<Rgb> gatherDeltaRays_, indirectPixel_;
     std::unique_ptr<radiosity::LeafMesh> objectMesh_;  ///< virtual objects' leaf corners
     std::vector<Rgb> objectRadiance_;                  ///< per object vertex: rho H / pi
     // The per-pixel display (pixelDirect()): the scene leaf of each item-buffer sample (-1:

@@ -77,13 +77,16 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
                                     std::to_string(Lnow) + " lights now)");
     const bool pooling = reflectance.empty() && pool && pool->rho.size() == 3 * pixels &&
                          pool->light.size() == pixels;
+    const bool derived = pool && pool->indirect.size() == 3 * pixels * L;
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
         // A lamp's face, samples that see nothing, or no leaf: the ratio display's value.
         if (!shownPerPixel(map, px)) return;
         const int k0 = map.start[px], k1 = map.start[px + 1];
+        // The vertices' weights are read only to interpolate what the derived values lack.
         double wsum = 0;
-        for (int k = k0; k < k1; ++k)
-            wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+        if (!derived || !change.indirect.empty())
+            for (int k = k0; k < k1; ++k)
+                wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
         auto interpolate = [&](auto&& value) {
             Rgb sum;
             for (int k = k0; k < k1; ++k)
@@ -95,13 +98,26 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
         // of the photo's lamps (kept) and the light the photo did not hold (fresh: lamps off
         // in it, virtual lamps, what virtual objects change) apart, for a merged reflectance.
         Rgb kept, fresh, before;
-        for (size_t l = 0; l < L; ++l) {
-            const Rgb ind = interpolate([&](size_t v) { return indirect[v * L + l]; });
-            const Rgb h =
-                radianceNow[l] * (Rgb::gray(static_cast<double>(directNow[px * Lnow + l])) + ind);
-            (radianceInPhoto[l].maxComponent() > 0 ? kept : fresh) += h;
-            before += radianceInPhoto[l] *
-                      (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
+        if (derived) {
+            // The same sums from the derived per-pixel values (photoPixels()).
+            const float* f = pool->indirect.data() + px * L * 3;
+            for (size_t l = 0; l < L; ++l, f += 3) {
+                const Rgb ind{f[0], f[1], f[2]};
+                const Rgb h = radianceNow[l] *
+                              (Rgb::gray(static_cast<double>(directNow[px * Lnow + l])) + ind);
+                (radianceInPhoto[l].maxComponent() > 0 ? kept : fresh) += h;
+                before += radianceInPhoto[l] *
+                          (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
+            }
+        } else {
+            for (size_t l = 0; l < L; ++l) {
+                const Rgb ind = interpolate([&](size_t v) { return indirect[v * L + l]; });
+                const Rgb h = radianceNow[l] *
+                              (Rgb::gray(static_cast<double>(directNow[px * Lnow + l])) + ind);
+                (radianceInPhoto[l].maxComponent() > 0 ? kept : fresh) += h;
+                before += radianceInPhoto[l] *
+                          (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
+            }
         }
         for (size_t l = L; l < Lnow; ++l)
             fresh += radianceNow[l] * static_cast<double>(directNow[px * Lnow + l]);
@@ -201,6 +217,26 @@ Rgb photoIrradianceAt(const DisplayMap& map, size_t px, std::span<const float> p
     return H;
 }
 
+namespace {
+
+/// PhotoPixels::indirect at pixel px, as renderPixelLight() interpolates it.
+void derivePixelIndirect(const DisplayMap& map, size_t px, std::span<const Rgb> indirect, size_t L,
+                         PhotoPixels& out) {
+    const int k0 = map.start[px], k1 = map.start[px + 1];
+    double wsum = 0;
+    for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+    for (size_t l = 0; l < L; ++l) {
+        Rgb ind;
+        for (int k = k0; k < k1; ++k)
+            ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
+                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+        for (int c = 0; c < 3; ++c)
+            out.indirect[(px * L + l) * 3 + static_cast<size_t>(c)] = static_cast<float>(ind[c]);
+    }
+}
+
+}  // namespace
+
 PhotoPixels photoPixels(const DisplayMap& map, const Image& photo,
                         std::span<const float> pixelDirect, std::span<const Rgb> indirect,
                         std::span<const Rgb> radianceInPhoto, const Rgb& delta) {
@@ -210,8 +246,11 @@ PhotoPixels photoPixels(const DisplayMap& map, const Image& photo,
     if (L == 0 || pixelDirect.size() != pixels * L || indirect.size() % L != 0) return out;
     out.rho.assign(3 * pixels, 0.0f);
     out.light.assign(pixels, 0.0f);
+    const bool transfers = 3 * pixels * L <= kMaxPixelTransfers;
+    if (transfers) out.indirect.assign(3 * pixels * L, 0.0f);
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
         if (!shownPerPixel(map, px)) return;
+        if (transfers) derivePixelIndirect(map, px, indirect, L, out);
         const Rgb H = photoIrradianceAt(map, px, pixelDirect, indirect, radianceInPhoto);
         Rgb Hd;
         for (int c = 0; c < 3; ++c) Hd[c] = std::max(H[c], 0.0) + delta[c];
