@@ -233,7 +233,7 @@ void App::skyControls(const LightControl& l, const radiosity::EmitterField& sh9)
         ImGui::SameLine();
     }
     ImGui::NewLine();
-    if (!ImGui::TreeNode("coefficients (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22)")) return;
+    if (!ImGui::TreeNode("coefficients L00 ... L22")) return;
     for (size_t k = 0; 3 * k + 2 < sh9.values.size(); ++k) {
         float c[3] = {static_cast<float>(sh9.values[3 * k]),
                       static_cast<float>(sh9.values[3 * k + 1]),
@@ -262,8 +262,8 @@ void App::objectsPanel() {
     if (ImGui::RadioButton("add light", tool_ == Tool::light)) tool_ = Tool::light;
     ImGui::SameLine();
     if (ImGui::RadioButton("add box", tool_ == Tool::box)) tool_ = Tool::box;
-    ImGui::SameLine();
     if (ImGui::RadioButton("add point lamp", tool_ == Tool::point)) tool_ = Tool::point;
+    ImGui::SameLine();
     if (ImGui::RadioButton("remove real objects", tool_ == Tool::remove)) tool_ = Tool::remove;
     ImGui::TextDisabled(tool_ == Tool::select      ? "drag an object over the surface it stands on"
                         : tool_ == Tool::light     ? "click a surface: a lamp on it"
