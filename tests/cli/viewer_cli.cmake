@@ -202,7 +202,7 @@ expect("${o}" "^relight-viewer: error: --exposure: must be a finite number, got 
        "infinite exposure")
 viewer(o 0 --help)
 expect("${o}" "--screenshot" "--help")
-viewer(o 1 "${SCENE}" --do light:abc --screenshot "${WORK}/keep.png")
+viewer(o 2 "${SCENE}" --do light:abc --screenshot "${WORK}/keep.png")
 expect("${o}" "--do light:abc" "bad action")
 file(READ "${WORK}/keep.png" kept)
 if(NOT kept STREQUAL "not an image, and it must stay so")
