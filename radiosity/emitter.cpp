@@ -45,6 +45,26 @@ void discPoint(int cell, int k, Rng& rng, double& x, double& y) {
     y = r * std::sin(phi);
 }
 
+EmitterField numberField(const char* key, double v) {
+    return {key, {v}, EmitterField::Shape::number};
+}
+EmitterField listField(const char* key, const Vec3& v) {
+    return {key, {v.x, v.y, v.z}, EmitterField::Shape::list};
+}
+EmitterField rgbField(const char* key, const Rgb& c) {
+    return {key, {c.r, c.g, c.b}, EmitterField::Shape::list};
+}
+
+/// `original` as the light type T that editFrom() compares with.
+template <class T>
+const T& sameType(const Emitter& self, const Emitter& original) {
+    const T* o = dynamic_cast<const T*>(&original);
+    if (!o)
+        throw std::invalid_argument("light '" + self.name() + "' (" + self.type() +
+                                    ") cannot be edited from a light of type " + original.type());
+    return *o;
+}
+
 /// What every single-component light shares: one strength, checked >= 0.
 class SingleEmitter : public Emitter {
   public:
@@ -95,6 +115,7 @@ class Sun final : public SingleEmitter {
         if (!std::isfinite(angleDegrees) || angleDegrees < 0 || angleDegrees >= 180)
             throw std::invalid_argument("sun '" + this->name() +
                                         "': angle must be in [0, 180) degrees");
+        angle_ = angleDegrees;
         tanHalf_ = std::tan(0.5 * angleDegrees * kPi / 180);
         set(irradiance, "irradiance");
     }
@@ -136,11 +157,25 @@ class Sun final : public SingleEmitter {
         applyStrength(e);
     }
     std::unique_ptr<Emitter> clone() const override { return std::make_unique<Sun>(*this); }
-    const Vec3& direction() const { return d_; }
+    const char* strengthKey() const override { return "irradiance"; }
+    std::vector<EmitterField> fields() const override {
+        return {listField("direction", given_), numberField("angle", angle_),
+                rgbField("irradiance", s_)};
+    }
+    EmitterEdit editFrom(const Emitter& original) const override {
+        EmitterEdit e;
+        e.strength = s_;
+        if (!(sameType<Sun>(*this, original).d_ == d_)) e.direction = given_;
+        return e;
+    }
 
   private:
-    void setDirection(const Vec3& d) { d_ = unitDirection(d, "sun '" + name() + "'"); }
-    Vec3 d_;
+    void setDirection(const Vec3& d) {
+        d_ = unitDirection(d, "sun '" + name() + "'");
+        given_ = d;  // as given: written back, it reads to the same d_ bit for bit
+    }
+    Vec3 d_, given_;
+    double angle_ = 0;
     double tanHalf_ = 0;
 };
 
@@ -176,6 +211,16 @@ class PointLamp final : public SingleEmitter {
         applyStrength(e);
     }
     std::unique_ptr<Emitter> clone() const override { return std::make_unique<PointLamp>(*this); }
+    const char* strengthKey() const override { return "intensity"; }
+    std::vector<EmitterField> fields() const override {
+        return {listField("position", pos_), rgbField("intensity", s_)};
+    }
+    EmitterEdit editFrom(const Emitter& original) const override {
+        EmitterEdit e;
+        e.strength = s_;
+        if (!(sameType<PointLamp>(*this, original).pos_ == pos_)) e.position = pos_;
+        return e;
+    }
 
   private:
     void setPosition(const Vec3& p) {
@@ -251,6 +296,18 @@ class Environment final : public Emitter {
         }
     }
     std::unique_ptr<Emitter> clone() const override { return std::make_unique<Environment>(*this); }
+    const char* strengthKey() const override { return "sh9"; }
+    std::vector<EmitterField> fields() const override {
+        EmitterField f{"sh9", {}, EmitterField::Shape::rows};
+        for (const Rgb& c : L_.c) f.values.insert(f.values.end(), {c.r, c.g, c.b});
+        return {f};
+    }
+    EmitterEdit editFrom(const Emitter& original) const override {
+        sameType<Environment>(*this, original);
+        EmitterEdit e;
+        e.sh9 = L_;  // a turned or edited sky is its new coefficients: it does not move
+        return e;
+    }
 
   private:
     void set(const Sh9Rgb& L) {
@@ -337,6 +394,23 @@ class QuadLamp final : public SingleEmitter {
         applyStrength(e);
     }
     std::unique_ptr<Emitter> clone() const override { return std::make_unique<QuadLamp>(*this); }
+    const char* strengthKey() const override { return "radiance"; }
+    std::vector<EmitterField> fields() const override {
+        // The format's quad light is one polygon; a lamp of several faces has no such entry.
+        if (faces_.size() != 1)
+            throw std::invalid_argument("quad lamp '" + name() + "' has " +
+                                        std::to_string(faces_.size()) +
+                                        " faces: a light entry holds one polygon");
+        EmitterField v{"vertices", {}, EmitterField::Shape::rows};
+        for (const Vec3& p : faces_[0]) v.values.insert(v.values.end(), {p.x, p.y, p.z});
+        return {v, rgbField("radiance", s_)};
+    }
+    EmitterEdit editFrom(const Emitter& original) const override {
+        sameType<QuadLamp>(*this, original);
+        EmitterEdit e;
+        e.strength = s_;
+        return e;
+    }
 
   private:
     double formFactor(const ReceiverPoint& p, size_t q) const {
@@ -374,6 +448,30 @@ std::unique_ptr<Emitter> makeQuadLamp(std::string name, std::vector<std::vector<
                                       std::vector<int> polygons, const Rgb& radiance) {
     return std::make_unique<QuadLamp>(std::move(name), std::move(faces), std::move(polygons),
                                       radiance);
+}
+
+std::vector<EmitterField> editFields(const Emitter& light, const EmitterEdit& e) {
+    std::vector<EmitterField> out;
+    if (e.scale) out.push_back(numberField("scale", *e.scale));
+    if (e.strength) out.push_back(rgbField(light.strengthKey(), *e.strength));
+    if (e.sh9) {
+        EmitterField f{"sh9", {}, EmitterField::Shape::rows};
+        for (const Rgb& c : e.sh9->c) f.values.insert(f.values.end(), {c.r, c.g, c.b});
+        out.push_back(std::move(f));
+    }
+    if (e.direction) out.push_back(listField("direction", *e.direction));
+    if (e.position) out.push_back(listField("position", *e.position));
+    if (e.rotate) {
+        out.push_back(listField("rotate.axis", e.rotate->axis));
+        out.push_back(numberField("rotate.degrees", e.rotate->degrees));
+    }
+    return out;
+}
+
+std::optional<EmitterField> findField(const Emitter& light, const std::string& key) {
+    for (EmitterField& f : light.fields())
+        if (f.key == key) return std::move(f);
+    return std::nullopt;
 }
 
 Rgb totalIrradiance(const std::vector<std::unique_ptr<Emitter>>& emitters, const Visibility& vis,

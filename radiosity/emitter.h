@@ -49,6 +49,19 @@ struct EmitterEdit {
     std::optional<Rotation> rotate;  ///< environment
 };
 
+/// One field of a light as the format writes it (docs/scene-format.md, "lights" and "Edit"):
+/// its key, a path of JSON keys joined by '.' ("rotate.axis"), and its numbers.
+struct EmitterField {
+    enum class Shape {
+        number,  ///< one number ("angle", "scale", "rotate.degrees")
+        list,    ///< [x, y, z] or [r, g, b] ("direction", "irradiance")
+        rows     ///< rows of 3 ("sh9": 9 rows; "vertices")
+    };
+    std::string key;
+    std::vector<double> values;
+    Shape shape = Shape::list;
+};
+
 /// Where a light's irradiance is asked for: a point on a surface.
 struct ReceiverPoint {
     Vec3 x;            ///< metres
@@ -105,6 +118,19 @@ class Emitter {
     virtual void apply(const EmitterEdit& edit) = 0;
     virtual std::unique_ptr<Emitter> clone() const = 0;
 
+    /// The format's key of EmitterEdit::strength for this type: "radiance" (quad),
+    /// "irradiance" (sun), "intensity" (point); "sh9" for a sky (EmitterEdit::sh9).
+    virtual const char* strengthKey() const = 0;
+    /// The light as scene.json's "lights" and an edit's "add_lights" say it, after "name"
+    /// and "type": what the light reader (relight/io/light_reader.h) reads back to this light.
+    virtual std::vector<EmitterField> fields() const = 0;
+    /// The edit that takes `original` (this light as it was loaded: the same type) to this
+    /// light's state: its strengths always (an absolute state, whatever `original`'s were),
+    /// its place (a sun's direction, a lamp's position) only where it differs, since an
+    /// edit that moves a light re-solves it as a virtual light (LightEdit::moves). Throws
+    /// std::invalid_argument when `original` is another type.
+    virtual EmitterEdit editFrom(const Emitter& original) const = 0;
+
   protected:
     [[noreturn]] void refuse(const char* field) const;
 
@@ -130,6 +156,13 @@ std::unique_ptr<Emitter> makeEnvironment(std::string name, const Sh9Rgb& sh9);
 /// the Scene::polygons indices of the faces (they do not block their own light), or empty.
 std::unique_ptr<Emitter> makeQuadLamp(std::string name, std::vector<std::vector<Vec3>> faces,
                                       std::vector<int> polygons, const Rgb& radiance);
+
+/// `e` as an edit of `light` says it (docs/scene-format.md, "Edit"): "scale", the strength
+/// under light.strengthKey(), "sh9", "direction", "position", "rotate.axis" and
+/// "rotate.degrees", for the fields that are set, in that order.
+std::vector<EmitterField> editFields(const Emitter& light, const EmitterEdit& e);
+/// The field `key` of light.fields(), or null when the light has none.
+std::optional<EmitterField> findField(const Emitter& light, const std::string& key);
 
 /// The sum of every emitter's irradiance at `p` (one rng per emitter, seeded from `seed`
 /// and its index, so that the answer does not depend on the others).

@@ -17,7 +17,9 @@ namespace {
 
 constexpr float kPanelWidth = 360.0f;  ///< window pixels
 
-enum class Tool { select, light, box, remove, lamp };
+/// What a click on the image does: pick and drag an object, add a light, a box, a point lamp,
+/// take a real object out, place a real lamp, turn the sun (drag), move a point lamp.
+enum class Tool { select, light, box, remove, lamp, point, sun, movePoint };
 
 /// Where the photo is drawn in the window (window coordinates, y down): the area left of
 /// the panel, at the photo's aspect, centred.
@@ -56,6 +58,8 @@ class App {
   private:
     void panel();
     void lightsPanel();
+    void emitterControls(LightControl& l);
+    void skyControls(const LightControl& l, const radiosity::EmitterField& sh9);
     void objectsPanel();
     void displayPanel();
     void lampsPanel();
@@ -77,6 +81,12 @@ class App {
     std::string windowShot_;
     int movingLamp_ = -1;            ///< the real lamp the next click moves, or -1
     float newLampSize_[2] = {0, 0};  ///< metres; 0: the size of the scene's lamps
+    std::string sun_, point_;        ///< the sun Tool::sun turns, the lamp Tool::movePoint moves
+    double dragU_ = 0, dragV_ = 0;   ///< the sun tool's drag so far (photo pixels)
+    bool sunDrag_ = false;
+    float sliders_[2] = {0, 0};  ///< the sun's azimuth and elevation while a slider is held
+    float skyTurn_ = 15.0f;      ///< degrees the sky's "turn about z" button turns it
+    bool pointDrag_ = false;     ///< Tool::movePoint: the button is down
 };
 
 /// The window's back buffer (sRGB-encoded bytes) as a linear image, rows from the top.
@@ -111,12 +121,24 @@ void App::lightsPanel() {
     int remove = -1;
     for (size_t i = 0; i < lights.size(); ++i) {
         LightControl& l = lights[i];
+        // A sun, point lamp or sky: one entry for all its components.
+        if (l.emitter && l.component != 0) continue;
         ImGui::PushID(static_cast<int>(i));
-        const std::string label = l.name + (l.isVirtual ? " (virtual)" : "");
+        const std::string label = l.name +
+                                  (l.emitter ? std::string(" (") + l.emitter->type() + ")" : "") +
+                                  (l.isVirtual ? " (virtual)" : "");
         bool changed = ImGui::Checkbox(label.c_str(), &l.on);
         if (l.isVirtual) {
             ImGui::SameLine();
             if (ImGui::SmallButton("remove")) remove = static_cast<int>(i);
+        }
+        if (l.emitter) {
+            for (LightControl& o : lights)  // its components follow its switch
+                if (o.emitter == l.emitter) o.on = l.on;
+            if (changed) act("light change", [&] { session_.update(); });
+            emitterControls(l);
+            ImGui::PopID();
+            continue;
         }
         float c[3] = {static_cast<float>(l.colour.r), static_cast<float>(l.colour.g),
                       static_cast<float>(l.colour.b)};
@@ -136,6 +158,103 @@ void App::lightsPanel() {
     if (remove >= 0) act("removing the light", [&] { session_.removeLight(remove); });
 }
 
+/// The controls of a sun, point lamp or sky, from the fields it has (radiosity::Emitter::
+/// fields): a direction (az/el sliders, the sun tool), a position (the move tool), sh9 (the
+/// sky's), its strength. Each change is the edit field `relight render` reads
+/// (Session::editLight), applied when the control is let go (a sun or lamp moved is solved
+/// again as a virtual light, seconds on a large scene).
+void App::emitterControls(LightControl& l) {
+    const std::string name = l.name;
+    if (const auto d = radiosity::findField(*l.emitter, "direction")) {
+        double az = 0, el = 0;
+        Session::sunAngles(Vec3(d->values[0], d->values[1], d->values[2]), az, el);
+        if (!ImGui::IsAnyItemActive()) {
+            sliders_[0] = static_cast<float>(az);
+            sliders_[1] = static_cast<float>(el);
+        }
+        ImGui::SliderFloat("azimuth", &sliders_[0], -180.0f, 180.0f, "%.1f deg");
+        bool release = ImGui::IsItemDeactivatedAfterEdit();
+        ImGui::SliderFloat("elevation", &sliders_[1], -10.0f, 90.0f, "%.1f deg");
+        release = release || ImGui::IsItemDeactivatedAfterEdit();
+        if (release)
+            act("turning the sun", [&] {
+                radiosity::EmitterEdit e;
+                e.direction = Session::sunDirection(sliders_[0], sliders_[1]);
+                session_.editLight(name, e);
+            });
+        if (ImGui::RadioButton("turn it by dragging on the image",
+                               tool_ == Tool::sun && sun_ == name)) {
+            tool_ = Tool::sun;
+            sun_ = name;
+        }
+    }
+    if (radiosity::findField(*l.emitter, "position") &&
+        ImGui::RadioButton("move it: click a surface",
+                           tool_ == Tool::movePoint && point_ == name)) {
+        tool_ = Tool::movePoint;
+        point_ = name;
+    }
+    if (const auto sh9 = radiosity::findField(*l.emitter, "sh9")) skyControls(l, *sh9);
+    if (const auto s = radiosity::findField(*l.emitter, l.emitter->strengthKey());
+        s && s->values.size() == 3) {
+        float c[3] = {static_cast<float>(s->values[0]), static_cast<float>(s->values[1]),
+                      static_cast<float>(s->values[2])};
+        ImGui::DragFloat3(l.emitter->strengthKey(), c, 0.01f, 0.0f, 1e6f, "%.3f");
+        if (ImGui::IsItemDeactivatedAfterEdit())
+            act("light change", [&] {
+                radiosity::EmitterEdit e;
+                e.strength = Rgb{std::max(0.0f, c[0]), std::max(0.0f, c[1]), std::max(0.0f, c[2])};
+                session_.editLight(name, e);
+            });
+    }
+}
+
+/// A sky: turned about the vertical, scaled, and set coefficient by coefficient (the
+/// format's basis, docs/scene-format.md).
+void App::skyControls(const LightControl& l, const radiosity::EmitterField& sh9) {
+    const std::string name = l.name;
+    ImGui::DragFloat("turn (deg)", &skyTurn_, 1.0f, -180.0f, 180.0f, "%.0f");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("turn about z"))
+        act("turning the sky", [&] {
+            radiosity::EmitterEdit e;
+            e.rotate = radiosity::EmitterEdit::Rotation{Vec3(0, 0, 1), skyTurn_};
+            session_.editLight(name, e);
+        });
+    for (const double k : {0.8, 1.25}) {
+        char label[32];
+        std::snprintf(label, sizeof label, "scale x%.2f", k);
+        if (ImGui::SmallButton(label))
+            act("scaling the sky", [&] {
+                radiosity::EmitterEdit e;
+                e.scale = k;
+                session_.editLight(name, e);
+            });
+        ImGui::SameLine();
+    }
+    ImGui::NewLine();
+    if (!ImGui::TreeNode("coefficients L00 ... L22")) return;
+    for (size_t k = 0; 3 * k + 2 < sh9.values.size(); ++k) {
+        float c[3] = {static_cast<float>(sh9.values[3 * k]),
+                      static_cast<float>(sh9.values[3 * k + 1]),
+                      static_cast<float>(sh9.values[3 * k + 2])};
+        ImGui::PushID(static_cast<int>(k));
+        ImGui::DragFloat3("", c, 0.005f, -1e3f, 1e3f, "%.3f");
+        if (ImGui::IsItemDeactivatedAfterEdit())
+            act("setting a coefficient", [&] {
+                radiosity::EmitterEdit e;
+                radiosity::Sh9Rgb L;
+                for (size_t j = 0; j < L.c.size(); ++j)
+                    L.c[j] = Rgb{sh9.values[3 * j], sh9.values[3 * j + 1], sh9.values[3 * j + 2]};
+                L.c[k] = Rgb{c[0], c[1], c[2]};
+                e.sh9 = L;
+                session_.editLight(name, e);
+            });
+        ImGui::PopID();
+    }
+    ImGui::TreePop();
+}
+
 void App::objectsPanel() {
     if (!ImGui::CollapsingHeader("Virtual parts", ImGuiTreeNodeFlags_DefaultOpen)) return;
     if (ImGui::RadioButton("move objects", tool_ == Tool::select)) tool_ = Tool::select;
@@ -143,11 +262,16 @@ void App::objectsPanel() {
     if (ImGui::RadioButton("add light", tool_ == Tool::light)) tool_ = Tool::light;
     ImGui::SameLine();
     if (ImGui::RadioButton("add box", tool_ == Tool::box)) tool_ = Tool::box;
+    if (ImGui::RadioButton("add point lamp", tool_ == Tool::point)) tool_ = Tool::point;
+    ImGui::SameLine();
     if (ImGui::RadioButton("remove real objects", tool_ == Tool::remove)) tool_ = Tool::remove;
-    ImGui::TextDisabled(tool_ == Tool::select  ? "drag an object over the surface it stands on"
-                        : tool_ == Tool::light ? "click a surface: a lamp on it"
-                        : tool_ == Tool::box   ? "click a surface: a box standing on it"
-                                               : "click an object marked removable: it goes");
+    ImGui::TextDisabled(tool_ == Tool::select      ? "drag an object over the surface it stands on"
+                        : tool_ == Tool::light     ? "click a surface: a lamp on it"
+                        : tool_ == Tool::box       ? "click a surface: a box standing on it"
+                        : tool_ == Tool::point     ? "click a surface: a point lamp above it"
+                        : tool_ == Tool::sun       ? "drag on the image: the sun turns"
+                        : tool_ == Tool::movePoint ? "click a surface: the lamp goes above it"
+                                                   : "click an object marked removable: it goes");
     const auto& objects = session_.objects();
     int remove = -1;
     for (size_t i = 0; i < objects.size(); ++i) {
@@ -342,6 +466,41 @@ void App::mouse(const PhotoRect& r) {
     r.toPixel(mx, my, p.photo.width, p.photo.height, u, v);
     const bool pressed = down && !wasDown_;
     const bool overUi = ImGui::GetIO().WantCaptureMouse;
+    // The sun tool: the drag is applied when the button is let go (each turn is solved again,
+    // as a saved "direction" is: a second or more on a large scene).
+    if (tool_ == Tool::sun) {
+        if (pressed && !overUi && r.contains(mx, my)) {
+            sunDrag_ = true;
+            dragU_ = dragV_ = 0;
+        }
+        if (down && sunDrag_) {
+            dragU_ += (mx - lastMx_) / r.w * p.photo.width;
+            dragV_ += (my - lastMy_) / r.h * p.photo.height;
+        }
+        if (!down && sunDrag_) {
+            sunDrag_ = false;
+            act("turning the sun", [&] { session_.dragSun(sun_, dragU_, dragV_); });
+        }
+        wasDown_ = down;
+        lastMx_ = mx;
+        lastMy_ = my;
+        return;
+    }
+    // The point lamp being moved goes above the surface where the button is let go (a drag;
+    // a click is a drag of no length).
+    if (tool_ == Tool::movePoint) {
+        if (pressed && !overUi && r.contains(mx, my)) pointDrag_ = true;
+        if (!down && pointDrag_) {
+            pointDrag_ = false;
+            const Pick pick = session_.pick(u, v);
+            if (pick.hit)
+                act("moving the point lamp", [&] { session_.movePointLampTo(point_, pick); });
+        }
+        wasDown_ = down;
+        lastMx_ = mx;
+        lastMy_ = my;
+        return;
+    }
     if (pressed && !overUi && r.contains(mx, my)) {
         const Pick pick = session_.pick(u, v);
         if (!pick.hit)
@@ -350,6 +509,12 @@ void App::mouse(const PhotoRect& r) {
             act("adding a light", [&] { session_.addLightAt(pick); });
         else if (tool_ == Tool::box)
             act("adding a box", [&] { session_.addBoxAt(pick); });
+        else if (tool_ == Tool::point)
+            act("adding a point lamp", [&] {
+                point_ = session_.addPointLampAt(pick);
+                tool_ = Tool::movePoint;  // a click then moves it (a drag's end)
+            });
+
         else if (tool_ == Tool::lamp && movingLamp_ >= 0)
             act("moving the lamp", [&] {
                 session_.moveLampTo(movingLamp_, pick);

@@ -13,6 +13,15 @@
 //   lamp:U,V[:W,H]     a real lamp on the surface under (U, V), W x H metres (default: the
 //                      size of the scene's lamps), its radiance estimated from the photo;
 //                      --save-lamps adds the lamps placed to scene.json
+// and what the panel's light controls do (radiosity/emitter.h: the same edit fields as a
+// saved edit's, Session::editLight):
+//   sun:NAME:AZ,EL     the sun NAME at azimuth AZ, elevation EL degrees (the sliders)
+//   sundrag:NAME:U0,V0:U1,V1  the sun turned by a drag on the image (Session::dragSun)
+//   rotate:NAME:X,Y,Z:DEG     the sky NAME turned by DEG degrees about the axis (X, Y, Z)
+//   scale:NAME:S       the light NAME's strengths times S (a sky: every coefficient)
+//   sh9:NAME:K:R,G,B   the sky NAME's coefficient K (0..8) set to (R, G, B)
+//   point:U,V          a virtual point lamp above the surface under (U, V)
+//   movepoint:NAME:U,V the point lamp NAME moved above the surface under (U, V) (a drag's end)
 // Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option, a
 // screenshot that cannot be written) print one clear line and exit with 2 for bad input, 3
 // for an output that cannot be written, 1 otherwise (relight/errors.h).
@@ -58,14 +67,101 @@ void parsePoint(const std::string& text, const std::string& action, double& u, d
         throw std::invalid_argument("--do " + action + ": \"" + text + "\" is not a pixel \"U,V\"");
 }
 
+/// "X,Y,Z" (`count` numbers, finite); throws std::invalid_argument naming the action.
+std::vector<double> parseNumbers(const std::string& text, const std::string& action, size_t count) {
+    std::istringstream in(text);
+    std::vector<double> out;
+    for (size_t k = 0; k < count; ++k) {
+        double x = 0;
+        char comma = ',';
+        if ((k > 0 && (!(in >> comma) || comma != ',')) || !(in >> x) || !std::isfinite(x)) break;
+        out.push_back(x);
+    }
+    if (out.size() == count) in >> std::ws;
+    if (out.size() != count || !in.eof())
+        throw std::invalid_argument("--do " + action + ": \"" + text + "\" is not " +
+                                    std::to_string(count) + " numbers separated by commas");
+    return out;
+}
+
 /// One --do action, parsed before the preparation so that a typo fails at once.
 struct Action {
     std::string text;  ///< as given, for messages
-    enum class Kind { light, box, drag, remove, restore, lamp } kind = Kind::light;
+    enum class Kind {
+        light,
+        box,
+        drag,
+        remove,
+        restore,
+        lamp,
+        sun,
+        sundrag,
+        rotate,
+        scale,
+        sh9,
+        point,
+        movepoint
+    } kind = Kind::light;
     double u = 0, v = 0, u1 = 0, v1 = 0;  ///< pixel; drag: from (u, v) to (u1, v1)
     double width = 0, height = 0;         ///< lamp: its size in metres (0: the default)
-    std::string name;                     ///< restore: the object
+    std::string name;                     ///< restore: the object; a light's name
+    std::vector<double> numbers;          ///< sun: AZ, EL; rotate: X, Y, Z, DEG; ...
 };
+
+/// "NAME:REST" of a light action; throws naming the action when there is no name.
+std::string splitName(const std::string& rest, const std::string& text, std::string& tail) {
+    const auto sep = rest.find(':');
+    if (sep == std::string::npos || sep == 0)
+        throw std::invalid_argument("--do " + text + ": expected a light's name and values");
+    tail = rest.substr(sep + 1);
+    return rest.substr(0, sep);
+}
+
+/// The light controls' actions (sun, sundrag, rotate, scale, sh9, point, movepoint).
+bool parseLightAction(Action& a, const std::string& kind, const std::string& rest) {
+    const std::string& text = a.text;
+    std::string tail;
+    if (kind == "point") {
+        a.kind = Action::Kind::point;
+        parsePoint(rest, text, a.u, a.v);
+    } else if (kind == "sun" || kind == "scale") {
+        a.kind = kind == "sun" ? Action::Kind::sun : Action::Kind::scale;
+        a.name = splitName(rest, text, tail);
+        a.numbers = parseNumbers(tail, text, kind == "sun" ? 2 : 1);
+        if (kind == "scale" && a.numbers[0] < 0)
+            throw std::invalid_argument("--do " + text + ": a scale must not be negative");
+    } else if (kind == "movepoint") {
+        a.kind = Action::Kind::movepoint;
+        a.name = splitName(rest, text, tail);
+        parsePoint(tail, text, a.u, a.v);
+    } else if (kind == "sundrag") {
+        a.kind = Action::Kind::sundrag;
+        a.name = splitName(rest, text, tail);
+        const auto sep = tail.find(':');
+        if (sep == std::string::npos)
+            throw std::invalid_argument("--do " + text + ": expected sundrag:NAME:U0,V0:U1,V1");
+        parsePoint(tail.substr(0, sep), text, a.u, a.v);
+        parsePoint(tail.substr(sep + 1), text, a.u1, a.v1);
+    } else if (kind == "rotate" || kind == "sh9") {
+        a.kind = kind == "rotate" ? Action::Kind::rotate : Action::Kind::sh9;
+        a.name = splitName(rest, text, tail);
+        const auto sep = tail.find(':');
+        if (sep == std::string::npos)
+            throw std::invalid_argument(
+                "--do " + text + ": expected " +
+                (kind == "rotate" ? "rotate:NAME:X,Y,Z:DEG" : "sh9:NAME:K:R,G,B"));
+        const auto first = parseNumbers(tail.substr(0, sep), text, kind == "rotate" ? 3 : 1);
+        const auto second = parseNumbers(tail.substr(sep + 1), text, kind == "rotate" ? 1 : 3);
+        a.numbers = first;
+        a.numbers.insert(a.numbers.end(), second.begin(), second.end());
+        if (kind == "sh9" && !(a.numbers[0] >= 0 && a.numbers[0] < radiosity::kSh9Count &&
+                               a.numbers[0] == std::floor(a.numbers[0])))
+            throw std::invalid_argument("--do " + text + ": K must be 0 to 8");
+    } else {
+        return false;
+    }
+    return true;
+}
 
 Action parseAction(const std::string& text) {
     Action a;
@@ -73,6 +169,7 @@ Action parseAction(const std::string& text) {
     const auto colon = text.find(':');
     const std::string kind = text.substr(0, colon);
     const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
+    if (parseLightAction(a, kind, rest)) return a;
     if (kind == "light" || kind == "box" || kind == "remove") {
         a.kind = kind == "light" ? Action::Kind::light
                  : kind == "box" ? Action::Kind::box
@@ -100,13 +197,75 @@ Action parseAction(const std::string& text) {
     } else {
         throw std::invalid_argument("--do " + text +
                                     ": unknown action (light:U,V, box:U,V, drag:U0,V0:U1,V1, "
-                                    "remove:U,V, restore:NAME, lamp:U,V[:W,H])");
+                                    "remove:U,V, restore:NAME, lamp:U,V[:W,H], sun:NAME:AZ,EL, "
+                                    "sundrag:NAME:U0,V0:U1,V1, rotate:NAME:X,Y,Z:DEG, "
+                                    "scale:NAME:S, sh9:NAME:K:R,G,B, point:U,V, "
+                                    "movepoint:NAME:U,V)");
     }
     return a;
 }
 
+/// The light controls' actions; false for the others.
+bool runLightAction(Session& s, const Action& a) {
+    radiosity::EmitterEdit e;
+    switch (a.kind) {
+        case Action::Kind::sun:
+            e.direction = Session::sunDirection(a.numbers[0], a.numbers[1]);
+            break;
+        case Action::Kind::sundrag:
+            try {
+                s.dragSun(a.name, a.u1 - a.u, a.v1 - a.v);
+            } catch (const std::invalid_argument& ex) {
+                throw InputError("--do " + a.text + ": " + ex.what());
+            }
+            return true;
+        case Action::Kind::rotate:
+            e.rotate = radiosity::EmitterEdit::Rotation{
+                Vec3(a.numbers[0], a.numbers[1], a.numbers[2]), a.numbers[3]};
+            break;
+        case Action::Kind::scale:
+            e.scale = a.numbers[0];
+            break;
+        case Action::Kind::sh9: {
+            const radiosity::Emitter* em = s.emitter(a.name);
+            if (!em || em->components() != radiosity::kSh9Count)
+                throw InputError("--do " + a.text + ": no sky \"" + a.name + "\"");
+            radiosity::Sh9Rgb L;
+            const std::vector<Rgb> now = em->strengths();
+            std::copy(now.begin(), now.end(), L.c.begin());
+            L.c[static_cast<size_t>(a.numbers[0])] = Rgb{a.numbers[1], a.numbers[2], a.numbers[3]};
+            e.sh9 = L;
+            break;
+        }
+        case Action::Kind::point: {
+            const Pick p = s.pick(a.u, a.v);
+            if (!p.hit)
+                throw std::invalid_argument("--do " + a.text + ": no surface at that pixel");
+            s.addPointLampAt(p);
+            return true;
+        }
+        case Action::Kind::movepoint:
+            try {
+                s.movePointLampTo(a.name, s.pick(a.u, a.v));
+            } catch (const std::invalid_argument& ex) {
+                throw InputError("--do " + a.text + ": " + ex.what());
+            }
+            return true;
+        default:
+            return false;
+    }
+    try {
+        s.editLight(a.name, e);
+    } catch (const std::invalid_argument& ex) {
+        // Bad input (exit code 2): a light the scene lacks, a field its type lacks.
+        throw InputError("--do " + a.text + ": " + ex.what());
+    }
+    return true;
+}
+
 /// Does what the click (or the drag) would do in the window.
 void runAction(Session& s, const Action& a) {
+    if (runLightAction(s, a)) return;
     if (a.kind == Action::Kind::restore) {
         if (std::find(s.removedObjects().begin(), s.removedObjects().end(), a.name) ==
             s.removedObjects().end())
@@ -153,7 +312,14 @@ int run(const Args& a) {
     }
     for (const std::string& w : edit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::vector<Action> actions;
-    for (const std::string& text : a.actions) actions.push_back(parseAction(text));
+    for (const std::string& text : a.actions) {
+        // A --do that does not parse is bad input (exit code 2), as a bad option is.
+        try {
+            actions.push_back(parseAction(text));
+        } catch (const std::invalid_argument& e) {
+            throw InputError(e.what());
+        }
+    }
     const ViewKind view = parseView(a.view);
     if (a.framebuffer != "float" && a.framebuffer != "multipass")
         throw std::invalid_argument("--framebuffer must be float or multipass");

@@ -43,6 +43,43 @@ ObjFile unitBox() {
 
 }  // namespace
 
+Rgb LightControl::radiance() const {
+    if (emitter) return on ? emitter->strengths().at(static_cast<size_t>(component)) : Rgb{};
+    return on ? colour * intensity : Rgb{};
+}
+
+namespace {
+
+/// Real light l (component 0 of a sun, point lamp or sky) as `edit` leaves it: its emitter
+/// with the photo's strengths, edited as editRadiance() and movedLights() edit it for
+/// `relight render`; `on` false when the edit or the photo has it off (then the emitter
+/// keeps its nominal strengths for when it goes on).
+std::shared_ptr<radiosity::Emitter> startingEmitter(const SceneFile& sf, const EditFile& edit,
+                                                    const std::vector<Rgb>& photoRadiance, size_t l,
+                                                    bool& on) {
+    const radiosity::Light& light = sf.scene.lights[l];
+    std::shared_ptr<radiosity::Emitter> em = light.emitter->clone();
+    const size_t n = static_cast<size_t>(em->components());
+    std::vector<Rgb> nominal(photoRadiance.begin() + static_cast<long>(l),
+                             photoRadiance.begin() + static_cast<long>(l + n));
+    em->setStrengths(nominal);
+    on = sf.lightOnInPhoto(l);
+    if (auto it = edit.lights.find(light.name); it != edit.lights.end() && it->second.emitter) {
+        em->apply(*it->second.emitter);
+        on = true;
+    }
+    if (!em->on()) {
+        // Off: its nominal strengths (the photo's, else scene.json's) wait for it.
+        for (size_t c = 0; c < n; ++c)
+            if (!(nominal[c].maxComponent() > 0)) nominal[c] = sf.scene.lights[l + c].radiance;
+        em->setStrengths(nominal);
+        on = false;
+    }
+    return em;
+}
+
+}  // namespace
+
 void LightControl::setRadiance(const Rgb& radiance) {
     intensity = std::max({radiance.r, radiance.g, radiance.b, 0.0});
     colour = intensity > 0 ? radiance * (1.0 / intensity) : Rgb{1, 1, 1};
@@ -60,6 +97,20 @@ Session::Session(Relighting& r, const EditFile& edit) : r_(&r) {
     for (int l = 0; l < realLights_; ++l) {
         LightControl c;
         c.name = sf.scene.lights[static_cast<size_t>(l)].name;
+        if (const radiosity::Light& light = sf.scene.lights[static_cast<size_t>(l)];
+            light.emitter) {
+            // A sun, point lamp or sky: one emitter, shared by its components' controls.
+            if (light.component == 0)
+                c.emitter = startingEmitter(sf, edit, r_->prepared.photoRadiance,
+                                            static_cast<size_t>(l), c.on);
+            else {
+                c.emitter = lights_.back().emitter;
+                c.on = lights_.back().on;
+            }
+            c.component = light.component;
+            lights_.push_back(c);
+            continue;
+        }
         c.setRadiance(radiance[static_cast<size_t>(l)]);
         // A light that is off keeps its nominal colour and strength for when it goes on.
         if (!(radiance[static_cast<size_t>(l)].maxComponent() > 0)) {
@@ -76,6 +127,10 @@ Session::Session(Relighting& r, const EditFile& edit) : r_(&r) {
         c.isVirtual = true;
         c.face = v;
         c.setRadiance(v.radiance);
+        if (v.emitter) {
+            c.emitter = v.emitter->clone();
+            c.face.emitter = nullptr;  // the control's emitter is the light
+        }
         lights_.push_back(c);
     }
     removed_ = edit.removeObjects;
@@ -93,6 +148,134 @@ Session::~Session() {
     dyn_.reset();  // takes the virtual parts out of the relighting's solver
 }
 
+namespace {
+
+/// Virtual light `c` as an edit's add_lights entry has it (off: zero strengths).
+VirtualLight virtualLight(const LightControl& c) {
+    VirtualLight v = c.face;
+    v.name = c.name;
+    v.radiance = c.radiance();
+    if (c.emitter) {
+        std::shared_ptr<radiosity::Emitter> em = c.emitter->clone();
+        if (!c.on) {
+            radiosity::EmitterEdit off;
+            off.scale = 0.0;
+            em->apply(off);
+        }
+        v.emitter = std::move(em);
+    }
+    return v;
+}
+
+}  // namespace
+
+bool Session::moved(size_t l) const {
+    const LightControl& c = lights_[l];
+    if (!c.emitter || c.isVirtual || !c.on) return false;
+    LightEdit e;
+    e.emitter = c.emitter->editFrom(*r_->scene.scene.lights[l].emitter);
+    return e.moves();
+}
+
+bool Session::anyMoved() const {
+    for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
+        if (lights_[l].component == 0 && moved(l)) return true;
+    return false;
+}
+
+std::vector<double> Session::emitterState() const {
+    std::vector<double> out;
+    for (const LightControl& c : lights_) {
+        if (!c.emitter || c.component != 0) continue;
+        out.push_back(c.on ? 1 : 0);
+        for (const radiosity::EmitterField& f : c.emitter->fields())
+            out.insert(out.end(), f.values.begin(), f.values.end());
+    }
+    return out;
+}
+
+LightControl* Session::findControl(const std::string& name) {
+    for (LightControl& c : lights_)
+        if (c.name == name) return &c;
+    return nullptr;
+}
+
+const radiosity::Emitter* Session::emitter(const std::string& name) const {
+    for (const LightControl& c : lights_)
+        if (c.name == name) return c.emitter.get();
+    return nullptr;
+}
+
+void Session::editLight(const std::string& name, const radiosity::EmitterEdit& e) {
+    LightControl* c = findControl(name);
+    if (!c || !c->emitter)
+        throw std::invalid_argument("no sun, point lamp or sky \"" + name + "\" to edit");
+    std::shared_ptr<radiosity::Emitter> next = c->emitter->clone();
+    next->apply(e);  // throws for a field the light lacks, the light unchanged
+    const std::shared_ptr<radiosity::Emitter> old = c->emitter;
+    for (LightControl& l : lights_)
+        if (l.emitter == old) l.emitter = next;
+    update();
+}
+
+std::string Session::addPointLampAt(const Pick& p, double offset) {
+    if (!p.hit) throw std::invalid_argument("no surface there to put a point lamp above");
+    LightControl c;
+    do {
+        c.name = numbered("P", nextPoint_++);
+    } while (findControl(c.name));
+    c.isVirtual = true;
+    c.face.name = c.name;
+    // The scene's mean irradiance at 10 % of its diagonal: a lamp of the room's scale.
+    Rgb H;
+    const std::vector<Rgb> h = vertexIrradiance();
+    for (const Rgb& x : h) H += x;
+    H = h.empty() ? Rgb{} : H * (1.0 / static_cast<double>(h.size()));
+    if (!(H.maxComponent() > 0)) H = Rgb{1, 1, 1};
+    const double d = 0.1 * diagonal_;
+    c.emitter = radiosity::makePointLamp(
+        c.name, p.point + glm::normalize(p.normal) * offsetOrDefault(offset), H * (d * d));
+    lights_.push_back(c);
+    stale_ = true;
+    update();
+    return c.name;
+}
+
+void Session::movePointLampTo(const std::string& name, const Pick& p, double offset) {
+    if (!p.hit) throw std::invalid_argument("no surface there to put the point lamp above");
+    radiosity::EmitterEdit e;
+    e.position = p.point + glm::normalize(p.normal) * offsetOrDefault(offset);
+    editLight(name, e);
+}
+
+Vec3 Session::sunDirection(double azimuth, double elevation) {
+    constexpr double kDeg = 3.14159265358979323846 / 180;
+    const double ce = std::cos(elevation * kDeg);
+    return {ce * std::cos(azimuth * kDeg), ce * std::sin(azimuth * kDeg),
+            std::sin(elevation * kDeg)};
+}
+
+void Session::dragSun(const std::string& name, double du, double dv) {
+    const radiosity::Emitter* em = emitter(name);
+    const auto d = em ? radiosity::findField(*em, "direction") : std::nullopt;
+    if (!d) throw std::invalid_argument("no sun \"" + name + "\" to turn");
+    double azimuth = 0, elevation = 0;
+    sunAngles(Vec3(d->values[0], d->values[1], d->values[2]), azimuth, elevation);
+    const Camera& camera = r_->scene.camera;
+    azimuth -= 180.0 * du / std::max(1, camera.width);
+    elevation = std::clamp(elevation - 90.0 * dv / std::max(1, camera.height), -10.0, 90.0);
+    radiosity::EmitterEdit e;
+    e.direction = sunDirection(azimuth, elevation);
+    editLight(name, e);
+}
+
+void Session::sunAngles(const Vec3& direction, double& azimuth, double& elevation) {
+    constexpr double kDeg = 180 / 3.14159265358979323846;
+    const Vec3 d = glm::normalize(direction);
+    azimuth = std::atan2(d.y, d.x) * kDeg;
+    elevation = std::asin(std::clamp(d.z, -1.0, 1.0)) * kDeg;
+}
+
 void Session::rebuild() {
     dyn_.reset();
     objectPolygons_.clear();
@@ -100,11 +283,12 @@ void Session::rebuild() {
     if (hasVirtualParts()) {
         dyn_ = std::make_unique<DynamicRelighting>(*r_, real);
         for (const std::string& name : removed_) dyn_->removeObject(name);
-        for (size_t l = static_cast<size_t>(realLights_); l < lights_.size(); ++l) {
-            VirtualLight v = lights_[l].face;
-            v.radiance = lights_[l].radiance();
-            dyn_->addLight(v);
-        }
+        // In render's order (relight/cli/render.cpp): the moved lights, then the virtual ones.
+        for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
+            if (lights_[l].component == 0 && moved(l))
+                dyn_->addLight({lights_[l].name, {}, Rgb{}, lights_[l].emitter->clone()});
+        for (size_t l = static_cast<size_t>(realLights_); l < lights_.size(); ++l)
+            dyn_->addLight(virtualLight(lights_[l]));
         for (const ObjectControl& o : objects_) {
             const size_t first = r_->solver->scene().polygons.size();
             dyn_->addObject(o.object);
@@ -118,16 +302,23 @@ void Session::update() {
     const auto t0 = Clock::now();
     std::vector<Rgb> now;
     for (const LightControl& l : lights_) now.push_back(l.radiance());
-    bool radianceChanged = now.size() != applied_.size();
+    std::vector<double> state = emitterState();
+    bool radianceChanged = now.size() != applied_.size() || state != appliedState_;
     for (size_t i = 0; !radianceChanged && i < now.size(); ++i)
         radianceChanged = !(now[i] == applied_[i]);
     if (!stale_ && !radianceChanged) return;
     const std::vector<Rgb> before = std::exchange(applied_, now);
-    // Without virtual parts a radiance change is the superposition path: nothing to solve.
-    if (stale_ || (radianceChanged && hasVirtualParts())) rebuild();
+    appliedState_ = std::move(state);
+    // Without virtual parts (nor a moved light, nor any before) a radiance change is the
+    // superposition path: nothing to solve.
+    if (stale_ || (radianceChanged && (hasVirtualParts() || dyn_))) rebuild();
     // The first update (the edit the session starts from) is checked on its first frame,
     // which names the edit's key (viewer/main.cpp); a change made in the panel here.
     if (!before.empty() && before.size() == now.size() && !displayFinite()) undo(before);
+    appliedEmitters_.clear();
+    for (const LightControl& l : lights_)
+        appliedEmitters_.push_back(
+            l.emitter ? std::shared_ptr<radiosity::Emitter>(l.emitter->clone()) : nullptr);
     updateSeconds_ = secondsSince(t0);
     changed();
 }
@@ -150,6 +341,16 @@ void Session::undo(const std::vector<Rgb>& before) {
         std::snprintf(value, sizeof value, " [%.6g, %.6g, %.6g]", l.radiance().r, l.radiance().g,
                       l.radiance().b);
         names += (names.empty() ? "" : ", ") + ("\"" + l.name + "\"") + value;
+        if (l.emitter) {
+            // Its emitter as last applied, shared again by the light's components.
+            if (i < appliedEmitters_.size() && appliedEmitters_[i]) {
+                const std::shared_ptr<radiosity::Emitter> old = l.emitter;
+                const std::shared_ptr<radiosity::Emitter> back = appliedEmitters_[i]->clone();
+                for (LightControl& o : lights_)
+                    if (o.emitter == old) o.emitter = back;
+            }
+            continue;
+        }
         if (before[i].maxComponent() > 0)
             l.setRadiance(before[i]);
         else
@@ -157,7 +358,8 @@ void Session::undo(const std::vector<Rgb>& before) {
     }
     applied_.clear();
     for (const LightControl& l : lights_) applied_.push_back(l.radiance());
-    if (hasVirtualParts()) rebuild();
+    appliedState_ = emitterState();
+    if (hasVirtualParts() || dyn_) rebuild();
     changed();
     throw InputError("the relit image would not be finite with the radiance of " + names +
                      ": the change is undone");
@@ -262,6 +464,7 @@ void Session::addLightAt(const Pick& p) {
     if (appendable) {
         dyn_->addLight(l.face);
         applied_.push_back(l.radiance());
+        appliedEmitters_.push_back(nullptr);
         changed();
     } else {
         stale_ = true;
@@ -399,11 +602,15 @@ void Session::endDrag() {
 
 void Session::removeLight(int i) {
     if (i < realLights_ || i >= static_cast<int>(lights_.size())) return;
-    const bool last = objects_.empty() && i == static_cast<int>(lights_.size()) - 1;
+    // A sun, point lamp or sky comes out by a rebuild (its light has no face to take out).
+    const bool last = objects_.empty() && i == static_cast<int>(lights_.size()) - 1 &&
+                      !lights_[static_cast<size_t>(i)].emitter;
     lights_.erase(lights_.begin() + i);
     if (last && dyn_ && !stale_) {
         dyn_->removeLast();
         applied_.erase(applied_.begin() + i);
+        if (static_cast<size_t>(i) < appliedEmitters_.size())
+            appliedEmitters_.erase(appliedEmitters_.begin() + i);
         if (!hasVirtualParts()) dyn_.reset();
         changed();
     } else {
@@ -430,7 +637,10 @@ void Session::removeObject(int i) {
 
 std::vector<Rgb> Session::realRadiance() const {
     std::vector<Rgb> out;
-    for (int l = 0; l < realLights_; ++l) out.push_back(lights_[static_cast<size_t>(l)].radiance());
+    // A moved light is off where it was (rebuild() puts it where it went).
+    for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
+        out.push_back(moved(l - static_cast<size_t>(lights_[l].component)) ? Rgb{}
+                                                                           : lights_[l].radiance());
     return out;
 }
 
@@ -463,17 +673,28 @@ EditFile Session::edit(const fs::path& editFile) const {
     for (int l = 0; l < realLights_; ++l) {
         const LightControl& c = lights_[static_cast<size_t>(l)];
         LightEdit le;
+        if (c.emitter) {
+            // A sun, point lamp or sky: the edit that takes scene.json's light to this one.
+            if (c.component != 0) continue;
+            le.light = r_->scene.scene.lights[static_cast<size_t>(l)].emitter;
+            radiosity::EmitterEdit ee;
+            if (c.on)
+                ee = c.emitter->editFrom(*le.light);
+            else
+                ee.scale = 0.0;
+            le.scale = ee.scale;
+            le.emitter = ee;
+            e.lights[c.name] = le;
+            continue;
+        }
         if (c.on)
             le.radiance = c.radiance();
         else
             le.scale = 0.0;
         e.lights[c.name] = le;
     }
-    for (size_t l = static_cast<size_t>(realLights_); l < lights_.size(); ++l) {
-        VirtualLight v = lights_[l].face;
-        v.radiance = lights_[l].radiance();
-        e.addLights.push_back(v);
-    }
+    for (size_t l = static_cast<size_t>(realLights_); l < lights_.size(); ++l)
+        e.addLights.push_back(virtualLight(lights_[l]));
     for (const ObjectControl& o : objects_) {
         VirtualObject v = o.object;
         if (o.viewerBox) v.file = boxObjFile(editFile);

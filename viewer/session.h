@@ -25,15 +25,23 @@ namespace relight::viewer {
 using radiosity::Rgb;
 using radiosity::Vec3;
 
-/// One light of the panel: a real light of the scene or a virtual one.
+/// One light of the panel: a real light of the scene or a virtual one. A real sun, point
+/// lamp or sky is one control per component (a sky: 9, one per scene light), sharing one
+/// emitter.
 struct LightControl {
     std::string name;
     bool isVirtual = false;
     bool on = true;
-    Rgb colour{1, 1, 1};   ///< the radiance's colour, brightest channel 1
-    double intensity = 0;  ///< the radiance's brightest channel when on
-    VirtualLight face;     ///< virtual lights: the emitting face (its radiance unused)
-    Rgb radiance() const { return on ? colour * intensity : Rgb{}; }
+    Rgb colour{1, 1, 1};   ///< a quad's radiance's colour, brightest channel 1
+    double intensity = 0;  ///< a quad's radiance's brightest channel when on
+    VirtualLight face;     ///< virtual quad lights: the emitting face (its radiance unused)
+    /// A sun, point lamp or sky (radiosity/emitter.h) as the session has it, edited in
+    /// place (Session::editLight) and shared by a real light's components; null for a quad.
+    /// Its strengths are the light's (colour and intensity are unused).
+    std::shared_ptr<radiosity::Emitter> emitter{};
+    int component = 0;  ///< the emitter's component this control stands for
+    /// The strength of this control's component (a quad's radiance), zero when off.
+    Rgb radiance() const;
     /// Sets colour and intensity from a radiance (black: white at intensity 0).
     void setRadiance(const Rgb& radiance);
 };
@@ -138,6 +146,31 @@ class Session {
     /// The scene's objects taken out, in the order they went.
     const std::vector<std::string>& removedObjects() const { return removed_; }
 
+    /// Edits the sun, point lamp or sky `name` (real or virtual) as an edit's fields do
+    /// (radiosity::Emitter::apply): a sun turned ("direction"), a lamp moved ("position"),
+    /// a sky turned ("rotate"), set ("sh9") or scaled, a strength set. A real light that
+    /// moves is drawn as `relight render` draws the saved edit: off where it was, a virtual
+    /// light where it went (movedLights(), edit_file.h). Throws std::invalid_argument for a
+    /// quad, an unknown name or a field the light lacks (the light unchanged).
+    void editLight(const std::string& name, const radiosity::EmitterEdit& e);
+    /// The emitter of light `name` as it stands, or null (a quad, an unknown name).
+    const radiosity::Emitter* emitter(const std::string& name) const;
+    /// A virtual point lamp above the face picked, `offset` metres along its normal (0: 2 %
+    /// of the scene's diagonal), named P1, P2, ...; its intensity gives the face the scene's
+    /// mean irradiance at 10 % of the diagonal. Returns its name.
+    std::string addPointLampAt(const Pick& p, double offset = 0);
+    /// Moves point lamp `name` (real or virtual) above the face picked, as addPointLampAt.
+    void movePointLampTo(const std::string& name, const Pick& p, double offset = 0);
+    /// The direction towards a sun of azimuth `azimuth` (degrees from +x towards +y) and
+    /// elevation `elevation` (degrees above the horizontal plane; the world's z is up, as
+    /// in the bundled scenes), and back.
+    static Vec3 sunDirection(double azimuth, double elevation);
+    /// Turns the sun `name` as a drag of (du, dv) photo pixels on the image does: the
+    /// azimuth by -180 degrees across the photo's width, the elevation by -90 degrees down
+    /// its height (kept in [-10, 90]), each step through editLight (a "direction" edit).
+    void dragSun(const std::string& name, double du, double dv);
+    static void sunAngles(const Vec3& direction, double& azimuth, double& elevation);
+
     /// Changes whenever what the display shows changes.
     int generation() const { return generation_; }
     /// The display ratio k H/D per leaf vertex; the irradiance H per leaf vertex.
@@ -173,8 +206,15 @@ class Session {
     [[noreturn]] void undo(const std::vector<Rgb>& before);
     bool hasVirtualParts() const {
         return lights_.size() > static_cast<size_t>(realLights_) || !objects_.empty() ||
-               !removed_.empty();
+               !removed_.empty() || anyMoved();
     }
+    /// Whether real light l's emitter is away from where scene.json puts it.
+    bool moved(size_t l) const;
+    bool anyMoved() const;
+    /// The emitters' shapes (their fields and whether they are on), to tell a change.
+    std::vector<double> emitterState() const;
+    LightControl* findControl(const std::string& name);
+    double offsetOrDefault(double offset) const { return offset > 0 ? offset : 0.02 * diagonal_; }
 
     Relighting* r_;
     std::unique_ptr<DynamicRelighting> dyn_;
@@ -183,12 +223,16 @@ class Session {
     std::vector<std::string> removed_;  ///< real objects taken out
     std::vector<PlacedLamp> placed_;    ///< real lamps placed, not yet in scene.json
     std::vector<std::pair<size_t, size_t>> objectPolygons_;  ///< per object: its polygons
-    std::vector<Rgb> applied_;  ///< radiances the solution was computed for
-    bool stale_ = false;        ///< the parts changed in a way only rebuild() follows
+    std::vector<Rgb> applied_;          ///< radiances the solution was computed for
+    std::vector<double> appliedState_;  ///< emitterState() the solution was computed for
+    /// Per light, a copy of its emitter as last applied (null for quads), for undo().
+    std::vector<std::shared_ptr<radiosity::Emitter>> appliedEmitters_;
+    bool stale_ = false;  ///< the parts changed in a way only rebuild() follows
     int realLights_ = 0;
     size_t realPolygons_ = 0;
     double diagonal_ = 1;  ///< of the scene's bounding box (metres)
     int generation_ = 0, dragging_ = -1, nextLight_ = 1, nextBox_ = 1, nextLamp_ = 1;
+    int nextPoint_ = 1;
     Vec3 grab_{0, 0, 0}, dragUp_{0, 0, 1};
     double updateSeconds_ = 0;
 };

@@ -44,7 +44,7 @@ std::string productText(double scale, const Rgb& c) {
 /// A sun's, point lamp's or sky's edit: its fields, then checked by applying it to the
 /// scene's light (radiosity::Emitter::apply refuses a field the type lacks, naming it).
 LightEdit readEmitterEdit(const JsonReader& r, const json& entry, const std::string& path,
-                          const radiosity::Emitter& light) {
+                          const std::shared_ptr<const radiosity::Emitter>& light) {
     r.checkKeys(entry, path,
                 {"scale", "irradiance", "intensity", "sh9", "direction", "position", "rotate"});
     if (entry.empty()) r.fail(path, "says nothing; give \"scale\" or a field of the light's type");
@@ -75,13 +75,14 @@ LightEdit readEmitterEdit(const JsonReader& r, const json& entry, const std::str
             r.number(r.require(*j, rPath, "degrees"), child(rPath, "degrees"))};
     }
     try {
-        light.clone()->apply(e);
+        light->clone()->apply(e);
     } catch (const std::invalid_argument& ex) {
         r.fail(path, ex.what());
     }
     LightEdit edit;
     edit.scale = e.scale;
     edit.emitter = e;
+    edit.light = light;
     return edit;
 }
 
@@ -244,7 +245,7 @@ EditFile readEdit(const json& root, const fs::path& file, const SceneFile& sf) {
                        "unknown light \"" + l.key() + "\" (the scene has " + lightNames(sf) + ")");
             const radiosity::Light& light = sf.scene.lights[sf.scene.findLight(l.key())];
             edit.lights[l.key()] = light.emitter
-                                       ? readEmitterEdit(r, l.value(), path, *light.emitter)
+                                       ? readEmitterEdit(r, l.value(), path, light.emitter)
                                        : readLightEdit(r, l.value(), path);
         }
     }

@@ -32,6 +32,9 @@ struct LightEdit {
     std::optional<double> scale;  ///< multiplies the nominal radiance (0 = off), >= 0
     std::optional<Rgb> radiance;  ///< sets the radiance, every channel >= 0
     std::optional<radiosity::EmitterEdit> emitter{};
+    /// The scene's light that `emitter` edits (as scene.json has it): it names the edit's
+    /// fields when the edit is written (Emitter::strengthKey, edit_writer.h).
+    std::shared_ptr<const radiosity::Emitter> light{};
     /// Whether it moves its light (a sun's direction, a point lamp's position): what the
     /// light gives then changes in shape, not only in strength.
     bool moves() const { return emitter && (emitter->direction || emitter->position); }

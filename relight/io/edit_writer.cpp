@@ -34,7 +34,58 @@ json rgb(const Rgb& c, const std::string& path) {
             number(c.b, element(path, 2))};
 }
 
+/// `f`'s numbers at `path`, shaped as the format has them (radiosity::EmitterField).
+json fieldValue(const radiosity::EmitterField& f, const std::string& path) {
+    using Shape = radiosity::EmitterField::Shape;
+    if (f.shape == Shape::number && f.values.size() == 1) return number(f.values[0], path);
+    if (f.values.empty() || f.values.size() % 3 != 0 ||
+        (f.shape != Shape::rows && f.values.size() != 3))
+        throw std::invalid_argument("editJson: key \"" + path + "\": " +
+                                    std::to_string(f.values.size()) + " numbers are not rows of 3");
+    json out = json::array();
+    for (size_t k = 0; k < f.values.size(); k += 3) {
+        const std::string rowPath = f.shape == Shape::rows ? element(path, k / 3) : path;
+        json row = {number(f.values[k], element(rowPath, 0)),
+                    number(f.values[k + 1], element(rowPath, 1)),
+                    number(f.values[k + 2], element(rowPath, 2))};
+        if (f.shape != Shape::rows) return row;
+        out.push_back(std::move(row));
+    }
+    return out;
+}
+
+/// Puts the light's fields into `obj` (at `path`): a key "rotate.axis" goes to
+/// obj["rotate"]["axis"]. Which fields a light has is the light's own business
+/// (radiosity::Emitter::fields, editFields); this only writes them.
+void putFields(json& obj, const std::vector<radiosity::EmitterField>& fields,
+               const std::string& path) {
+    for (const radiosity::EmitterField& f : fields) {
+        json* at = &obj;
+        std::string fPath = path;
+        size_t start = 0;
+        for (size_t dot = f.key.find('.'); dot != std::string::npos;
+             start = dot + 1, dot = f.key.find('.', start)) {
+            const std::string part = f.key.substr(start, dot - start);
+            fPath = child(fPath, part);
+            at = &(*at)[part];
+        }
+        const std::string last = f.key.substr(start);
+        (*at)[last] = fieldValue(f, child(fPath, last));
+    }
+}
+
 json lightEdit(const LightEdit& l, const std::string& path) {
+    if (l.emitter) {
+        // A sun's, point lamp's or sky's edit: its fields under the keys of its type.
+        if (!l.light)
+            throw std::invalid_argument("editJson: key \"" + path +
+                                        "\": the edit does not say which light it edits");
+        json out = json::object();
+        putFields(out, radiosity::editFields(*l.light, *l.emitter), path);
+        if (out.empty())
+            throw std::invalid_argument("editJson: key \"" + path + "\": the edit says nothing");
+        return out;
+    }
     // loadEdit refuses both and neither (edit_file.cpp, readLightEdit).
     if (l.scale.has_value() == l.radiance.has_value())
         throw std::invalid_argument("editJson: key \"" + path + "\": give exactly one of scale " +
@@ -44,6 +95,12 @@ json lightEdit(const LightEdit& l, const std::string& path) {
 }
 
 json virtualLight(const VirtualLight& v, const std::string& path) {
+    if (v.emitter) {
+        // A sun, point lamp or sky: "type" and the fields the light says it has.
+        json out = {{"name", v.name}, {"type", v.emitter->type()}};
+        putFields(out, v.emitter->fields(), path);
+        return out;
+    }
     const std::string vPath = child(path, "vertices");
     json vertices = json::array();
     for (size_t k = 0; k < v.corners.size(); ++k) {

@@ -13,13 +13,16 @@ namespace relight {
 
 /// The edit as "relight-edit/1" JSON. Object files are written relative to `editFolder` (the
 /// folder the JSON will be in; empty = the current folder), with forward slashes; lights:
-/// {"scale": s} or {"radiance": [r, g, b]}; add_lights with "name", "type": "quad",
-/// "vertices", "radiance"; add_objects with "name", "file", "reflectance", "transform" (4x4
-/// row-major); remove_objects. Empty parts are left out. Doubles survive the round trip
-/// exactly (nlohmann::json dumps the shortest text that reads back as the same double).
-/// Throws std::invalid_argument naming the key path for what the file could not say: a
-/// non-finite number (JSON has none; it would be written as null), a light change with both
-/// or neither of scale and radiance, an object without a file.
+/// a quad's {"scale": s} or {"radiance": [r, g, b]}; a sun's, point lamp's or sky's edit
+/// (LightEdit::emitter) by the fields its light names (radiosity::editFields: "scale",
+/// "irradiance", "intensity", "sh9", "direction", "position", "rotate"); add_lights with
+/// "name", "type" and a quad's "vertices", "radiance", or the fields a sun, point lamp or
+/// sky says it has (radiosity::Emitter::fields); add_objects with "name", "file", "reflectance",
+/// "transform" (4x4 row-major); remove_objects. Empty parts are left out. Doubles survive the round
+/// trip exactly (nlohmann::json dumps the shortest text that reads back as the same double). Throws
+/// std::invalid_argument naming the key path for what the file could not say: a non-finite number
+/// (JSON has none; it would be written as null), a quad's change with both or neither of scale and
+/// radiance, an emitter's change without its light or saying nothing, an object without a file.
 nlohmann::json editJson(const EditFile& edit, const std::filesystem::path& editFolder);
 
 /// Writes editJson(edit, file.parent_path()) atomically (writeJsonAtomic). Throws

@@ -157,7 +157,7 @@ if(NOT count EQUAL 6 OR NOT name STREQUAL "L1" OR NOT radiance STREQUAL "estimat
 endif()
 relight(o 0 render "${WORK}/lamps" --epsilon 1e-3 --spp 2 --no-cache -o "${WORK}/lamps_render.png")
 expect("${o}" "light \"L1\": [^\n]* from [0-9]+ photo pixels on its face" "render with the lamps")
-viewer(o 1 "${SCENE}" --do lamp:160,20:0,1 --screenshot "${WORK}/never.png")
+viewer(o 2 "${SCENE}" --do lamp:160,20:0,1 --screenshot "${WORK}/never.png")
 expect("${o}" "--do lamp:160,20:0,1: the size must be positive" "a lamp of no size")
 
 # The window itself, panel included.
@@ -202,7 +202,7 @@ expect("${o}" "^relight-viewer: error: --exposure: must be a finite number, got 
        "infinite exposure")
 viewer(o 0 --help)
 expect("${o}" "--screenshot" "--help")
-viewer(o 1 "${SCENE}" --do light:abc --screenshot "${WORK}/keep.png")
+viewer(o 2 "${SCENE}" --do light:abc --screenshot "${WORK}/keep.png")
 expect("${o}" "--do light:abc" "bad action")
 file(READ "${WORK}/keep.png" kept)
 if(NOT kept STREQUAL "not an image, and it must stay so")
