@@ -9,8 +9,8 @@
 //   weighted sum of precomputed per-light images. Median over N runs.
 // - sun moved: the sun off where it was and a virtual sun where it went (movedLights(),
 //   DynamicRelighting::addLight, render): median over 3 runs, with the FrameTimes breakdown.
-// - point lamp moved: a virtual point lamp (the night_lamp edit's) inserted, then taken out
-//   and inserted at another place, rendered: the second insertion and render, median of 3.
+// - point lamp moved: a virtual point lamp (the night_lamp edit's) at a new place: the
+//   dynamic state set up, the lamp inserted, rendered; median of 3.
 // Prints the preparation's steps (PreparedImage::times).
 #include <cstdio>
 #include <cstring>
@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
         else
             dir = argv[i];
     }
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each figure as soon as it is measured
     std::printf("command: ./build/bench/daylight_edit_times %s --repeats %d\n", dir.c_str(),
                 repeats);
     RelightOptions o;
@@ -104,20 +105,20 @@ int main(int argc, char** argv) {
     }
     printFrame("sun moved", quantile(sun, 0.5), sunTimes);
 
-    // A point lamp moved: inserted at one place, taken out, inserted at another.
+    // A point lamp moved: the edit with the lamp at its new place (a virtual point lamp,
+    // as night_lamp's), as `relight render` or a drag in the viewer makes it: the dynamic
+    // state set up, the lamp inserted, the image rendered. (DynamicRelighting::removeLast
+    // undoes objects only, so the move is a fresh insertion at the new place.)
     std::vector<double> lamp;
     FrameTimes lampTimes;
     const std::vector<radiosity::Vec3> places = {{0.8, 3.6, 2.8}, {-0.8, 2.6, 2.2}};
     const radiosity::Rgb I{6.0, 5.2, 4.0};
     const EditFile none = editOf(r->scene, R"({"format": "relight-edit/1"})");
     for (int i = 0; i < 3; ++i) {
+        t0 = Clock::now();
         const auto radiance = editRadiance(r->scene, none, P.photoRadiance);
         DynamicRelighting dyn(*r, radiance);
-        dyn.addLight({"P1", {}, {}, radiosity::makePointLamp("P1", places[0], I)});
-        out = dyn.render(DisplayMode::pixel);
-        t0 = Clock::now();
-        dyn.removeLast();
-        dyn.addLight({"P1", {}, {}, radiosity::makePointLamp("P1", places[1], I)});
+        dyn.addLight({"P1", {}, {}, radiosity::makePointLamp("P1", places[i % 2], I)});
         out = dyn.render(DisplayMode::pixel);
         lamp.push_back(secondsSince(t0));
         lampTimes = dyn.times();
