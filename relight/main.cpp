@@ -8,6 +8,7 @@
 //                        --max-links N, --max-memory MiB, --time-budget S, --display-pixels P,
 //                        --no-pixel-light, --all-photos
 //   relight eval    <scene_dir> <edit_name> <image> [--error-map file]
+//   relight sky     <scene_dir> [--photo FILE] [--spp N]   (prints an edit's "sh9")
 //   relight import colmap <sparse_dir> --image NAME --images DIR --mesh FILE
 //                   [--lights FILE] [--objects FILE] [--lights-on A,B] -o SCENE_DIR
 //   relight export colmap <scene_dir> -o SPARSE_DIR [--binary] [--name NAME]
@@ -125,6 +126,18 @@ CLI::App* addEvalCommand(CLI::App& app, EvalArgs& ea) {
     eval->add_option("--error-map", ea.errorMap,
                      "write the per-block error relative to the mean truth (EXR, or PNG)");
     return eval;
+}
+
+CLI::App* addSkyCommand(CLI::App& app, cli::SkyArgs& ka) {
+    auto* sky = app.add_subcommand(
+        "sky",
+        "fit the scene's sky (environment light) to its photo and print it as an edit's "
+        "sh9 (Wen et al. 2003)");
+    sky->add_option("scene_dir", ka.scene, "scene folder holding scene.json")->required();
+    sky->add_option("--photo", ka.photo,
+                    "fit to this photo instead of the first (same camera and lights_on)");
+    sky->add_option("--spp", ka.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
+    return sky;
 }
 
 CLI::App* addRenderCommand(CLI::App& app, cli::RenderArgs& ra) {
@@ -270,6 +283,8 @@ int main(int argc, char** argv) {
     cli::PrepareArgs pa;
     const CLI::App* solve = addSolveCommand(app, sa);
     const CLI::App* eval = addEvalCommand(app, ea);
+    cli::SkyArgs ka;
+    const CLI::App* sky = addSkyCommand(app, ka);
     const CLI::App* render = addRenderCommand(app, ra);
     const CLI::App* prepare = addPrepareCommand(app, pa);
     ImportArgs ia;
@@ -289,6 +304,7 @@ int main(int argc, char** argv) {
         if (*render) return cli::runRender(ra);
         if (*prepare) return cli::runPrepare(pa);
         if (*eval) return cli::runEval(ea.scene, ea.edit, ea.image, ea.errorMap);
+        if (*sky) return cli::runSky(ka);
         if (*importColmap) return cli::runImportColmap(ia.options());
         if (*exportColmap) return cli::runExportColmap(xa);
     } catch (const std::exception& e) {

@@ -177,7 +177,7 @@ void estimateLightsFromPhoto(Relighting& r, const RelightOptions& o) {
         for (const std::string& line : r.emittance.summary()) say(o, "  " + line);
         std::vector<Rgb> radiance(r.scene.scene.lights.size());
         for (size_t l = 0; l < radiance.size(); ++l) {
-            if (r.scene.estimateRadiance[l]) {
+            if (r.scene.estimateRadiance[l] && !r.scene.scene.lights[l].emitter) {
                 // On in the photo (checkEstimableLights), so the photo's state is the estimate.
                 r.scene.nominalRadiance[l] = r.emittance.lights[l].radiance;
                 r.scene.scene.lights[l].radiance = r.emittance.lights[l].radiance;
@@ -185,6 +185,18 @@ void estimateLightsFromPhoto(Relighting& r, const RelightOptions& o) {
             radiance[l] = r.scene.scene.lights[l].radiance;
         }
         r.solver->setLightRadiances(radiance);  // not solved yet: sets the emittance only
+    }
+    if (hasSkyEstimate(r.scene)) {
+        // After the quads (their light is then known): the sun and sky "estimate", fitted to
+        // the photo's shading (relight/pipeline/sky_estimate.h).
+        say(o, "sun and sky \"estimate\": least squares on the photo (Wen et al. 2003, §4)");
+        SkyEstimateOptions so;
+        so.stride = r.sampling.stride;
+        so.direct = directLightOptions(o);
+        so.progress = o.progress;
+        r.skyEstimate = estimateSkyFromPhoto(r.scene, *r.solver, r.items, P.photo, so);
+        for (const std::string& w : r.skyEstimate.warnings) say(o, "  warning: " + w);
+        for (const std::string& line : r.skyEstimate.summary()) say(o, "  " + line);
     }
     P.photoRadiance.resize(r.scene.scene.lights.size());
     for (size_t l = 0; l < P.photoRadiance.size(); ++l)

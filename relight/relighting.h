@@ -5,8 +5,10 @@
 //      against the camera; the item buffer (polygon and point per sample, Embree);
 //   2. the emittance of the lights whose radiance is "estimate" (relight/pipeline/emittance.h:
 //      from the photo's pixels on the light's emitting face, else the power balance of
-//      Eq. (1)-(2)); from then on the estimate stands for the light's scene.json radiance:
-//      in the solution, in photoRadiance, and as the nominal radiance of edits;
+//      Eq. (1)-(2)); then a sun's irradiance and a sky's sh9 that are "estimate", fitted to
+//      the photo's shading (relight/pipeline/sky_estimate.h); from then on the estimate stands for
+//      the light's scene.json radiance: in the solution, in photoRadiance, and as the nominal
+//      radiance of edits;
 //   3. the radiosity solution of the photo's lights, and reflectance from the photo
 //      (relight/pipeline/reflectance.h); texture-based refinement of shadow boundaries (§4.2,
 //      relight/pipeline/shadow_refinement.h);
@@ -46,6 +48,7 @@
 #include "relight/pipeline/item_buffer.h"
 #include "relight/pipeline/shadow_refinement.h"
 #include "relight/pipeline/shadow_removal.h"
+#include "relight/pipeline/sky_estimate.h"
 #include "relight/pipeline/vertex_lighting.h"
 #include "relight/prepared.h"
 
@@ -128,7 +131,8 @@ struct Relighting {
     /// flagged in estimateRadiance) have their estimate in nominalRadiance and
     /// scene.lights: editRadiance(scene, edit) gives their edits.
     SceneFile scene;
-    EmittanceReport emittance;  ///< what was estimated and how (empty lights: nothing to do)
+    EmittanceReport emittance;      ///< what was estimated and how (empty lights: nothing to do)
+    SkyEstimateReport skyEstimate;  ///< the "estimate" sun and sky (any(): fitted)
     PreparedImage prepared;
     std::unique_ptr<radiosity::HierarchicalSolver> solver;
     ItemBuffer items;

@@ -33,6 +33,16 @@ struct SolveArgs {
 
 int runSolve(const SolveArgs& a);
 
+/// `relight sky`: the scene's environment light fitted to its photo (or to --photo, a photo
+/// of the same camera and lights), printed as an edit that sets its "sh9" (Wen et al. 2003,
+/// §3.4).
+struct SkyArgs {
+    std::string scene, photo;
+    int spp = 16;  ///< item-buffer samples per pixel (planSampling may take fewer)
+};
+
+int runSky(const SkyArgs& a);
+
 /// `relight eval`: scores an image against a scene's ground truth (spec metric).
 int runEval(const std::string& sceneDir, const std::string& edit, const std::string& image,
             const std::string& errorMapFile);

@@ -15,6 +15,8 @@
 #include <string>
 
 #include "relight/cli/commands.h"
+
+#include "radiosity/emitter.h"
 #include "relight/cli/util.h"
 #include "relight/display/debug_views.h"
 #include "relight/dynamic/dynamic_relighting.h"
@@ -128,6 +130,20 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
     nlohmann::json lights = nlohmann::json::object();
     for (size_t l = 0; l < radiance.size(); ++l)
         lights[sf.scene.lights[l].name] = rgbJson(radiance[l]);
+    // The lights whose strength was "estimate", at their estimate (the photo's state):
+    // a sky's 9 coefficients as "sh9" rows, a sun's "irradiance", a quad's "radiance".
+    nlohmann::json estimated = nlohmann::json::object();
+    for (size_t l = 0; l < sf.scene.lights.size() && l < p.photoRadiance.size(); ++l) {
+        if (!sf.estimateRadiance[l]) continue;
+        const radiosity::Light& light = sf.scene.lights[l];
+        const radiosity::Rgb& v = p.photoRadiance[l];
+        if (!light.emitter)
+            estimated[light.name] = {{"radiance", rgbJson(v)}};
+        else if (light.emitter->components() == 1)
+            estimated[light.name] = {{"irradiance", rgbJson(v)}};
+        else
+            estimated[light.name]["sh9"].push_back(rgbJson(v));
+    }
     const nlohmann::json views =
         a.debugViews.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.debugViews);
     return {
@@ -152,6 +168,7 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
           {"max_memory_mib", p.maxMemory / 1048576.0}}},
         {"leaf_vertices", p.vertexCount()},
         {"lights", lights},
+        {"estimated", estimated},
         {"virtual", virtualParts},
         {"time_s",
          {{"item_buffer", p.times.itemBuffer},

@@ -15,6 +15,7 @@
 #include "relight/pipeline/item_buffer.h"
 #include "relight/pipeline/lighting_buffer.h"
 #include "relight/pipeline/reflectance.h"
+#include "relight/pipeline/sky_estimate.h"
 #include "relight/relighting.h"
 
 namespace relight::cli {
@@ -80,7 +81,7 @@ class CameraSamples {
 
 /// Lights whose radiance is "estimate": estimated from the first photo before anything is
 /// solved, as the preparation does (relight/pipeline/emittance.h).
-void estimateLightRadiances(const SceneFile& sf, radiosity::HierarchicalSolver& solver,
+void estimateLightRadiances(SceneFile& sf, radiosity::HierarchicalSolver& solver,
                             CameraSamples& camera) {
     checkEstimableLights(sf);
     const Image photo = loadFirstPhoto(sf);
@@ -90,6 +91,14 @@ void estimateLightRadiances(const SceneFile& sf, radiosity::HierarchicalSolver& 
     std::vector<radiosity::Rgb> radiance;
     for (const LightEmittance& l : rep.lights) radiance.push_back(l.radiance);
     solver.setLightRadiances(radiance);  // not solved yet: sets the emittance only
+    if (!hasSkyEstimate(sf)) return;
+    // Then the sun and sky "estimate" (relight/pipeline/sky_estimate.h), the quads known.
+    for (size_t l = 0; l < radiance.size(); ++l) sf.scene.lights[l].radiance = radiance[l];
+    SkyEstimateOptions so;
+    so.progress = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
+    const SkyEstimateReport sky = estimateSkyFromPhoto(sf, solver, camera.items(), photo, so);
+    for (const auto& w : sky.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const auto& line : sky.summary()) std::fprintf(stderr, "  %s\n", line.c_str());
 }
 
 /// The reflectance estimated from the photo, for the report.

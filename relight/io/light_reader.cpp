@@ -24,15 +24,27 @@ radiosity::Sh9Rgb readSh9(const jsonio::JsonReader& r, const nlohmann::json& j,
 
 namespace {
 
-/// A light's RGB strength ("irradiance", "intensity"): three finite numbers >= 0. The
-/// format's "estimate" (a fit to the photo) is refused as not supported yet.
+/// Whether `j` is the format's "estimate" where `estimateAllowed` (a scene's sun or sky:
+/// fitted to the photo, relight/pipeline/sky_estimate.h); any other string is refused.
+bool isEstimate(const jsonio::JsonReader& r, const nlohmann::json& j, const std::string& path,
+                bool estimateAllowed, const char* what) {
+    if (!j.is_string()) return false;
+    if (j.get<std::string>() != "estimate")
+        r.fail(path, "expected " + std::string(what) + " or \"estimate\", got " + j.dump());
+    if (!estimateAllowed)
+        r.fail(path, "a virtual light's strength must be given (\"estimate\" needs a photo of it)");
+    return true;
+}
+
+/// A light's RGB strength ("irradiance", "intensity"): three finite numbers >= 0.
+/// A point lamp's "estimate" is refused (the format allows it for a sun and a sky only).
 radiosity::Rgb readStrength(const jsonio::JsonReader& r, const nlohmann::json& lj,
                             const std::string& path, const char* key) {
     const std::string kPath = child(path, key);
     const nlohmann::json& j = r.require(lj, path, key);
     if (j.is_string())
-        r.fail(kPath, "\"" + j.get<std::string>() +
-                          "\" is not supported yet here: give the light's " + key);
+        r.fail(kPath,
+               "\"" + j.get<std::string>() + "\" is not supported here: give the light's " + key);
     const radiosity::Rgb c = r.rgb(j, kPath);
     for (int k = 0; k < 3; ++k)
         if (c[k] < 0) r.fail(element(kPath, static_cast<size_t>(k)), "must not be negative");
@@ -50,12 +62,16 @@ std::shared_ptr<radiosity::Emitter> made(const jsonio::JsonReader& r, const std:
     }
 }
 
+/// A sun; "irradiance": "estimate" (where allowed) gives irradiance 0 and sets `estimate`.
 std::shared_ptr<radiosity::Emitter> readSun(const jsonio::JsonReader& r, const nlohmann::json& lj,
-                                            const std::string& path, const std::string& name) {
+                                            const std::string& path, const std::string& name,
+                                            bool estimateAllowed, bool& estimate) {
     r.checkKeys(lj, path, {"name", "type", "direction", "angle", "irradiance"});
     const radiosity::Vec3 d = r.point(r.require(lj, path, "direction"), child(path, "direction"));
     const double angle = r.number(r.require(lj, path, "angle"), child(path, "angle"));
-    const radiosity::Rgb E = readStrength(r, lj, path, "irradiance");
+    estimate = isEstimate(r, r.require(lj, path, "irradiance"), child(path, "irradiance"),
+                          estimateAllowed, "an RGB array");
+    const radiosity::Rgb E = estimate ? radiosity::Rgb{} : readStrength(r, lj, path, "irradiance");
     return made(r, path, [&] { return radiosity::makeSun(name, d, angle, E); });
 }
 
@@ -70,9 +86,12 @@ std::shared_ptr<radiosity::Emitter> readPoint(const jsonio::JsonReader& r, const
 std::shared_ptr<radiosity::Emitter> readEnvironment(const jsonio::JsonReader& r,
                                                     const nlohmann::json& lj,
                                                     const std::string& path,
-                                                    const std::string& name) {
+                                                    const std::string& name, bool estimateAllowed,
+                                                    bool& estimate) {
     r.checkKeys(lj, path, {"name", "type", "sh9"});
-    const radiosity::Sh9Rgb L = readSh9(r, r.require(lj, path, "sh9"), child(path, "sh9"));
+    const nlohmann::json& j = r.require(lj, path, "sh9");
+    estimate = isEstimate(r, j, child(path, "sh9"), estimateAllowed, "9 RGB rows");
+    const radiosity::Sh9Rgb L = estimate ? radiosity::Sh9Rgb{} : readSh9(r, j, child(path, "sh9"));
     return made(r, path, [&] { return radiosity::makeEnvironment(name, L); });
 }
 
@@ -88,7 +107,7 @@ LightJson readLightJson(const jsonio::JsonReader& r, const nlohmann::json& lj,
         const std::string tPath = child(path, "type");
         const std::string type = r.string(typeRequired ? r.require(lj, path, "type") : *t, tPath);
         if (type == "sun") {
-            l.emitter = readSun(r, lj, path, l.name);
+            l.emitter = readSun(r, lj, path, l.name, estimateAllowed, l.estimate);
             return l;
         }
         if (type == "point") {
@@ -96,7 +115,7 @@ LightJson readLightJson(const jsonio::JsonReader& r, const nlohmann::json& lj,
             return l;
         }
         if (type == "environment") {
-            l.emitter = readEnvironment(r, lj, path, l.name);
+            l.emitter = readEnvironment(r, lj, path, l.name, estimateAllowed, l.estimate);
             return l;
         }
         if (type != "quad")

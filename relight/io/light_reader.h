@@ -18,7 +18,9 @@ struct LightJson {
     std::string name;                      ///< not empty
     std::vector<radiosity::Vec3> corners;  ///< quad: a planar convex polygon of non-zero area
     radiosity::Rgb radiance;               ///< quad: >= 0; zero where it is "estimate"
-    bool estimate = false;                 ///< quad: "radiance": "estimate"
+    /// quad "radiance", sun "irradiance", environment "sh9": "estimate" (strengths 0 until
+    /// estimated: relight/pipeline/emittance.h, relight/pipeline/sky_estimate.h)
+    bool estimate = false;
     /// A sun, point lamp or environment (radiosity/emitter.h), with its strengths; null for
     /// a quad.
     std::shared_ptr<radiosity::Emitter> emitter;
@@ -28,9 +30,8 @@ struct LightJson {
 /// (docs/scene-format.md, "lights"): quad "vertices", "radiance"; sun "direction", "angle",
 /// "irradiance"; point "position", "intensity"; environment "sh9" (9 RGB rows).
 /// `typeRequired`: scene.json needs "type"; an edit may leave it out (a quad).
-/// `estimateAllowed`: a scene quad may say "estimate" (its photo calibrates it); a virtual
-/// light may not; a sun's and a sky's "estimate" (a fit to the photo) are refused as not
-/// supported yet. Throws InputError naming the key.
+/// `estimateAllowed`: a scene's quad, sun or sky may say "estimate" (its photo calibrates
+/// it); a virtual light may not, nor a point lamp. Throws InputError naming the key.
 LightJson readLightJson(const jsonio::JsonReader& r, const nlohmann::json& lj,
                         const std::string& path, bool typeRequired, bool estimateAllowed);
 

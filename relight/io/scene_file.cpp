@@ -86,17 +86,6 @@ Camera readCamera(const JsonReader& r, const json& cam) {
     return c;
 }
 
-PhotoSpec::Encoding encodingFromExtension(const fs::path& file, bool& known) {
-    std::string ext = file.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    known = true;
-    if (ext == ".exr" || ext == ".hdr" || ext == ".pfm") return PhotoSpec::Encoding::linear;
-    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") return PhotoSpec::Encoding::srgb;
-    known = false;
-    return PhotoSpec::Encoding::linear;
-}
-
 // ---- the readers of loadScene, in the order it calls them -------------------------------
 
 /// The format first: a file of another kind (an edit, a newer version) is then named as
@@ -232,7 +221,7 @@ void readLights(const JsonReader& r, const json& root, SceneFile& sf) {
                 part.component = static_cast<int>(c);
                 sf.scene.lights.push_back(std::move(part));
                 sf.nominalRadiance.push_back(s[c]);
-                sf.estimateRadiance.push_back(false);
+                sf.estimateRadiance.push_back(lightJson.estimate);
             }
             continue;
         }
@@ -332,6 +321,17 @@ SceneFile readScene(const json& root, const fs::path& dir) {
 }
 
 }  // namespace
+
+PhotoSpec::Encoding encodingFromExtension(const fs::path& file, bool& known) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    known = true;
+    if (ext == ".exr" || ext == ".hdr" || ext == ".pfm") return PhotoSpec::Encoding::linear;
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") return PhotoSpec::Encoding::srgb;
+    known = false;
+    return PhotoSpec::Encoding::linear;
+}
 
 SceneFile loadScene(const fs::path& dir) {
     return readScene(parseJsonFile(dir / "scene.json"), dir);

@@ -52,7 +52,8 @@ struct SceneFile {
     /// Per light (same index as scene.lights): radiance given in scene.json
     /// (photo units); zero where it is "estimate".
     std::vector<Rgb> nominalRadiance;
-    /// Per light: true when scene.json says "radiance": "estimate".
+    /// Per light: true when scene.json says "estimate" for its strength (a quad's "radiance",
+    /// a sun's "irradiance", each of a sky's 9 components for its "sh9").
     std::vector<bool> estimateRadiance;
     std::vector<std::string> warnings;  ///< documented repairs, with file and line
     /// The geometry files of "geometry", in scene.json's order (dir / name), each followed
@@ -68,6 +69,10 @@ struct SceneFile {
     /// when there is no photo).
     bool lightOnInPhoto(size_t i) const;
 };
+
+/// A photo's encoding from its file's extension: .exr, .hdr, .pfm linear; .png, .jpg, .jpeg
+/// sRGB; `known` false (and linear) for any other.
+PhotoSpec::Encoding encodingFromExtension(const std::filesystem::path& file, bool& known);
 
 /// Loads <dir>/scene.json and the files it names. Reflectance of each polygon: the
 /// object's "reflectance" when given, else average_reflectance (grey), else 0.5; emitting

@@ -1,5 +1,7 @@
 #include "relight/pipeline/emittance.h"
 
+#include "radiosity/emitter.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,9 +24,24 @@ std::string rgbText(const Rgb& c) {
     return s;
 }
 
+/// The key of light l's strength in scene.json: its index there counts the lights of
+/// scene.lights that start one (an emitter's components after its first are the same light).
 std::string keyOf(const SceneFile& sf, size_t l) {
-    return (sf.dir / "scene.json").string() + ": key \"lights[" + std::to_string(l) +
-           "].radiance\"";
+    const auto& lights = sf.scene.lights;
+    size_t index = 0;
+    for (size_t k = 1; k <= l && k < lights.size(); ++k)
+        if (!lights[k].emitter || lights[k].component == 0) ++index;
+    const char* key = "radiance";
+    if (l < lights.size() && lights[l].emitter)
+        key = lights[l].emitter->components() == 1 ? "irradiance" : "sh9";
+    return (sf.dir / "scene.json").string() + ": key \"lights[" + std::to_string(index) + "]." +
+           key + "\"";
+}
+
+/// A quad light whose radiance is "estimate": this file's (a sun's or sky's "estimate" is a
+/// fit to the photo's shading, relight/pipeline/sky_estimate.h).
+bool estimatedHere(const SceneFile& sf, size_t l) {
+    return sf.estimateRadiance[l] && !sf.scene.lights[l].emitter;
 }
 
 double median(std::vector<double>& v) {
@@ -190,7 +207,7 @@ std::vector<bool> estimateFromPhoto(const SceneFile& sf, const radiosity::Scene&
     const LightFaceMap faces = lightFaceMap(items, scene);
     std::vector<bool> known(scene.lights.size(), false);
     for (size_t l = 0; l < scene.lights.size(); ++l) {
-        if (!sf.estimateRadiance[l]) {
+        if (!estimatedHere(sf, l)) {
             known[l] = true;
             continue;
         }
@@ -288,9 +305,9 @@ EmittanceReport estimateEmittance(const SceneFile& sf, const radiosity::Scene& s
         rep.lights[l].name = scene.lights[l].name;
         rep.lights[l].radiance = scene.lights[l].radiance;  // the photo's state
     }
-    if (std::none_of(sf.estimateRadiance.begin(), sf.estimateRadiance.end(),
-                     [](bool b) { return b; }))
-        return rep;
+    bool any = false;
+    for (size_t l = 0; l < scene.lights.size(); ++l) any = any || estimatedHere(sf, l);
+    if (!any) return rep;
     // Way 1 first: a light the photo shows is read there, and its power is then known to
     // the balance of way 2.
     const std::vector<bool> known = estimateFromPhoto(sf, scene, items, photo, o, rep);

@@ -252,7 +252,9 @@ LinkCorrection linkCorrection(const VertexShadowLight& light, std::span<const Rg
         ++out.partialVertices;
         const Rgb I = Hinter[v] - Dv;  // indirect light after step 1
         for (int c = 0; c < 3; ++c) {
-            if (!(Dv[c] > 0)) continue;
+            // A channel the lights leave dark or negative (a sky whose 9 coefficients give a
+            // negative irradiance there, as a fitted one may) has nothing to correct.
+            if (!(Dv[c] > 0) || !(D0[c] > 0)) continue;
             const double Cl = ((D0[c] + I[c]) / kInter[v][c] - I[c]) / Dv[c];
             // A light cannot give more than it would unoccluded, nor less than nothing.
             out.factor[v][c] = std::clamp(Cl, 0.0, D0[c] / Dv[c]);

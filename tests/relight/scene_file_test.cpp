@@ -739,13 +739,16 @@ TEST_F(LoadScene, TheOtherLightTypesBadFieldsAreNamed) {
                          "irradiance": [1, 1, 1]})"),
          "key \"lights[1]\": sun 'sun': direction must be finite and non-zero"},
         {json::parse(R"({"name": "sun", "type": "sun", "direction": [0, 0, 1], "angle": 0.53,
-                         "irradiance": "estimate"})"),
-         "key \"lights[1].irradiance\": \"estimate\" is not supported yet"},
+                         "irradiance": "guess"})"),
+         "key \"lights[1].irradiance\": expected an RGB array or \"estimate\", got \"guess\""},
+        {json::parse(R"({"name": "P", "type": "point", "position": [0, 0, 1],
+                         "intensity": "estimate"})"),
+         "key \"lights[1].intensity\": \"estimate\" is not supported here"},
         {json::parse(R"({"name": "P", "type": "point", "position": [0, 0, 1],
                          "intensity": [1, -1, 1]})"),
          "key \"lights[1].intensity[1]\": must not be negative"},
-        {json::parse(R"({"name": "sky", "type": "environment", "sh9": "estimate"})"),
-         "key \"lights[1].sh9\": \"estimate\" is not supported yet"},
+        {json::parse(R"({"name": "sky", "type": "environment", "sh9": "fit"})"),
+         "key \"lights[1].sh9\": expected 9 RGB rows or \"estimate\", got \"fit\""},
         {json::parse(R"({"name": "sky", "type": "environment", "sh9": [[1, 1, 1]]})"),
          "key \"lights[1].sh9\""},
         {json::parse(R"({"name": "P", "type": "point", "position": [0, 0, 1],
@@ -759,6 +762,23 @@ TEST_F(LoadScene, TheOtherLightTypesBadFieldsAreNamed) {
         scene["lights"].push_back(light);
         const std::string msg = loadError();
         EXPECT_TRUE(contains(msg, jsonFile() + ": " + expected)) << msg;
+    }
+}
+
+TEST_F(LoadScene, ASunsAndASkysEstimateIsReadAsZeroStrengthsFlagged) {
+    // docs/scene-format.md: a sun's "irradiance" and a sky's "sh9" may be "estimate"; every
+    // component of such a light is flagged, its nominal strength 0 until the fit.
+    scene = baseScene();
+    scene["lights"].push_back(json::parse(R"({"name": "sun", "type": "sun",
+        "direction": [0.4, -0.3, 0.5], "angle": 0.53, "irradiance": "estimate"})"));
+    scene["lights"].push_back(
+        json::parse(R"({"name": "sky", "type": "environment", "sh9": "estimate"})"));
+    const SceneFile sf = load();
+    ASSERT_EQ(sf.scene.lights.size(), 1u + 1 + 9);
+    EXPECT_FALSE(sf.estimateRadiance[0]);
+    for (size_t l = 1; l < sf.scene.lights.size(); ++l) {
+        EXPECT_TRUE(sf.estimateRadiance[l]) << l;
+        EXPECT_EQ(sf.nominalRadiance[l], radiosity::Rgb{}) << l;
     }
 }
 
