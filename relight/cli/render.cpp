@@ -37,10 +37,10 @@ nlohmann::json insertionReport(const DynamicRelighting& dyn, const std::string& 
     const radiosity::DynamicUpdate& u = dyn.lastUpdate();
     if (kind == "removed object")
         std::printf(
-            "removed object %s: %d links cut, %d pixels filled (%d from the model), "
-            "%.4f s (%.4f s of it the fill)\n",
+            "removed object %s: %d links cut, %d pixels filled (%d from the model), %d around "
+            "it relit, %.4f s (%.4f s of it the fill)\n",
             name.c_str(), u.linksCut, dyn.removedRegion().filled, dyn.removedRegion().modelled,
-            ft.total(), ft.fill);
+            dyn.removedRegion().ring, ft.total(), ft.fill);
     else
         std::printf(
             "inserted %s %s: %d links cut, %d new, %d reactivated, %d leaves split under its "

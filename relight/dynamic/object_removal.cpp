@@ -180,6 +180,41 @@ PlaneFill fillHiddenPlanes(const RemovedRegion& region, const Camera& camera,
     return out;
 }
 
+/// The ring around the mask (object_removal.h): box pixels outside it that show in the photo
+/// real surfaces only, with a gather at their points, join the mask with the reflectance
+/// the display gives them, T / H_photo: only their light is measured again.
+template <class SurfaceOf>
+void lightRing(RemovedRegion& region, const Relighting& r, const std::vector<char>& mask,
+               const std::vector<char>& guard, const std::vector<int>& nowSurface,
+               SurfaceOf surfaceOf) {
+    const PreparedImage& P = r.prepared;
+    const ItemBuffer& items = r.items;
+    if (region.gathered.empty() || P.pixelDirect.empty()) return;
+    const int W = items.width;
+    for (int by = 0; by < region.height; ++by)
+        for (int bx = 0; bx < region.width; ++bx) {
+            const size_t b = static_cast<size_t>(by * region.width + bx);
+            if (mask[b] || guard[b] || nowSurface[b] < 0 || !region.gathered[b]) continue;
+            const int x = region.x0 + bx, y = region.y0 + by;
+            const size_t px =
+                static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x);
+            if (!shownPerPixel(P.display, px)) continue;
+            bool real = true;
+            for (int s = 0; s < items.spp && real; ++s)
+                real =
+                    surfaceOf(items.polygon[static_cast<size_t>(items.sampleIndex(x, y, s))]) >= 0;
+            if (!real) continue;
+            const Rgb Hp = photoIrradiance(P, px);
+            if (!(Hp.minComponent() > 0)) continue;  // unlit in the photo: the display's
+            const float* t = P.photo.rgb.data() + px * 3;
+            for (size_t c = 0; c < 3; ++c)
+                region.reflectance[3 * b + c] =
+                    static_cast<float>(static_cast<double>(t[c]) / Hp[static_cast<int>(c)]);
+            region.mask[b] = 1;
+            ++region.ring;
+        }
+}
+
 }  // namespace
 
 int defaultMaskGrowth(int width, int height) {
@@ -225,9 +260,11 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
                 break;
             }
     if (cx1 < 0) return region;
-    const int bx0 = std::max(0, cx0 - grow), by0 = std::max(0, cy0 - grow);
-    const int bw = std::min(W - 1, cx1 + grow) - bx0 + 1,
-              bh = std::min(H - 1, cy1 + grow) - by0 + 1;
+    // The box holds the ring around the objects (the header): half their extent, or `grow`.
+    const int around = std::max(grow, (std::max(cx1 - cx0, cy1 - cy0) + 1) / 2);
+    const int bx0 = std::max(0, cx0 - around), by0 = std::max(0, cy0 - around);
+    const int bw = std::min(W - 1, cx1 + around) - bx0 + 1,
+              bh = std::min(H - 1, cy1 + around) - by0 + 1;
     const size_t boxPixels = static_cast<size_t>(bw) * static_cast<size_t>(bh);
 
     // 2. The camera's samples in the box again, the objects hidden; virtual parts in front
@@ -441,6 +478,15 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
             }
             ++region.modelled;
         }
+    // Not in the guard band around the objects, where the photo's pixels may still hold some
+    // of their colour (step 3): those keep the display's light.
+    std::vector<char> boxGuard(boxPixels, 0);
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx)
+            boxGuard[static_cast<size_t>(by * bw + bx)] =
+                guard[static_cast<size_t>(by0 + by - wy0) * static_cast<size_t>(ww) +
+                      static_cast<size_t>(bx0 + bx - wx0)];
+    lightRing(region, r, mask, boxGuard, nowSurface, surfaceOf);
     return region;
 }
 

@@ -13,6 +13,12 @@
 //     shows none of the surface;
 //  4. the irradiance at each sample: the direct light of every light (shadow rays, the
 //     edit's radiances) and the indirect light interpolated at the sample's leaf.
+// Around the objects (a ring as wide as half their extent in the photo) the pixels keep the
+// photo's reflectance, T / H_photo as the display reads it, but are lit as the revealed ones
+// (direct light by shadow rays and indirect light gathered at their points, the objects
+// out). The display's indirect change there is interpolated from vertex changes measured through
+// the links that ran to the object's faces, and read up to 1.6 times the truth's light beside a
+// cabinet (bench/RESULTS.md, 2026-11-26, third session).
 // A mask pixel then shows R(p) times the mean irradiance of its samples that see a
 // reflecting surface, plus the radiance of those that see a lamp's face
 // (DynamicRelighting::overlay(): the pixel is replaced whole).
@@ -48,6 +54,7 @@ struct RemovedRegion {
     int lights = 0;                 ///< real lights in `indirect`
     std::vector<uint8_t> gathered;  ///< per box pixel: 1 where `indirect` holds a gather
     int filled = 0, modelled = 0;   ///< mask pixels textured from the photo, from the model
+    int ring = 0;                   ///< mask pixels around the objects: the photo's reflectance
 
     bool empty() const { return width <= 0 || height <= 0; }
     bool inMask(int x, int y) const {

@@ -66,6 +66,7 @@ TEST(ObjectRemoval, TheMaskCoversTheObjectAndTheTableComesBackExactly) {
     const auto& scene = r->solver->scene();
     const int table = scene.findObject("table");
     int covered = 0, masked = 0;
+    std::vector<char> onTablePixel(r->items.polygon.size() / static_cast<size_t>(r->items.spp), 0);
     for (int y = 0; y < r->items.height; ++y)
         for (int x = 0; x < r->items.width; ++x) {
             bool onTable = false;
@@ -75,6 +76,7 @@ TEST(ObjectRemoval, TheMaskCoversTheObjectAndTheTableComesBackExactly) {
                     onTable || (p >= 0 && scene.polygons[static_cast<size_t>(p)].object == table);
             }
             covered += onTable ? 1 : 0;
+            onTablePixel[static_cast<size_t>(y * r->items.width + x)] = onTable ? 1 : 0;
             masked += g.inMask(x, y) ? 1 : 0;
             if (onTable) {
                 EXPECT_TRUE(g.inMask(x, y)) << x << " " << y;
@@ -82,15 +84,18 @@ TEST(ObjectRemoval, TheMaskCoversTheObjectAndTheTableComesBackExactly) {
         }
     EXPECT_GT(covered, 500);
     EXPECT_GE(masked, covered);
-    EXPECT_EQ(g.filled + g.modelled, masked);
+    // The ring around the table keeps the photo's reflectance (object_removal.h).
+    EXPECT_EQ(g.filled + g.modelled + g.ring, masked);
+    EXPECT_GT(g.ring, 0);
     EXPECT_EQ(g.modelled, 0);
     const Image without = dyn.render(DisplayMode::pixel);
-    // The fill shows no table: its pixels are the floor's and the wall's browns and greys,
-    // not the table's green (green above red by a third).
+    // The fill shows no table: the pixels it covered are the floor's and the wall's browns
+    // and greys, not the table's green (green above red by a third). (The ring around it keeps
+    // the photo's reflectance: the poster's blue there is the poster's.)
     int green = 0;
     for (int y = g.y0; y < g.y0 + g.height; ++y)
         for (int x = g.x0; x < g.x0 + g.width; ++x) {
-            if (!g.inMask(x, y)) continue;
+            if (!onTablePixel[static_cast<size_t>(y * r->items.width + x)]) continue;
             const float* p = without.at(x, y);
             green += p[1] > 1.33f * p[0] ? 1 : 0;
         }
@@ -199,9 +204,10 @@ Colours photoColours(const Relighting& r, Keep keep) {
     return out;
 }
 
-/// Mask pixels of `image` that keep the removed object's colour: one of the object's in the
-/// photo and none of the surface the pixel now shows (its colours in the photo where it is
-/// seen).
+/// Pixels the removed object covered in the photo (a sample on it) that keep its colour in
+/// `image`: one of the object's in the photo and none of the surface the pixel now shows (its
+/// colours in the photo where it is seen). The ring around the object (object_removal.h)
+/// shows the photo's own pixels, relit: not counted.
 int keptColour(const Relighting& r, const RemovedRegion& g, const Image& image,
                const std::string& object) {
     const auto& scene = r.solver->scene();
@@ -214,6 +220,12 @@ int keptColour(const Relighting& r, const RemovedRegion& g, const Image& image,
     for (int y = g.y0; y < g.y0 + g.height; ++y)
         for (int x = g.x0; x < g.x0 + g.width; ++x) {
             if (!g.inMask(x, y)) continue;
+            bool covered = false;
+            for (int s = 0; s < r.items.spp && !covered; ++s) {
+                const int p = r.items.polygon[static_cast<size_t>(r.items.sampleIndex(x, y, s))];
+                covered = p >= 0 && scene.polygons[static_cast<size_t>(p)].object == id;
+            }
+            if (!covered) continue;
             const size_t b = static_cast<size_t>((y - g.y0) * g.width + x - g.x0);
             // The surface its samples show now; a pixel across two (a corner, the floor's
             // line) blends their colours, in the truth too: left out.
@@ -307,4 +319,43 @@ TEST(ObjectRemoval, ACabinetCutByTheImageBorderLeavesNoGhost) {
     EXPECT_GT(keptColour(*r, g, before, "cabinet"), 50);
     dyn.removeLast();
     EXPECT_EQ(dyn.render(DisplayMode::pixel).rgb, before.rgb);  // bit for bit
+}
+
+TEST(ObjectRemoval, TheFurnishedRoomsBookshelfAndCabinetMeetTheTruth) {
+    // data/furnished (bench/scenes/furnished/, issue 34): a bookshelf with boards and books
+    // against the brick wall, a cabinet in the corner against the striped wallpaper and the
+    // plaster wall, each removed against its own Cycles truth (noise floor 0.010). Bounds:
+    // the issue's 0.08 / 0.25. The unedited photo scores 0.232 / 0.653 (bookshelf) and
+    // 0.056 / 0.333 (cabinet); before the ring around the objects was lit at its own points
+    // the image scored 0.086 and 0.084 with the default settings (bench/RESULTS.md), above
+    // the bound: a bright band beside each object.
+    const std::string dir = RELIGHT_DATA_DIR "/furnished";
+    RelightOptions o = options();
+    o.epsilon = 1e-4;  // as the room's cabinet: the coarse solution left the cabinet at 0.098
+    o.spp = 16;
+    auto r = prepareRelighting(loadScene(dir), o);
+    DynamicRelighting dyn(*r, photoRadiance(*r));
+    const Image before = dyn.render(DisplayMode::pixel);
+    for (const std::string object : {"bookshelf", "cabinet"}) {
+        SCOPED_TRACE(object);
+        dyn.removeObject(object);
+        const RemovedRegion& g = dyn.removedRegion();
+        ASSERT_FALSE(g.empty());
+        EXPECT_EQ(g.modelled, 0);
+        const Image without = dyn.render(DisplayMode::pixel);
+        const Score s =
+            test::scoreAgainstTruth(dir, "remove_" + object, without, r->prepared.photo);
+        EXPECT_LE(s.relRmse, 0.08);
+        EXPECT_LE(s.changedRelRmse, 0.25);
+        EXPECT_EQ(keptColour(*r, g, without, object), 0);
+        EXPECT_GT(keptColour(*r, g, before, object), 100);  // not vacuous
+        dyn.removeLast();
+        const Image back = dyn.render(DisplayMode::pixel);
+        double worst = 0;
+        for (size_t i = 0; i < back.rgb.size(); ++i)
+            worst = std::max(worst, std::abs(static_cast<double>(back.rgb[i] - before.rgb[i])));
+        // Back to the photo's display: within float rounding (1.5e-8 at most measured; the
+        // room's cabinet comes back bit for bit, this room's objects not quite).
+        EXPECT_LT(worst, 1e-6);
+    }
 }
