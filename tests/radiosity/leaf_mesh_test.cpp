@@ -4,21 +4,12 @@
 #include "radiosity/detail/rng.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/leaf_mesh.h"
+#include "tests/support/quad_and_triangle.h"
 
 using namespace radiosity;
+using radiosity::test::quadAndTriangle;
 
 namespace {
-
-/// A skewed convex quad (not a parallelogram, so the bilinear map is not affine) and a
-/// triangle, on two objects.
-Scene quadAndTriangle() {
-    Scene s;
-    s.objects = {"quad", "tri"};
-    s.polygons.push_back(
-        makePolygon({{0, 0, 0}, {2, 0.2, 0}, {1.7, 1.5, 0}, {0.1, 1.1, 0}}, 0, Rgb::gray(0.5)));
-    s.polygons.push_back(makePolygon({{0, 0, 1}, {1, 0, 1.5}, {0, 1, 1}}, 1, Rgb::gray(0.5)));
-    return s;
-}
 
 Rgb linearField(const Vec3& x) {
     return {1 + x.x, 2 - 0.5 * x.y, 0.3 + x.z + x.x * 0.2};

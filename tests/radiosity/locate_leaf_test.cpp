@@ -3,21 +3,12 @@
 
 #include "radiosity/detail/rng.h"
 #include "radiosity/hierarchy.h"
+#include "tests/support/quad_and_triangle.h"
 
 using namespace radiosity;
+using radiosity::test::quadAndTriangle;
 
 namespace {
-
-/// A skewed convex quad (not a parallelogram: its cut lines are not its diagonals' parallels)
-/// and a tilted triangle.
-Scene quadAndTriangle() {
-    Scene s;
-    s.objects = {"quad", "tri"};
-    s.polygons.push_back(
-        makePolygon({{0, 0, 0}, {2, 0.2, 0}, {1.7, 1.5, 0}, {0.1, 1.1, 0}}, 0, Rgb::gray(0.5)));
-    s.polygons.push_back(makePolygon({{0, 0, 1}, {1, 0, 1.5}, {0, 1, 1}}, 1, Rgb::gray(0.5)));
-    return s;
-}
 
 /// Subdivides unevenly, as refinement does: each leaf is cut with probability `p` down to
 /// `depth` levels.
