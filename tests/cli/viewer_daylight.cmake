@@ -8,35 +8,7 @@
 #  - an edit of every kind opened and saved again renders to the same image;
 #  - a control given a light that lacks it is refused, naming it.
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=<data/courtyard> -DWORK=...
-include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
-foreach(var VIEWER XVFB_RUN)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "define ${var}")
-  endif()
-endforeach()
-set(viewer_cmd "${VIEWER}")
-if(VIEWER_PRELOAD)
-  set(viewer_cmd env "LD_PRELOAD=${VIEWER_PRELOAD}" "${VIEWER}")
-endif()
-find_program(IDIFF idiff REQUIRED)
-file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}")
-
-function(viewer out expected_rc)
-  run_checked(o ${expected_rc} "${XVFB_RUN}" -a -f "${WORK}/Xauthority" -s "-screen 0 1280x1024x24"
-              ${viewer_cmd} ${ARGN})
-  set(${out} "${o}" PARENT_SCOPE)
-endfunction()
-
-# One 8-bit step is 1/255 = 0.00392 (as viewer_cli.cmake): the saved edit must render to what
-# the window showed, up to the display's 8-bit output.
-function(same_within_one_step a b what)
-  execute_process(COMMAND "${IDIFF}" -fail 0.004 -failpercent 0 "${a}" "${b}"
-                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${what}: ${a} and ${b} differ by more than one 8-bit step\n${o}${e}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/viewer_common.cmake)
 
 # rel_rmse of `image` against truth/`edit` must be at most `bound`.
 function(scores_within image edit bound what)
