@@ -162,7 +162,7 @@ void derivePhotoPixels(PreparedImage& p) {
     p.photoPixels = photoPixels(p.display, p.photo, p.pixelDirect, p.vertexIndirect,
                                 p.photoRadiance, ratioFloor(p.D));
     p.pixelTable = pixelLightTable(p.display, p.photo, p.pixelDirect, p.vertexIndirect,
-                                   p.photoRadiance, ratioFloor(p.D));
+                                   p.photoRadiance, ratioFloor(p.D), &p.photoPixels);
 }
 
 std::string stepTimes(const PrepareTimes& t) {

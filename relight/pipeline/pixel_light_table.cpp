@@ -52,7 +52,8 @@ void ratioPart(const DisplayMap& map, size_t pixels, PixelLightTable& t) {
 
 PixelLightTable pixelLightTable(const DisplayMap& map, const Image& photo,
                                 std::span<const float> pixelDirect, std::span<const Rgb> indirect,
-                                std::span<const Rgb> radianceInPhoto, const Rgb& delta) {
+                                std::span<const Rgb> radianceInPhoto, const Rgb& delta,
+                                const PhotoPixels* pool) {
     const size_t L = radianceInPhoto.size();
     const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
     PixelLightTable t;
@@ -85,6 +86,9 @@ PixelLightTable pixelLightTable(const DisplayMap& map, const Image& photo,
         }
     });
     ratioPart(map, pixels, t);
+    if (pool && pool->light.size() == pixels && pool->rho.size() == 3 * pixels &&
+        5 * 3 * pixels <= kMaxPixelTransfers)
+        t.pooled = pooledByRadius(map, *pool);
     return t;
 }
 
@@ -160,7 +164,7 @@ void renderPixelLightFast(const PixelLightTable& t, const DisplayMap& map, const
             const float lum = 0.2126f * now[0][j] + 0.7152f * now[1][j] + 0.0722f * now[2][j];
             if (!(light[j] > 0 && lum > above * light[j] * 0.999f)) continue;
             pooledPixel(map, *pool, p0 + j, Rgb{now[0][j], now[1][j], now[2][j]},
-                        static_cast<double>(light[j]), t.delta, o + 3 * j);
+                        static_cast<double>(light[j]), t.delta, o + 3 * j, t.pooled);
         }
     });
 }

@@ -37,17 +37,21 @@ struct PixelLightTable {
     std::vector<float> photoLight;   ///< [p]: luminance of H_photo; 0 where not drawn
     std::vector<int> ratioPixels;    ///< the pixels the per-pixel display does not draw
     std::vector<int> ratioVertices;  ///< the vertices those pixels read, each once
-    radiosity::Rgb delta;            ///< ratioFloor(D), as renderPixelLight() is given it
+    /// R_pooled per radius (pixel_light.h, pooledByRadius): the pool's mean does not depend
+    /// on the edit, only its radius does; empty without a pool.
+    std::vector<float> pooled;
+    radiosity::Rgb delta;  ///< ratioFloor(D), as renderPixelLight() is given it
     bool empty() const { return h.empty(); }
 };
 
 /// The table of an image prepared with per-pixel light (arguments as photoPixels() in
-/// pixel_light.h); empty without per-pixel light, or above kMaxPixelTransfers floats of h.
+/// pixel_light.h, and `pool` its photoPixels(), or null); empty without per-pixel light, or
+/// above kMaxPixelTransfers floats of h.
 PixelLightTable pixelLightTable(const DisplayMap& map, const Image& photo,
                                 std::span<const float> pixelDirect,
                                 std::span<const radiosity::Rgb> indirect,
                                 std::span<const radiosity::Rgb> radianceInPhoto,
-                                const radiosity::Rgb& delta);
+                                const radiosity::Rgb& delta, const PhotoPixels* pool);
 
 /// The per-pixel display of `radianceNow` (one radiance per light of the photo, no virtual
 /// part, no merged reflectance) into `out` (resized to the map's size if it is not): every

@@ -60,6 +60,7 @@ TEST(PixelLightTable, TheFastPathEqualsTheReferenceToFloatRounding) {
     ASSERT_TRUE(p.pixelReflectance.empty());  // one photo: renderEdit takes the fast path
     const size_t pixels = p.pixelTable.pixels;
     ASSERT_GT(p.pixelTable.ratioPixels.size(), 0u);  // the lamps' faces: the ratio part runs
+    int pooled = 0;
     for (const auto& L : edits(pixelRoom())) {
         Image fast, ref;
         renderEdit(p, L, fast, DisplayMode::pixel);
@@ -87,7 +88,19 @@ TEST(PixelLightTable, TheFastPathEqualsTheReferenceToFloatRounding) {
             worst = std::max(worst, std::abs(static_cast<double>(fast.rgb[i] - ref.rgb[i])) / tol);
         }
         EXPECT_LE(worst, 1.0);
+        // Pixels the pooled reflectance draws (pixel_light.h): brightened past kPoolAbove.
+        for (size_t px = 0; px < pixels; ++px) {
+            Rgb now;
+            for (size_t l = 0; l < L.size(); ++l)
+                for (int c = 0; c < 3; ++c)
+                    now[c] += L[l][c] *
+                              static_cast<double>(
+                                  p.pixelTable.h[(l * 3 + static_cast<size_t>(c)) * pixels + px]);
+            const double light = static_cast<double>(p.pixelTable.photoLight[px]);
+            pooled += light > 0 && now.luminance() > kPoolAbove * light;
+        }
     }
+    EXPECT_GT(pooled, 1000);  // the pooled path is compared too
 }
 
 TEST(PixelLightTable, ThePhotosOwnLightIsThePhotoBitForBitOnTheFastPath) {
