@@ -1,11 +1,13 @@
 #include "relight/prepared.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <utility>
 
+#include "radiosity/parallel.h"
 #include "relight/pipeline/pixel_light.h"
 
 namespace relight {
@@ -86,21 +88,67 @@ Image renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, DisplayM
     return out;
 }
 
+void renderPixelEditReference(const PreparedImage& p, std::span<const Rgb> radiance, Image& out) {
+    if (p.pixelDirect.empty())
+        throw std::invalid_argument(
+            "renderEdit: the per-pixel display needs a preparation with per-pixel light");
+    // One gather of the lights, as before the split. The per-pixel display keeps this image
+    // where a pixel sees a lamp's face or nothing.
+    const auto ratio = vertexRatio(p, vertexIrradiance(p, radiance));
+    renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance, out, {},
+                /*leafRuns=*/false);
+    renderPixelLight(p.display, p.photo, p.pixelDirect, p.vertexIndirect, radiance, p.photoRadiance,
+                     ratioFloor(p.D), out, {}, p.pixelReflectance, &p.photoPixels);
+}
+
+namespace {
+
+/// The ratio display at the pixels the per-pixel display does not draw (lamps' faces,
+/// samples that see nothing), from the display ratio k B / D of the vertices they read
+/// alone: renderRatio()'s value there, without the edit's irradiance at every vertex.
+void renderRatioPixels(const PreparedImage& p, std::span<const Rgb> radiance, Image& out) {
+    const PixelLightTable& t = p.pixelTable;
+    // Indexed by vertex id as ratioPixel() reads it; only the pixels' vertices are written.
+    // Kept from frame to frame (per thread): no allocation per edit.
+    thread_local std::vector<std::array<float, 4>> ratio;
+    if (ratio.size() < p.vertexCount()) ratio.resize(p.vertexCount());
+    const bool textured = p.textureFactor.size() == p.vertexCount();
+    for (const int v : t.ratioVertices) {
+        const Rgb B = p.lighting.irradiance(v, radiance);
+        const size_t i = static_cast<size_t>(v);
+        for (int c = 0; c < 3; ++c) {
+            double r = guardedRatio(B[c], p.D[i][c], t.delta[c]);  // as vertexRatio()
+            if (textured) r *= p.textureFactor[i][c];
+            ratio[i][static_cast<size_t>(c)] = static_cast<float>(r);
+        }
+    }
+    const std::array<float, 4>* r = ratio.data();
+    radiosity::parallelFor(t.ratioPixels.size(), 256, [&](size_t k) {
+        ratioPixel(p.display, p.photo, static_cast<size_t>(t.ratioPixels[k]), r, nullptr, radiance,
+                   p.photoRadiance, out);
+    });
+}
+
+}  // namespace
+
 void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& out,
                 DisplayMode mode) {
-    if (mode == DisplayMode::ratio || mode == DisplayMode::pixel) {
-        // One gather of the lights, as before the split. The per-pixel display keeps this
-        // image where a pixel sees a lamp's face or nothing.
-        const auto ratio = vertexRatio(p, vertexIrradiance(p, radiance));
-        renderRatio(p.display, p.photo, ratio, radiance, p.photoRadiance, out, {},
-                    /*leafRuns=*/mode == DisplayMode::ratio || p.pixelDirect.empty());
-        if (mode == DisplayMode::ratio) return;
-        if (p.pixelDirect.empty())
-            throw std::invalid_argument(
-                "renderEdit: the per-pixel display needs a preparation with per-pixel light");
-        renderPixelLight(p.display, p.photo, p.pixelDirect, p.vertexIndirect, radiance,
-                         p.photoRadiance, ratioFloor(p.D), out, {}, p.pixelReflectance,
-                         &p.photoPixels);
+    if (mode == DisplayMode::pixel && !p.pixelTable.empty() && p.pixelReflectance.empty() &&
+        radiance.size() == p.pixelTable.lights) {
+        // The table's path (pixel_light_table.h): the per-pixel display's pixels, then the
+        // ratio display at the others.
+        renderPixelLightFast(p.pixelTable, p.display, p.photo, radiance, p.photoRadiance, out,
+                             &p.photoPixels);
+        renderRatioPixels(p, radiance, out);
+        return;
+    }
+    if (mode == DisplayMode::pixel) {
+        renderPixelEditReference(p, radiance, out);
+        return;
+    }
+    if (mode == DisplayMode::ratio) {
+        renderRatio(p.display, p.photo, vertexRatio(p, vertexIrradiance(p, radiance)), radiance,
+                    p.photoRadiance, out);
         return;
     }
     const VertexDisplay d = vertexDisplay(p, splitIrradiance(p, radiance), mode);
@@ -109,9 +157,12 @@ void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& ou
 
 void derivePhotoPixels(PreparedImage& p) {
     p.photoPixels = {};
+    p.pixelTable = {};
     if (p.pixelDirect.empty()) return;
     p.photoPixels = photoPixels(p.display, p.photo, p.pixelDirect, p.vertexIndirect,
                                 p.photoRadiance, ratioFloor(p.D));
+    p.pixelTable = pixelLightTable(p.display, p.photo, p.pixelDirect, p.vertexIndirect,
+                                   p.photoRadiance, ratioFloor(p.D), &p.photoPixels);
 }
 
 std::string stepTimes(const PrepareTimes& t) {

@@ -44,6 +44,7 @@
 #include "radiosity/rgb.h"
 #include "relight/display/ratio_display.h"
 #include "relight/io/image.h"
+#include "relight/pipeline/pixel_light_table.h"
 #include "relight/pipeline/vertex_lighting.h"
 
 namespace relight {
@@ -78,6 +79,8 @@ struct PreparedImage {
     /// Derived, not cached (derivePhotoPixels): the photo per pixel as the per-pixel
     /// display's pooled reflectance reads it; empty without per-pixel light.
     PhotoPixels photoPixels;
+    /// Derived with it: the per-pixel light edit's table (pipeline/pixel_light_table.h).
+    PixelLightTable pixelTable;
     // Counts for reports.
     int leaves = 0, links = 0;
     /// The refinement budget (HierarchicalSolver's stats): whether it was reached, the
@@ -89,8 +92,9 @@ struct PreparedImage {
     size_t vertexCount() const { return D.size(); }
 };
 
-/// Fills p.photoPixels from its per-pixel light (relight/pipeline/pixel_light.h,
-/// photoPixels); clears it without per-pixel light.
+/// Fills p.photoPixels and p.pixelTable from its per-pixel light
+/// (relight/pipeline/pixel_light.h, photoPixels; pixel_light_table.h); clears them without
+/// per-pixel light.
 void derivePhotoPixels(PreparedImage& p);
 
 /// Per-vertex irradiance B for the lights' radiances (one per light; photo units).
@@ -135,5 +139,10 @@ Image renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radianc
 /// The same into `out`, reused from edit to edit (renderRatio).
 void renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance, Image& out,
                 DisplayMode mode = DisplayMode::ratio);
+/// DisplayMode::pixel by the general path (renderRatio, then renderPixelLight in double),
+/// which renderEdit() takes only where the fast table (p.pixelTable) cannot serve: the
+/// reference the fast path is tested and timed against.
+void renderPixelEditReference(const PreparedImage& p, std::span<const radiosity::Rgb> radiance,
+                              Image& out);
 
 }  // namespace relight

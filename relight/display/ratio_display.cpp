@@ -325,6 +325,49 @@ std::vector<std::array<float, 4>> asFloats(std::span<const Rgb> values) {
 
 }  // namespace
 
+void ratioPixel(const DisplayMap& map, const Image& photo, size_t px,
+                const std::array<float, 4>* ratio, const std::array<float, 4>* added,
+                std::span<const Rgb> radianceNow, std::span<const Rgb> radianceInPhoto,
+                Image& out) {
+    // A pixel from the general arrays: any mix of vertices, emitting faces and unshaded
+    // samples.
+    const float* t = photo.rgb.data() + 3 * px;
+    float* o = out.rgb.data() + 3 * px;
+    float sum[3], add[3] = {0, 0, 0};
+    sum[0] = sum[1] = sum[2] = map.unshaded[px];
+    for (int k = map.start[px]; k < map.start[px + 1]; ++k) {
+        const float w = map.weight[k];
+        const float* q = ratio[static_cast<size_t>(map.vertex[k])].data();
+        for (int c = 0; c < 3; ++c) sum[c] += w * q[c];
+        if (added) {
+            const float* p = added[static_cast<size_t>(map.vertex[k])].data();
+            for (int c = 0; c < 3; ++c) add[c] += w * p[c];
+        }
+    }
+    if (map.emitterStart[px] == map.emitterStart[px + 1]) {
+        // No emitting face in the pixel: T times the mean ratio (plus the added term).
+        for (int c = 0; c < 3; ++c) o[c] = std::max(t[c] * sum[c] + add[c], 0.0f);
+        return;
+    }
+    Rgb T{t[0], t[1], t[2]};
+    Rgb emitNow;
+    double emitFraction = 0;
+    for (int k = map.emitterStart[px]; k < map.emitterStart[px + 1]; ++k) {
+        const double f = map.emitterFraction[k];
+        T -= radianceInPhoto[map.emitterLight[k]] * f;
+        emitNow += radianceNow[map.emitterLight[k]] * f;
+        emitFraction += f;
+    }
+    const double rest = 1.0 - emitFraction;
+    Rgb value = emitNow + Rgb{add[0], add[1], add[2]};
+    // T_rest is left signed: where the photo shows less of a face than the item buffer
+    // says (its edge), T_rest < 0 and the unedited display still gives back T exactly;
+    // only the result is clamped.
+    if (rest > 1e-6)
+        for (int c = 0; c < 3; ++c) value[c] += T[c] * static_cast<double>(sum[c]) / rest;
+    for (int c = 0; c < 3; ++c) o[c] = static_cast<float>(std::max(value[c], 0.0));
+}
+
 void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb> ratio,
                  std::span<const Rgb> radianceNow, std::span<const Rgb> radianceInPhoto, Image& out,
                  std::span<const Rgb> added, bool leafRuns) {
@@ -340,45 +383,10 @@ void renderRatio(const DisplayMap& map, const Image& photo, std::span<const Rgb>
     const bool packed = map.rowRuns.size() == static_cast<size_t>(map.height) + 1 &&
                         map.runWeight.size() == static_cast<size_t>(map.width) * map.height * 3;
 
-    // A pixel from the general arrays: any mix of vertices, emitting faces and unshaded
-    // samples.
     auto general = [&](int x, int y) {
-        const int px = y * map.width + x;
-        const float* t = photo.at(x, y);
-        float* o = out.at(x, y);
-        float sum[3], add[3] = {0, 0, 0};
-        sum[0] = sum[1] = sum[2] = map.unshaded[px];
-        for (int k = map.start[px]; k < map.start[px + 1]; ++k) {
-            const float w = map.weight[k];
-            const float* q = r[static_cast<size_t>(map.vertex[k])].data();
-            for (int c = 0; c < 3; ++c) sum[c] += w * q[c];
-            if (adds) {
-                const float* p = a[static_cast<size_t>(map.vertex[k])].data();
-                for (int c = 0; c < 3; ++c) add[c] += w * p[c];
-            }
-        }
-        if (map.emitterStart[px] == map.emitterStart[px + 1]) {
-            // No emitting face in the pixel: T times the mean ratio (plus the added term).
-            for (int c = 0; c < 3; ++c) o[c] = std::max(t[c] * sum[c] + add[c], 0.0f);
-            return;
-        }
-        Rgb T{t[0], t[1], t[2]};
-        Rgb emitNow;
-        double emitFraction = 0;
-        for (int k = map.emitterStart[px]; k < map.emitterStart[px + 1]; ++k) {
-            const double f = map.emitterFraction[k];
-            T -= radianceInPhoto[map.emitterLight[k]] * f;
-            emitNow += radianceNow[map.emitterLight[k]] * f;
-            emitFraction += f;
-        }
-        const double rest = 1.0 - emitFraction;
-        Rgb value = emitNow + Rgb{add[0], add[1], add[2]};
-        // T_rest is left signed: where the photo shows less of a face than the item buffer
-        // says (its edge), T_rest < 0 and the unedited display still gives back T exactly;
-        // only the result is clamped.
-        if (rest > 1e-6)
-            for (int c = 0; c < 3; ++c) value[c] += T[c] * static_cast<double>(sum[c]) / rest;
-        for (int c = 0; c < 3; ++c) o[c] = static_cast<float>(std::max(value[c], 0.0));
+        ratioPixel(map, photo,
+                   static_cast<size_t>(y) * static_cast<size_t>(map.width) + static_cast<size_t>(x),
+                   r.data(), adds ? a.data() : nullptr, radianceNow, radianceInPhoto, out);
     };
 
     // Rows in fixed blocks: each pixel is computed alone, so the image does not depend on

@@ -128,6 +128,16 @@ inline double guardedRatio(double B, double D, double delta) {
 std::vector<radiosity::Rgb> displayRatio(std::span<const radiosity::Rgb> B,
                                          std::span<const radiosity::Rgb> D);
 
+/// One pixel of renderRatio() from the general arrays (any mix of vertices, emitting faces
+/// and unshaded samples), `ratio` and `added` (null: none) per vertex as floats (RGB and
+/// padding): what renderRatio() does at the pixels outside the leaf runs, and what the
+/// per-pixel display's fast path (pipeline/pixel_light_table.h) does at the pixels it does
+/// not draw.
+void ratioPixel(const DisplayMap& map, const Image& photo, size_t px,
+                const std::array<float, 4>* ratio, const std::array<float, 4>* added,
+                std::span<const radiosity::Rgb> radianceNow,
+                std::span<const radiosity::Rgb> radianceInPhoto, Image& out);
+
 /// The relit image: per pixel
 ///   out = max(0, T_rest * rbar + sum_e f_e L_e(now)),   T_rest = T - sum_e f_e L_e(photo)
 /// where rbar is the mean display ratio over the pixel's non-emitter samples (ratio 1 for

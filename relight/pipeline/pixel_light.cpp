@@ -139,28 +139,50 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
             return;
         }
         const Rgb now = kept + fresh;
-        if (pooling && now.luminance() > kPoolAbove * before.luminance() &&
-            before.luminance() > 0) {
-            // The pooled reflectance (header), weighed by the photo's confidence.
-            const double w = kPoolAbove * before.luminance() / now.luminance();
-            // The pool widens as the photo's noise is brightened more (its mean's noise falls
-            // as the window's side grows).
-            const int radius = std::min(
-                kMaxPoolRadius, static_cast<int>(std::lround(kPoolRadius * std::sqrt(1.0 / w))));
-            const Rgb pooled = pooledReflectance(map, *pool, px, radius);
-            for (int c = 0; c < 3; ++c) {
-                const double R =
-                    w * static_cast<double>(pool->rho[3 * px + static_cast<size_t>(c)]) +
-                    (1 - w) * pooled[c];
-                o[c] = std::max(static_cast<float>(R * (std::max(now[c], 0.0) + delta[c])), 0.0f);
-            }
-            return;
-        }
+        if (pooling && pooledPixel(map, *pool, px, now, before.luminance(), delta, o)) return;
         for (int c = 0; c < 3; ++c) {
             const double r = guardedRatio(now[c], before[c], delta[c]);
             o[c] = std::max(static_cast<float>(static_cast<double>(t[c]) * r), 0.0f);
         }
     });
+}
+
+bool pooledPixel(const DisplayMap& map, const PhotoPixels& pool, size_t px, const Rgb& now,
+                 double photoLight, const Rgb& delta, float* o,
+                 std::span<const float> pooledByRadius) {
+    if (!(now.luminance() > kPoolAbove * photoLight && photoLight > 0)) return false;
+    // The pooled reflectance (header), weighed by the photo's confidence.
+    const double w = kPoolAbove * photoLight / now.luminance();
+    // The pool widens as the photo's noise is brightened more (its mean's noise falls as the
+    // window's side grows).
+    const int radius =
+        std::min(kMaxPoolRadius, static_cast<int>(std::lround(kPoolRadius * std::sqrt(1.0 / w))));
+    const size_t pixels = pool.light.size();
+    const size_t at = 3 * (static_cast<size_t>(radius - kPoolRadius) * pixels + px);
+    const Rgb pooled = at + 3 <= pooledByRadius.size()
+                           ? Rgb{pooledByRadius[at], pooledByRadius[at + 1], pooledByRadius[at + 2]}
+                           : pooledReflectance(map, pool, px, radius);
+    for (int c = 0; c < 3; ++c) {
+        const double R = w * static_cast<double>(pool.rho[3 * px + static_cast<size_t>(c)]) +
+                         (1 - w) * pooled[c];
+        o[c] = std::max(static_cast<float>(R * (std::max(now[c], 0.0) + delta[c])), 0.0f);
+    }
+    return true;
+}
+
+std::vector<float> pooledByRadius(const DisplayMap& map, const PhotoPixels& pool) {
+    const size_t pixels = pool.light.size();
+    constexpr size_t radii = static_cast<size_t>(kMaxPoolRadius - kPoolRadius + 1);
+    std::vector<float> out(radii * pixels * 3, 0.0f);
+    radiosity::parallelFor(pixels, 256, [&](size_t px) {
+        if (!(pool.light[px] > 0)) return;
+        for (size_t k = 0; k < radii; ++k) {
+            const Rgb R = pooledReflectance(map, pool, px, kPoolRadius + static_cast<int>(k));
+            for (int c = 0; c < 3; ++c)
+                out[3 * (k * pixels + px) + static_cast<size_t>(c)] = static_cast<float>(R[c]);
+        }
+    });
+    return out;
 }
 
 Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px, int radius) {

@@ -123,6 +123,17 @@ radiosity::Rgb photoIrradianceAt(const DisplayMap& map, size_t px,
                                  std::span<const radiosity::Rgb> indirect,
                                  std::span<const radiosity::Rgb> radianceInPhoto,
                                  radiosity::Rgb* directPart = nullptr);
+/// The pooled pixel (above) into o[0..2] when the edit's irradiance `now` (photo units, RGB)
+/// is brighter than kPoolAbove times `photoLight`, the luminance of the photo's irradiance
+/// H_photo at the pixel; false (o untouched) otherwise. Shared by renderPixelLight() and the
+/// fast path (pipeline/pixel_light_table.h). `pooledByRadius` (empty: computed here):
+/// R_pooled of every pixel for each radius from kPoolRadius to kMaxPoolRadius,
+/// [((radius - kPoolRadius) * pixels + px) * 3 + c], which does not depend on the edit.
+bool pooledPixel(const DisplayMap& map, const PhotoPixels& pool, size_t px,
+                 const radiosity::Rgb& now, double photoLight, const radiosity::Rgb& delta,
+                 float* o, std::span<const float> pooledByRadius = {});
+/// That table (above) for every pixel the pool draws (pool.light > 0; 0 elsewhere).
+std::vector<float> pooledByRadius(const DisplayMap& map, const PhotoPixels& pool);
 /// R_pooled at pixel px (above).
 radiosity::Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px,
                                  int radius = kPoolRadius);
