@@ -13,9 +13,33 @@ DirectLight::DirectLight(const HierarchicalSolver& solver, DirectLightOptions op
     : solver_(solver), options_(options) {
     options_.minRays = std::clamp(options_.minRays, 1, 256);
     options_.maxRays = std::clamp(options_.maxRays, options_.minRays, 256);
+    const Scene& scene = solver.scene();
+    lightSlot_.assign(scene.polygons.size(), -1);
+    for (const Light& l : scene.lights)
+        for (int q : l.polygons) lightSlot_[static_cast<size_t>(q)] = lightPolygons_++;
+    // One byte per node and light polygon: a room's few lamps cost a few bytes per node; a
+    // lamp made of thousands of faces goes without the memo rather than take gigabytes.
+    constexpr size_t kMaxShaftMemo = size_t{1} << 26;
+    const size_t entries = solver.hierarchy().nodes.size() * static_cast<size_t>(lightPolygons_);
+    if (entries > 0 && entries <= kMaxShaftMemo)
+        shaftMemo_.reset(new std::atomic<uint8_t>[entries]());  // () : all 0, not yet known
 }
 
 bool DirectLight::shaftClear(int leaf, int q) const {
+    const int slot = lightSlot_[static_cast<size_t>(q)];
+    if (!shaftMemo_ || slot < 0) return shaftClearByLinks(leaf, q);
+    // Threads that race on an entry compute the same verdict: relaxed order suffices.
+    std::atomic<uint8_t>& m =
+        shaftMemo_[static_cast<size_t>(leaf) * static_cast<size_t>(lightPolygons_) +
+                   static_cast<size_t>(slot)];
+    const uint8_t known = m.load(std::memory_order_relaxed);
+    if (known != 0) return known == 1;
+    const bool clear = shaftClearByLinks(leaf, q);
+    m.store(clear ? 1 : 2, std::memory_order_relaxed);
+    return clear;
+}
+
+bool DirectLight::shaftClearByLinks(int leaf, int q) const {
     const Hierarchy& h = solver_.hierarchy();
     bool found = false;
     for (int n = leaf; n >= 0; n = h.nodes[n].parent) {

@@ -18,6 +18,10 @@
 // own (the emitter's sampling: the sun's disc, the sky's hemisphere), so that H = pi L G
 // holds for every light.
 //
+// The links' verdict for a leaf and a light polygon is read once per leaf and kept (a leaf
+// holds many points: the pixels' samples, its vertices), so a DirectLight must not outlive a
+// change of the solver's links; each batch of points makes its own.
+//
 // Units: G is dimensionless (a form factor); x in metres. Deterministic: the rays of a
 // point come from a generator seeded by the caller, so results do not depend on the
 // order of evaluation or the thread count.
@@ -25,6 +29,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "radiosity/defaults.h"
@@ -56,8 +61,10 @@ class DirectLight {
 
   private:
     /// True when every link from an element of light polygon q to the chain of nodes above
-    /// `leaf` was decided by an empty shaft (and there is at least one).
+    /// `leaf` was decided by an empty shaft (and there is at least one). Kept per leaf and
+    /// light polygon (shaftMemo_) after the first call.
     bool shaftClear(int leaf, int q) const;
+    bool shaftClearByLinks(int leaf, int q) const;
     /// G of the components of the emitter light l starts (radiosity/emitter.h) at x, from
     /// maxRays rays; returns how many lights it filled.
     size_t emitterGeometry(size_t l, int polygon, const Vec3& x, uint64_t base, double* G,
@@ -65,6 +72,11 @@ class DirectLight {
     const HierarchicalSolver& solver_;
     DirectLightOptions options_;
     mutable std::atomic<uint64_t> rays_{0};
+    // Per polygon: its index among the light polygons, or -1; per node and light polygon:
+    // 0 not yet known, 1 clear, 2 not (empty above kMaxShaftMemo entries: no memo).
+    std::vector<int> lightSlot_;
+    int lightPolygons_ = 0;
+    std::unique_ptr<std::atomic<uint8_t>[]> shaftMemo_;
 };
 
 }  // namespace radiosity

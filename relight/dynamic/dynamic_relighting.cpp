@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -123,6 +124,7 @@ std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
 }
 
 int DynamicRelighting::addLight(const VirtualLight& light) {
+    completeVertexGather();
     if (light.emitter) {
         // A sun, point lamp or sky (radiosity/emitter.h): no face, no link; its direct light
         // enters the leaves (the solver's Hx) and is carried by the links as they are.
@@ -145,18 +147,21 @@ int DynamicRelighting::addLight(const VirtualLight& light) {
 }
 
 void DynamicRelighting::addObject(const VirtualObject& object) {
+    completeVertexGather();
     radiosity::DynamicUpdate u;
     solver_.insertObject(object.name, object.polygons, nullptr, &u);
     afterUpdate(u, false);
 }
 
 void DynamicRelighting::moveLastObject(std::vector<radiosity::Polygon> polygons) {
+    completeVertexGather();
     radiosity::DynamicUpdate u;
     solver_.moveLastObject(std::move(polygons), &u);
     afterUpdate(u, false);
 }
 
 void DynamicRelighting::removeObject(const std::string& name) {
+    completeVertexGather();
     const auto& scene = solver_.scene();
     const int object = scene.findObject(name);
     if (object < 0 || name.starts_with("light:") ||
@@ -168,6 +173,7 @@ void DynamicRelighting::removeObject(const std::string& name) {
 }
 
 void DynamicRelighting::removeLast() {
+    completeVertexGather();
     const bool removal = solver_.lastIsRemoval();
     const bool light = !removal && static_cast<int>(solver_.scene().lights.size()) > realLights_ &&
                        solver_.scene().polygons.back().light >= 0;
@@ -425,8 +431,8 @@ std::optional<std::vector<int>> DynamicRelighting::addedLampFaces() const {
     return faces;
 }
 
-std::vector<Rgb> DynamicRelighting::gatherChangeAtVertices(std::span<const Rgb> change,
-                                                           bool byRays) const {
+std::vector<Rgb> DynamicRelighting::gatherChangeAtVertices(std::span<const Rgb> change, bool byRays,
+                                                           const std::vector<int>* only) const {
     const auto& mesh = *r_.mesh;
     const auto& scene = solver_.scene();
     std::vector<Rgb> out(mesh.vertices().size());
@@ -445,7 +451,8 @@ std::vector<Rgb> DynamicRelighting::gatherChangeAtVertices(std::span<const Rgb> 
         }
     };
     const std::span<const int32_t> hits(r_.vertexRayHits);
-    parallelFor(out.size(), 16, [&](size_t v) {
+    parallelFor(only ? only->size() : out.size(), 16, [&](size_t i) {
+        const size_t v = only ? static_cast<size_t>((*only)[i]) : i;
         const int p = mesh.vertices()[v].polygon;
         if (scene.polygons[p].light >= 0) return;
         const radiosity::Vec3 x = mesh.insidePoint(static_cast<int>(v));
@@ -477,12 +484,22 @@ void DynamicRelighting::refreshIndirect(bool full) {
         gatherDelta_.clear();
         gatherDeltaRays_.clear();
         indirectPixel_.clear();
+        gatherChange_.clear();
+        gatherWaiting_.clear();
     } else if (full) {
         // A light changes the indirect light everywhere: gather it per vertex, as the
         // prepared lighting does for the scene's lights.
-        const std::vector<Rgb> change = reflectedChange();
-        gatherDelta_ = gatherChangeAtVertices(change);
-        if (r_.gatherSide > 0) gatherDeltaRays_ = gatherChangeAtVertices(change, /*byRays=*/true);
+        std::vector<Rgb> change = reflectedChange();
+        if (r_.gatherSide > 0) {
+            // The per-pixel display gathers by rays; the vertices' gather waits for a vertex
+            // display (completeVertexGather): inserting a lamp for `render` does not wait for it.
+            gatherDeltaRays_ = gatherChangeAtVertices(change, /*byRays=*/true);
+            gatherDelta_.assign(leaf.size(), Rgb{});
+            gatherWaiting_.assign(leaf.size(), 1);
+            gatherChange_ = std::move(change);
+        } else {
+            gatherDelta_ = gatherChangeAtVertices(change);
+        }
         leafAtFull_ = leaf;
     }
     for (size_t v = 0; v < indirect_.size(); ++v)
@@ -523,7 +540,52 @@ void DynamicRelighting::refreshIndirect(bool full) {
     });
 }
 
+void DynamicRelighting::completeVertexGather(const std::vector<int>* only) const {
+    if (gatherWaiting_.empty()) return;
+    std::vector<int> todo;
+    const auto waiting = [&](int v) { return gatherWaiting_[static_cast<size_t>(v)] != 0; };
+    if (only) {
+        std::copy_if(only->begin(), only->end(), std::back_inserter(todo), waiting);
+    } else {
+        for (size_t v = 0; v < gatherWaiting_.size(); ++v)
+            if (gatherWaiting_[v]) todo.push_back(static_cast<int>(v));
+    }
+    const std::vector<Rgb> d = gatherChangeAtVertices(gatherChange_, false, &todo);
+    for (const int v : todo) {
+        const auto i = static_cast<size_t>(v);
+        gatherDelta_[i] = d[i];
+        indirect_[i] += d[i];  // it held the gather as 0
+        gatherWaiting_[i] = 0;
+    }
+    if (!only) {
+        gatherWaiting_.clear();
+        gatherChange_.clear();
+    }
+}
+
+const std::vector<int>& DynamicRelighting::ratioPixelVertices() {
+    if (ratioPixelVerticesMade_) return ratioPixelVertices_;
+    const DisplayMap& map = r_.prepared.display;
+    std::vector<char> seen(base_.size(), 0);
+    const size_t pixels = map.start.empty() ? 0 : map.start.size() - 1;
+    for (size_t px = 0; px < pixels; ++px) {
+        if (shownPerPixel(map, px)) continue;
+        for (int k = map.start[px]; k < map.start[px + 1]; ++k) {
+            const int v = map.vertex[static_cast<size_t>(k)];
+            if (!seen[static_cast<size_t>(v)]) ratioPixelVertices_.push_back(v);
+            seen[static_cast<size_t>(v)] = 1;
+        }
+    }
+    ratioPixelVerticesMade_ = true;
+    return ratioPixelVertices_;
+}
+
 std::vector<Rgb> DynamicRelighting::vertexIrradiance() const {
+    completeVertexGather();
+    return irradianceAsItStands();
+}
+
+std::vector<Rgb> DynamicRelighting::irradianceAsItStands() const {
     const size_t nv = base_.size();
     std::vector<Rgb> H(nv);
     for (size_t v = 0; v < nv; ++v)
@@ -539,6 +601,7 @@ VertexDisplay DynamicRelighting::vertexDisplay(DisplayMode mode) const {
     const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
     // Fresh light: lamps off in the photo, and all that the virtual parts change (their
     // lamps' light, the light objects block or reflect).
+    completeVertexGather();
     SplitIrradiance H = splitIrradiance(r_.prepared, real);
     for (size_t v = 0; v < H.fresh.size(); ++v)
         H.fresh[v] += realDirect_[v] + virtualDirect_[v] + indirect_[v];
@@ -550,14 +613,19 @@ Image DynamicRelighting::render(DisplayMode mode) {
     const PreparedImage& P = r_.prepared;
     const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
     Image img;
-    if (mode == DisplayMode::ratio || mode == DisplayMode::pixel) {
+    if (mode == DisplayMode::pixel) {
+        // The ratio display stays where the per-pixel display does not draw (a lamp's face,
+        // nothing, an edge): only those pixels' vertices need the vertices' gather, and the
+        // leaf runs, all drawn per pixel, are left out (renderRatio's leafRuns).
+        completeVertexGather(&ratioPixelVertices());
+        renderRatio(P.display, P.photo, vertexRatio(P, irradianceAsItStands()), real,
+                    P.photoRadiance, img, {}, /*leafRuns=*/false);
+        renderPixelLight(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
+                         P.photoRadiance, ratioFloor(P.D), img,
+                         PixelLightChange{pixelDirect(), pixelIndirect()}, P.pixelReflectance,
+                         &P.photoPixels);
+    } else if (mode == DisplayMode::ratio) {
         img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
-        // The ratio display stays where a pixel sees a lamp's face or nothing.
-        if (mode == DisplayMode::pixel)
-            renderPixelLight(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
-                             P.photoRadiance, ratioFloor(P.D), img,
-                             PixelLightChange{pixelDirect(), pixelIndirect()}, P.pixelReflectance,
-                             &P.photoPixels);
     } else {
         const VertexDisplay d = vertexDisplay(mode);
         renderRatio(P.display, P.photo, d.ratio, real, P.photoRadiance, img, d.added);

@@ -142,8 +142,19 @@ class DynamicRelighting {
     std::optional<std::vector<int>> addedLampFaces() const;
     /// Per node: what it reflects (B - E) now less before any virtual part.
     std::vector<Rgb> reflectedChange() const;
-    /// The final gather (or, byRays, the gather by rays) of `change` at every leaf vertex.
-    std::vector<Rgb> gatherChangeAtVertices(std::span<const Rgb> change, bool byRays = false) const;
+    /// The final gather (or, byRays, the gather by rays) of `change` at every leaf vertex, or
+    /// at the vertices `only` lists (the others 0).
+    std::vector<Rgb> gatherChangeAtVertices(std::span<const Rgb> change, bool byRays = false,
+                                            const std::vector<int>* only = nullptr) const;
+    /// Finishes the final gather of the last full update (gatherDelta_) at the vertices
+    /// `only` lists, or at every vertex still waiting (null). Called before the solver
+    /// changes again (the gather reads its links) and before indirect_ is read.
+    void completeVertexGather(const std::vector<int>* only = nullptr) const;
+    /// vertexIrradiance() as indirect_ stands (a vertex still waiting for its gather lacks it).
+    std::vector<Rgb> irradianceAsItStands() const;
+    /// The vertices of the pixels the per-pixel display leaves to the ratio display (lamps'
+    /// faces, edges; relight/pipeline/pixel_light.h, shownPerPixel), each once.
+    const std::vector<int>& ratioPixelVertices();
     /// The indirect light at a removed region's box pixel and its sample i (object_removal.h).
     Rgb removedIndirect(const RemovedRegion& gone, size_t pixel, size_t i) const;
     /// indirectPixel_ where the per-pixel display has its own, indirect_ otherwise.
@@ -156,20 +167,28 @@ class DynamicRelighting {
     Relighting& r_;
     radiosity::HierarchicalSolver& solver_;
     int realLights_ = 0;
-    size_t realPolygons_ = 0;         ///< polygons below this index are the scene's
-    size_t realNodes_ = 0;            ///< nodes below this id are the scene's
-    std::vector<Rgb> radiance_;       ///< real lights, then virtual lights (solver order)
-    std::vector<Rgb> photoRadiance_;  ///< the solver's radiances before (restored at the end)
-    std::vector<Rgb> base_;           ///< per vertex: sum_l L_l h_l(v)
-    std::vector<Rgb> realDirect_;     ///< per vertex: the real lights' direct light change
-    std::vector<Rgb> virtualDirect_;  ///< per vertex: the virtual lights' direct light
-    std::vector<Rgb> indirect0_;      ///< per node: H_ind before any virtual part
-    std::vector<Rgb> indirect_;       ///< per vertex: H_ind(now) - H_ind(before)
-    std::vector<Rgb> reflected0_;     ///< per scene node: what it reflected (B - E) before
+    size_t realPolygons_ = 0;            ///< polygons below this index are the scene's
+    size_t realNodes_ = 0;               ///< nodes below this id are the scene's
+    std::vector<Rgb> radiance_;          ///< real lights, then virtual lights (solver order)
+    std::vector<Rgb> photoRadiance_;     ///< the solver's radiances before (restored at the end)
+    std::vector<Rgb> base_;              ///< per vertex: sum_l L_l h_l(v)
+    std::vector<Rgb> realDirect_;        ///< per vertex: the real lights' direct light change
+    std::vector<Rgb> virtualDirect_;     ///< per vertex: the virtual lights' direct light
+    std::vector<Rgb> indirect0_;         ///< per node: H_ind before any virtual part
+    mutable std::vector<Rgb> indirect_;  ///< per vertex: H_ind(now) - H_ind(before)
+    std::vector<Rgb> reflected0_;        ///< per scene node: what it reflected (B - E) before
     // Per vertex: the final gather (radiosity/final_gather.h) of the indirect light's change
     // at the last full update (a light added or removed), and the leaf-level change at that
     // time; objects moved since add only their leaf-level change.
-    std::vector<Rgb> gatherDelta_, leafAtFull_;
+    // With per-pixel light the gather waits until a vertex display needs it (the per-pixel
+    // display has its own by rays, gatherDeltaRays_): gatherChange_ is the change it gathers,
+    // gatherWaiting_ flags the vertices not gathered yet; indirect_ holds their gather as 0.
+    mutable std::vector<Rgb> gatherDelta_;
+    std::vector<Rgb> leafAtFull_;
+    mutable std::vector<Rgb> gatherChange_;
+    mutable std::vector<char> gatherWaiting_;
+    std::vector<int> ratioPixelVertices_;
+    bool ratioPixelVerticesMade_ = false;
     // The same by rays (radiosity::rayGatherIndirect), for the per-pixel display when the
     // preparation gathered the photo's indirect light by rays (Relighting::gatherSide): each
     // display's change is measured as its photo light was, so that a gather's own error
