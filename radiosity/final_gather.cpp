@@ -190,12 +190,31 @@ Rgb rayGatherField(const HierarchicalSolver& solver, std::span<const Rgb> reflec
     const HemisphereFrame frame(n);
     // The generator as rayGatherLeaves seeded it; each cell takes two numbers.
     const uint64_t start = seed * 0x9E3779B97F4A7C15ull + 0x6A7A7ull;
+    // The strata whose rays may meet one of the faces: only those are drawn again to test
+    // them (a lamp's face fills a small part of the hemisphere).
+    thread_local std::vector<StrataWindow> windows;
+    windows.clear();
+    for (const int f : faces) {
+        const Polygon& P = scene.polygons[static_cast<size_t>(f)];
+        Vec3 centre{0, 0, 0};
+        for (int i = 0; i < P.vertexCount; ++i) centre += P.v[static_cast<size_t>(i)];
+        centre /= static_cast<double>(std::max(P.vertexCount, 1));
+        double r = 0;
+        for (int i = 0; i < P.vertexCount; ++i)
+            r = std::max(r, glm::length(P.v[static_cast<size_t>(i)] - centre));
+        windows.push_back(StrataWindow::toward(frame, origin, centre, r));
+    }
+    auto mayMeetFace = [&](size_t cell) {
+        return std::any_of(windows.begin(), windows.end(), [&](const StrataWindow& w) {
+            return w.mayHold(static_cast<int>(cell), side);
+        });
+    };
     Rgb sum;
     for (size_t cell = 0; cell < hits.size(); ++cell) {
         int node = hits[cell];
         if (node < 0 || static_cast<size_t>(node) >= h.nodes.size()) continue;
         const bool split = !h.nodes[static_cast<size_t>(node)].isLeaf();
-        if (!split && faces.empty()) {
+        if (!split && !mayMeetFace(cell)) {
             sum += reflected[static_cast<size_t>(node)];
             continue;
         }

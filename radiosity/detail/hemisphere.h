@@ -43,4 +43,59 @@ inline Vec3 cosineDirection(const HemisphereFrame& f, int cell, int k, Rng& rng)
     return x * f.t + y * f.b + z * f.n;
 }
 
+/// Where in the square of cosineDirection's strata ([-1, 1]^2, cell = i + k j covering
+/// a in [2i/k - 1, 2(i+1)/k - 1], c likewise with j) the directions toward a ball (a face's
+/// bounding sphere) may lie, so that a gather can skip testing that face on the other rays.
+/// A direction within angle beta of the ball's axis w projects onto the tangent plane within
+/// the chord 2 sin(beta / 2) of w's projection (projection does not stretch distances), and
+/// the inverse concentric map stretches distances on the disc by at most ~1.9 (the Frobenius
+/// norm of its Jacobian: sqrt(2 + (4/pi)^2) on each of its four pieces, continuous across
+/// them): within 2.5 chords of w's point in the square (a margin for the bound).
+struct StrataWindow {
+    double a = 0, c = 0, radius = -1;  ///< radius < 0: the whole square
+    bool everywhere() const { return radius < 0; }
+
+    static StrataWindow toward(const HemisphereFrame& f, const Vec3& origin, const Vec3& centre,
+                               double ballRadius) {
+        StrataWindow w;
+        const Vec3 to = centre - origin;
+        const double dist = glm::length(to);
+        if (!(dist > ballRadius * (1 + 1e-9)) || !(dist > 0)) return w;  // inside: anywhere
+        const double beta = std::asin(std::min(1.0, ballRadius / dist));
+        const Vec3 axis = to / dist;
+        const double x = glm::dot(axis, f.t), y = glm::dot(axis, f.b);
+        const double rho = std::min(1.0, std::hypot(x, y));
+        const double pi = std::numbers::pi;
+        // The inverse of the concentric map (cosineDirection): (x, y) on the disc -> (a, c).
+        double theta = rho > 0 ? std::atan2(y, x) : 0.0;
+        if (theta < -pi / 4) theta += 2 * pi;  // in [-pi/4, 7pi/4)
+        if (theta < pi / 4) {
+            w.a = rho;
+            w.c = rho * theta * 4 / pi;
+        } else if (theta < 3 * pi / 4) {
+            w.c = rho;
+            w.a = rho * (pi / 2 - theta) * 4 / pi;
+        } else if (theta < 5 * pi / 4) {
+            w.a = -rho;
+            w.c = -rho * (theta - pi) * 4 / pi;
+        } else {
+            w.c = -rho;
+            w.a = -rho * (pi / 2 - (theta - pi)) * 4 / pi;
+        }
+        w.radius = 2.5 * 2 * std::sin(beta / 2) + 1e-9;
+        return w;
+    }
+
+    /// False when no direction of stratum `cell` of a k x k grid can meet the ball.
+    bool mayHold(int cell, int k) const {
+        if (everywhere()) return true;
+        const double i = cell % k, j = cell / k;
+        const double a0 = 2 * i / k - 1, a1 = 2 * (i + 1) / k - 1;
+        const double c0 = 2 * j / k - 1, c1 = 2 * (j + 1) / k - 1;
+        const double da = a < a0 ? a0 - a : (a > a1 ? a - a1 : 0.0);
+        const double dc = c < c0 ? c0 - c : (c > c1 ? c - c1 : 0.0);
+        return da * da + dc * dc <= radius * radius;
+    }
+};
+
 }  // namespace radiosity

@@ -51,6 +51,51 @@ TEST(Hemisphere, MomentsAreTheCosineDistributions) {
     EXPECT_NEAR(y / n, 0.0, 2e-3);
 }
 
+TEST(Hemisphere, AStrataWindowHoldsEveryRayThatMeetsItsBall) {
+    // StrataWindow bounds where, in the strata's square, the rays toward a ball may lie; a
+    // gather skips the ball on the other strata, so a ray that meets the ball outside its
+    // window would be lost. Many random directions (64 jittered draws in each of 32 x 32
+    // strata) from random normals toward balls of random size and place, near (the ball
+    // filling much of the hemisphere) and far, on the horizon and behind it: each ray that
+    // meets the ball must lie in a stratum the window holds. And the window must be useful:
+    // for small far balls it holds a small share of the strata.
+    Rng rng(2026);
+    const int k = 32;
+    size_t met = 0;
+    double heldSmall = 0;
+    int small = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const Vec3 n =
+            glm::normalize(Vec3{rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5});
+        const HemisphereFrame f(n);
+        const Vec3 centre =
+            3.0 * Vec3{rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5} + 0.3 * n;
+        const double r = 0.02 + 0.5 * rng.uniform() * rng.uniform();
+        const StrataWindow w = StrataWindow::toward(f, Vec3{0, 0, 0}, centre, r);
+        int held = 0;
+        for (int cell = 0; cell < k * k; ++cell) {
+            held += w.mayHold(cell, k) ? 1 : 0;
+            for (int draw = 0; draw < 64; ++draw) {
+                const Vec3 d = cosineDirection(f, cell, k, rng);
+                // Does the ray t d (t > 0) meet the ball?
+                const double along = glm::dot(centre, d);
+                const double miss = glm::length(centre - along * d);
+                if (!(along > 0 && miss <= r)) continue;
+                ++met;
+                ASSERT_TRUE(w.mayHold(cell, k))
+                    << "trial " << trial << " cell " << cell << ": a ray meets the ball";
+            }
+        }
+        if (!w.everywhere() && r / glm::length(centre) < 0.05) {
+            heldSmall += static_cast<double>(held) / (k * k);
+            ++small;
+        }
+    }
+    EXPECT_GT(met, 10000u) << "too few rays met the balls to test the bound";
+    ASSERT_GT(small, 10);
+    EXPECT_LT(heldSmall / small, 0.05) << "the windows of small far balls hold too much";
+}
+
 TEST(Parallel, EveryIndexOnceInLoopsAndChunks) {
     for (const size_t n : {size_t{0}, size_t{1}, size_t{1000}}) {
         std::vector<std::atomic<int>> seen(n);
