@@ -33,8 +33,10 @@ namespace {
 /// The budget options, the same for `solve`, `prepare` and `render`.
 void addBudgetOptions(CLI::App* app, size_t& maxLinks, double& maxMemoryMB, double& timeBudget) {
     app->add_option("--time-budget", timeBudget,
-                    "seconds the preparation may take: the refinement stops at half of it, "
-                    "its largest errors refined first (0: no limit)")
+                    "seconds the preparation may take (the default suits a 2-core laptop), "
+                    "split over its phases: the refinement stops at half of it, its largest "
+                    "errors refined first; the reflectance rounds at 15 %, after a complete "
+                    "round (0: no limit)")
         ->capture_default_str()
         ->check(finiteNumber(Sign::kNonNegative));
     app->add_option("--max-links", maxLinks,

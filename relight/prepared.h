@@ -85,7 +85,9 @@ struct PreparedImage {
     int leaves = 0, links = 0;
     /// The refinement budget (HierarchicalSolver's stats): whether it was reached, the
     /// solver's nodes and links in bytes, and the budget in force.
-    int budgetReached = 0;  ///< bit 0: a budget was reached; bit 1: it was the time budget
+    /// bit 0: the refinement's budget was reached; bit 1: it was the time budget; bit 2:
+    /// the reflectance rounds stopped at their share of the time budget.
+    int budgetReached = 0;
     uint64_t solverBytes = 0, maxLinks = 0, maxMemory = 0;
     PrepareTimes times;
 

@@ -228,9 +228,16 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
     say(o, "reflectance from the photo");
     const LightingBuffer lighting =
         computeLightingBuffer(r.items, *r.solver, directLightOptions(o), r.sampling.stride);
-    r.surface = estimatePolygonReflectance(*r.solver, r.scene, r.items, lighting, P.photo,
-                                           o.reflectanceRounds)
-                    .surface;
+    const ReflectanceReport rep = estimatePolygonReflectance(
+        *r.solver, r.scene, r.items, lighting, P.photo, o.reflectanceRounds, 16, 1e-3,
+        o.timeBudget * RelightOptions::kReflectanceShare);
+    r.surface = rep.surface;
+    r.reflectanceRounds = rep.rounds;
+    r.reflectanceBudgetReached = rep.budgetReached;
+    say(o, "  " + std::to_string(rep.rounds) + " reflectance round(s)" +
+               (rep.budgetReached ? ": their share of --time-budget was spent, stopped after a "
+                                    "complete round"
+                                  : ""));
     // Per-pixel direct light, when asked, from these same rays where they cover every pixel.
     if (o.pixelLight && lighting.stride == 1)
         P.pixelDirect = pixelDirect(r.items, r.solver->scene(), lighting);
@@ -422,7 +429,8 @@ void mapDisplay(Relighting& r, const RelightOptions& o) {
     const auto st = r.solver->stats();
     P.leaves = st.leaves;
     P.links = st.links;
-    P.budgetReached = (st.budgetReached ? 1 : 0) | (st.timeBudgetReached ? 2 : 0);
+    P.budgetReached = (st.budgetReached ? 1 : 0) | (st.timeBudgetReached ? 2 : 0) |
+                      (r.reflectanceBudgetReached ? 4 : 0);
     P.solverBytes = st.memoryBytes;
     P.maxLinks = st.maxLinks;
     P.maxMemory = st.maxMemory;

@@ -63,13 +63,16 @@ struct RelightOptions {
     double darkFloor = 0.1;
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
-    /// Time budget of the preparation, seconds (0: none): the solver's refinement may take
-    /// kRefineShare of it (SolverOptions::refineSeconds), refining the links of largest
-    /// error first; the rest of the preparation is linear in the leaves and runs to its end.
+    /// Time budget of the preparation, seconds (0: none), split over its phases: the
+    /// solver's refinement may take kRefineShare of it (SolverOptions::refineSeconds),
+    /// refining the links of largest error first; the reflectance rounds kReflectanceShare
+    /// (estimatePolygonReflectance: fewer complete rounds when it is spent). The phases
+    /// after them are linear in the leaves and the display's vertices and run to their end.
     /// The default suits a 2-core laptop: the bundled scenes prepare in a few seconds, far
-    /// inside it; a 10^5-10^6-triangle room ends its refinement within a minute.
-    double timeBudget = 120;
+    /// inside it; a 10^5-10^6-triangle room ends its refinement within half a minute.
+    double timeBudget = 60;
     static constexpr double kRefineShare = 0.5;
+    static constexpr double kReflectanceShare = 0.15;
     int spp = 16;  ///< item-buffer samples per pixel, at most (sampleBudget)
     /// Samples over the whole image: fewer samples per pixel, and the estimates from the
     /// photo on a sub-grid of pixels, on large photos (SamplingPlan,
@@ -141,6 +144,9 @@ struct Relighting {
     std::unique_ptr<radiosity::LightResponses> responses;
     std::unique_ptr<LeafTexture> texture;  ///< the photo per leaf
     std::vector<int> surface;  ///< per polygon: its surface (pipeline/reflectance.h, surfaceOf)
+    /// The reflectance rounds done, and whether their share of the time budget stopped them.
+    int reflectanceRounds = 0;
+    bool reflectanceBudgetReached = false;
     ShadowRefinementReport refinement;
     VertexDirect direct;    ///< direct light per vertex and light, with and without blockers
     ShadowRemoval removal;  ///< empty when options.shadowRemoval is off

@@ -111,9 +111,14 @@ int runPrepare(const PrepareArgs& a) {
     std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
     std::printf("budget: %.1f of %.1f MiB, links within %llu%s\n", p.solverBytes / 1048576.0,
                 p.maxMemory / 1048576.0, static_cast<unsigned long long>(p.maxLinks),
-                (p.budgetReached & 2)  ? ": time budget REACHED, refinement stopped"
-                : p.budgetReached != 0 ? ": REACHED, refinement stopped"
-                                       : "");
+                (p.budgetReached & 2)   ? ": time budget REACHED, refinement stopped"
+                : (p.budgetReached & 1) ? ": REACHED, refinement stopped"
+                                        : "");
+    if (p.budgetReached & 4)
+        std::printf(
+            "time budget: the reflectance rounds stopped at their share (%.0f %% of "
+            "--time-budget %g s), after a complete round\n",
+            100 * RelightOptions::kReflectanceShare, o.timeBudget);
     if (s.written)
         std::printf("time: prepare %.3f s (%s)\n", s.seconds, stepTimes(p.times).c_str());
     else

@@ -123,7 +123,13 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
     const LightingBuffer& lighting = camera.lighting();
     std::fprintf(stderr, "estimating reflectance from %s (%d rounds)\n", ph.file.c_str(),
                  a.reflectanceRounds);
-    auto rep = estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds);
+    auto rep =
+        estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds, 16,
+                                   1e-3, a.timeBudget * RelightOptions::kReflectanceShare);
+    std::fprintf(stderr, "  %d reflectance round(s)%s\n", rep.rounds,
+                 rep.budgetReached ? ": their share of --time-budget was spent, stopped after "
+                                     "a complete round"
+                                   : "");
     ReflectanceEstimate r;
     r.seconds = secondsSince(t0);
     // Per object, the area-weighted mean of its polygons' reflectances (emitting faces left
@@ -137,6 +143,7 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
     for (size_t o = 0; o < means.rho.size(); ++o)
         if (means.area[o] > 0) objects[scene.objects[o]] = rgbJson(means.rho[o]);
     r.report = {{"rounds", rep.rounds},
+                {"budget_reached", rep.budgetReached},
                 {"polygons_seen", rep.polygonsSeen},
                 {"polygons_defaulted", rep.polygonsDefaulted},
                 {"objects", objects},
@@ -217,7 +224,9 @@ nlohmann::json solveReport(const SolveArgs& a, const radiosity::HierarchicalSolv
             {"budget",
              {{"reached", st.budgetReached},
               {"time_budget_reached", st.timeBudgetReached},
+              {"time_budget_s", a.timeBudget},
               {"refine_seconds_allowed", a.timeBudget * RelightOptions::kRefineShare},
+              {"reflectance_seconds_allowed", a.timeBudget * RelightOptions::kReflectanceShare},
               {"max_links", st.maxLinks},
               {"max_memory_bytes", st.maxMemory},
               {"memory_bytes", st.memoryBytes}}},

@@ -415,8 +415,10 @@ std::string checkPrepared(const PreparedImage& p) {
         return "modelReflectance has " + n(p.modelReflectance.size()) + " entries, not " +
                n(vertices);
     if (p.leaves < 0 || p.links < 0) return "negative counts";
-    if (p.budgetReached != 0 && p.budgetReached != 1 && p.budgetReached != 3)
-        return "budget flag neither 0, 1 nor 3";
+    // Bits 0-1: the refinement's budget (bit 1, the time budget, only with bit 0); bit 2:
+    // the reflectance rounds' share.
+    if (p.budgetReached < 0 || p.budgetReached > 7 || (p.budgetReached & 3) == 2)
+        return "budget flag not one of 0, 1, 3, 4, 5, 7";
     return {};
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -259,7 +260,9 @@ void stepReflectances(radiosity::HierarchicalSolver& solver, const SceneFile& sc
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const LightingBuffer& lighting, const Image& photo,
-                                             int rounds, int minSamples, double tolerance) {
+                                             int rounds, int minSamples, double tolerance,
+                                             double seconds) {
+    const auto start = std::chrono::steady_clock::now();
     ReflectanceReport report;
     const radiosity::Scene& scene = solver.scene();
     PhotoSums sums = sumPhotoSamples(scene, items, lighting, photo);
@@ -279,6 +282,13 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         solver.gatherPushPull();
         report.rounds = round + 1;
         if (round > 0 && report.lastChange < tolerance) break;
+        // The budget is checked between rounds only, so the solution is always that of
+        // complete rounds (consistent reflectances and radiosities), never half a round.
+        const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
+        if (seconds > 0 && spent.count() >= seconds && round + 1 < rounds) {
+            report.budgetReached = true;
+            break;
+        }
     }
     solver.solve();
     return report;

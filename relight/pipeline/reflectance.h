@@ -64,6 +64,9 @@ struct ReflectanceReport {
     int polygonsSeen = 0;       ///< polygons with enough photo samples, or their surface
     int polygonsDefaulted = 0;  ///< reflecting polygons the photo does not see
     double lastChange = 0;      ///< largest reflectance change in the last round
+    /// The rounds stopped early because their time budget (`seconds`) was spent: the
+    /// solution is that of the rounds done, each of them complete.
+    bool budgetReached = false;
     /// surfaceOf(the solver's scene), which the estimate pooled over: later steps that pool
     /// over surfaces take it from here rather than joining the polygons again.
     std::vector<int> surface;
@@ -77,11 +80,14 @@ struct ReflectanceReport {
 /// `minSamples` photo samples to be estimated; one with fewer takes the estimate pooled
 /// over its surface (the polygons joined by shared corners within 25 degrees: a wall that
 /// a reconstruction cut into small triangles) when that has enough.
+/// `seconds` > 0 is a time budget for the rounds, from the call: a round is never cut in
+/// the middle (it sets every polygon's reflectance, then solves); once the budget is spent
+/// after a round, no later round starts (at least one always runs), and the report says so.
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const LightingBuffer& lighting, const Image& photo,
                                              int rounds = 12, int minSamples = 16,
-                                             double tolerance = 1e-3);
+                                             double tolerance = 1e-3, double seconds = 0);
 
 /// A leaf's reflectance from its texture, rho = pi c / H (Lambertian: the photo shows
 /// L = rho H / pi), with c the mean photo colour of the leaf's samples and H the mean of the

@@ -122,6 +122,15 @@ expect_option_error("a negative count" "--max-links: must be a whole number >= 0
                     solve "${room}" --max-links -5)
 expect_option_error("a negative count (render)" "--max-links: must be a whole number >= 0, got -5"
                     render "${room}" --max-links -5 -o "${output}")
+# A time budget must be a finite number of seconds >= 0 (0: none): a negative or NaN
+# budget would stop every phase at once or never.
+expect_option_error("a negative time budget" "--time-budget: must be a finite number >= 0, got -1"
+                    prepare "${room}" --time-budget -1)
+expect_option_error("a time budget that is not a number"
+                    "--time-budget: must be a finite number >= 0, got 1min"
+                    render "${room}" --time-budget 1min -o "${output}")
+expect_option_error("NaN for a time budget" "--time-budget: must be a finite number >= 0, got nan"
+                    solve "${room}" --time-budget nan)
 expect_option_error("a missing option" "--output is required" render "${room}")
 expect_option_error("an unknown option" "[^\n]*--no-such-option"
                     render "${room}" --no-such-option -o "${output}")

@@ -148,3 +148,48 @@ TEST(Reflectance, EachLeafTakesTheReflectanceOfItsOwnTexture) {
         EXPECT_NEAR(ratio, 0.5, 0.05) << "channel " << c;
     }
 }
+
+TEST(Reflectance, ATimeBudgetStopsAfterACompleteRound) {
+    // The rounds' time budget (estimatePolygonReflectance's `seconds`, a share of
+    // --time-budget) is checked between rounds only: a budget spent at once leaves the
+    // solution of exactly one complete round (every polygon's reflectance set, then solved),
+    // the same as asking for one round, and the report says the budget cut in; without a
+    // budget the same photo takes more rounds. The photo is the Cornell box's, which the estimate
+    // does not match in one round (the photo is darker than its reflectances say).
+    SceneFile sf = loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    radiosity::SolverOptions o;
+    o.epsilon = 1e-4;
+    radiosity::HierarchicalSolver truthSolver(sf.scene, o);
+    truthSolver.solve();
+    const ItemBuffer items =
+        castItemBuffer(sf.camera, truthSolver.scene(), truthSolver.visibility(), 4);
+    LightingBuffer truthLighting = computeLightingBuffer(items, truthSolver);
+    updateIndirect(truthLighting, truthSolver);
+    Image photo = renderRadiosity(items, truthLighting, truthSolver.scene());
+    for (float& v : photo.rgb) v *= 0.6f;  // darker than the scene's reflectances say
+
+    auto estimate = [&](int rounds, double seconds, std::vector<Rgb>* rho) {
+        radiosity::HierarchicalSolver solver(sf.scene, o);
+        solver.solve();
+        const LightingBuffer lighting = computeLightingBuffer(items, solver);
+        const ReflectanceReport rep = estimatePolygonReflectance(solver, sf, items, lighting, photo,
+                                                                 rounds, 16, 1e-3, seconds);
+        for (const auto& poly : solver.scene().polygons) rho->push_back(poly.rho);
+        return rep;
+    };
+    std::vector<Rgb> cut, one, full;
+    const ReflectanceReport repCut = estimate(12, 1e-9, &cut);
+    const ReflectanceReport repOne = estimate(1, 0, &one);
+    const ReflectanceReport repFull = estimate(12, 0, &full);
+    EXPECT_TRUE(repCut.budgetReached);
+    EXPECT_EQ(repCut.rounds, 1);
+    EXPECT_FALSE(repOne.budgetReached);  // one round asked, one done: no cut
+    EXPECT_FALSE(repFull.budgetReached);
+    EXPECT_GT(repFull.rounds, 1) << "the photo must need more than one round for this test";
+    ASSERT_EQ(cut.size(), one.size());
+    for (size_t p = 0; p < cut.size(); ++p)
+        for (int c = 0; c < 3; ++c)
+            // The same arithmetic on the same inputs; 1e-9 allows for the order of parallel
+            // sums, far below the change one round makes (the photo is 40 % darker).
+            EXPECT_NEAR(cut[p][c], one[p][c], 1e-9) << "polygon " << p << " channel " << c;
+}
