@@ -12,8 +12,9 @@ if(_oiio_inc)
   set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_oiio_inc}")
 endif()
 # The rectified fill of removed objects' surfaces: cv::inpaint as the baseline
-# (relight/dynamic/rectified_fill.h). Debian's libopencv-dev 4.6.
-find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc photo)
+# (relight/dynamic/rectified_fill.h). Debian's libopencv-dev 4.6. calib3d for the tests only
+# (cv::findHomography checks the plane homographies of relight/dynamic/plane_homography.h).
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc photo calib3d)
 find_package(glm REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 2 REQUIRED)

@@ -311,7 +311,13 @@ std::span<const float> DynamicRelighting::pixelDirect() {
                 direct.geometry(p, items.point[static_cast<size_t>(idx)],
                                 static_cast<uint64_t>(idx), G.data(), nullptr,
                                 static_cast<int>(firstLight));
-                for (size_t l = firstLight; l < L; ++l) sum[l] += G[l];
+                // Each sample's value rounded to float before the sum, as the preparation
+                // stores it (pipeline/lighting_buffer.h, LightingBuffer::G, summed by
+                // pixel_light.h's pixelDirect): summed in double, a pixel whose objects are
+                // all back came out up to 4e-9 off the photo's (data/furnished), where an
+                // undone edit must give the photo's display back bit for bit.
+                for (size_t l = firstLight; l < L; ++l)
+                    sum[l] += static_cast<double>(static_cast<float>(G[l]));
                 ++n;
             }
             for (size_t l = firstLight; l < L; ++l)

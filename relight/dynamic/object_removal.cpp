@@ -150,13 +150,15 @@ struct PlaneFill {
     std::vector<int> count;
 };
 
-/// The mask's samples that see a surface, rebuilt per plane (rectified_fill.h).
+/// The mask's samples that see a surface, rebuilt per plane (rectified_fill.h); the box is
+/// boxWidth pixels wide from (region.x0, region.y0).
 template <class SurfaceOf>
-PlaneFill fillHiddenPlanes(const RemovedRegion& region, const Camera& camera,
+PlaneFill fillHiddenPlanes(const RemovedRegion& region, int boxWidth, const Camera& camera,
                            const radiosity::Scene& scene, const PhotoWindow& photo,
                            const std::vector<char>& mask, const std::vector<int>& nowSurface,
                            SurfaceOf surfaceOf, const RectifiedFillOptions& options) {
     const size_t kk = static_cast<size_t>(region.k * region.k);
+    const OverlaySamples samples(region.k * region.k);
     std::vector<HiddenPoint> hidden;
     std::vector<size_t> hiddenPixel;
     for (size_t b = 0; b < mask.size(); ++b) {
@@ -165,7 +167,11 @@ PlaneFill fillHiddenPlanes(const RemovedRegion& region, const Camera& camera,
             const size_t i = b * kk + s;
             const int sf = surfaceOf(region.polygon[i]);
             if (region.leaf[i] < 0 || sf < 0) continue;
-            hidden.push_back({region.point[i], region.polygon[i], sf});
+            // The sample's position in the photo (OverlaySamples, as it was cast).
+            const auto [u, v] =
+                samples.at(region.x0 + static_cast<int>(b) % boxWidth,
+                           region.y0 + static_cast<int>(b) / boxWidth, static_cast<int>(s));
+            hidden.push_back({region.point[i], region.polygon[i], sf, u, v});
             hiddenPixel.push_back(b);
         }
     }
@@ -430,8 +436,8 @@ RemovedRegion buildRemovedRegion(const Relighting& r, const std::vector<int>& re
     rectOptions.bridge = 2 * (2 * grow + 1) + 2;  // the guard band, twice for a grazing plane
     rectOptions.margin = std::max({kSampleMargin, bw, bh});
     rectOptions.planeTolerance = 1e-5 * diag;
-    const PlaneFill planes = fillHiddenPlanes(region, camera, scene, photoWindow, mask, nowSurface,
-                                              surfaceOf, rectOptions);
+    const PlaneFill planes = fillHiddenPlanes(region, bw, camera, scene, photoWindow, mask,
+                                              nowSurface, surfaceOf, rectOptions);
     const std::vector<float>& rectSum = planes.sum;
     const std::vector<int>& rectCount = planes.count;
     for (int by = 0; by < bh; ++by)

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "relight/dynamic/plane_homography.h"
+
 namespace relight {
 
 using radiosity::Vec3;
@@ -26,6 +28,9 @@ struct PlaneGrid {
     double texel = 0;                           ///< metres per texel
     int a0 = 0, b0 = 0, width = 0, height = 0;  ///< the grid: texels [a0, a0 + width) ...
     std::vector<int> members;                   ///< indices of its hidden points
+    /// The grid's continuous texel coordinates (texel centres at +0.5) to the photo's pixels,
+    /// and back: the plane's homography (plane_homography.h) after the texel scale.
+    cv::Matx33d toImage = cv::Matx33d::eye(), fromImage = cv::Matx33d::eye();
 
     bool holds(const radiosity::Polygon& p, int s, double tol) const {
         if (s != surface || glm::dot(p.normal, normal) < kSameNormal) return false;
@@ -34,13 +39,24 @@ struct PlaneGrid {
                 return false;
         return true;
     }
-    /// Continuous texel coordinates of a point of the plane (texel centres at +0.5).
-    void coords(const Vec3& x, double& a, double& b) const {
-        a = glm::dot(x - origin, u) / texel - a0;
-        b = glm::dot(x - origin, v) / texel - b0;
+    /// Continuous texel coordinates of the plane's point seen at pixel (x, y) (texel
+    /// centres at +0.5): H^-1. False when the pixel's ray runs parallel to the plane or meets
+    /// it behind the camera (the homogeneous w of the back-mapped point, whose sign is the
+    /// depth's only for points in front: checked again forwards).
+    bool coords(double x, double y, double& a, double& b) const {
+        const cv::Vec3d p = fromImage * cv::Vec3d(x, y, 1.0);
+        if (!(std::abs(p[2]) > 1e-300)) return false;
+        a = p[0] / p[2];
+        b = p[1] / p[2];
+        double xb = 0, yb = 0;
+        return applyHomography(toImage, a, b, xb, yb);
     }
-    Vec3 centre(int i, int j) const {
-        return origin + ((a0 + i + 0.5) * texel) * u + ((b0 + j + 0.5) * texel) * v;
+    /// Sets the homographies once the grid is placed.
+    void setHomography(const Camera& camera) {
+        // Texel coordinates (a, b) to metres in the frame: (a0 + a) texel, (b0 + b) texel.
+        const cv::Matx33d S(texel, 0, a0 * texel, 0, texel, b0 * texel, 0, 0, 1);
+        toImage = planeToImage(camera, PlaneFrame{origin, u, v}) * S;
+        fromImage = toImage.inv();
     }
     size_t size() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
 };
@@ -107,6 +123,7 @@ void placeGrid(PlaneGrid& g, const Camera& camera, std::span<const HiddenPoint> 
     g.b0 = static_cast<int>(std::max(b0, centreB + lo));
     g.width = static_cast<int>(std::min(a1, centreA - lo)) - g.a0 + 1;
     g.height = static_cast<int>(std::min(b1, centreB - lo)) - g.b0 + 1;
+    g.setHomography(camera);
 }
 
 /// Max filter of radius r over a w x h mask (separable).
@@ -134,17 +151,18 @@ struct PlaneTexture {
 };
 
 /// Step 3 and the roles of step 4.
-PlaneTexture sampleGrid(const PlaneGrid& g, const Camera& camera, const radiosity::Scene& scene,
-                        const PhotoWindow& photo, std::span<const HiddenPoint> points,
-                        const RectifiedFillOptions& options) {
+PlaneTexture sampleGrid(const PlaneGrid& g, const radiosity::Scene& scene, const PhotoWindow& photo,
+                        std::span<const HiddenPoint> points, const RectifiedFillOptions& options) {
     PlaneTexture t;
     const size_t n = g.size();
     t.value.assign(3 * n, 0.0f);
     t.role.assign(n, FillRole::none);
     for (int j = 0; j < g.height; ++j)
         for (int i = 0; i < g.width; ++i) {
-            double pu = 0, pv = 0, d = 0;
-            if (!camera.project(g.centre(i, j), pu, pv, d) || !(d > 0)) continue;
+            // The texel centre's pixel through the plane's homography: the photo warped
+            // into the plane, nearest pixel.
+            double pu = 0, pv = 0;
+            if (!applyHomography(g.toImage, i + 0.5, j + 0.5, pu, pv)) continue;
             const long x = std::lround(pu) - photo.x0, y = std::lround(pv) - photo.y0;
             if (x < 0 || y < 0 || x >= photo.width || y >= photo.height) continue;
             const size_t w =
@@ -164,7 +182,8 @@ PlaneTexture sampleGrid(const PlaneGrid& g, const Camera& camera, const radiosit
     std::vector<char> needed(n, 0);
     for (int m : g.members) {
         double a = 0, b = 0;
-        g.coords(points[static_cast<size_t>(m)].point, a, b);
+        const HiddenPoint& h = points[static_cast<size_t>(m)];
+        if (!g.coords(h.x, h.y, a, b)) continue;
         const int i0 = static_cast<int>(std::floor(a - 0.5)),
                   j0 = static_cast<int>(std::floor(b - 0.5));
         for (int j = j0; j <= j0 + 1; ++j)
@@ -239,7 +258,8 @@ void readBack(const PlaneGrid& g, const PlaneTexture& t, const std::vector<uint8
     };
     for (int m : g.members) {
         double a = 0, b = 0;
-        g.coords(points[static_cast<size_t>(m)].point, a, b);
+        const HiddenPoint& h = points[static_cast<size_t>(m)];
+        if (!g.coords(h.x, h.y, a, b)) continue;  // left to the caller
         const double fa = a - 0.5, fb = b - 0.5;
         const int i0 = static_cast<int>(std::floor(fa)), j0 = static_cast<int>(std::floor(fb));
         const double wa = fa - i0, wb = fb - j0;
@@ -273,7 +293,7 @@ RectifiedFillResult fillRectified(const Camera& camera, const radiosity::Scene& 
     for (PlaneGrid& g : planes) {
         placeGrid(g, camera, points, options.margin);
         if (g.width <= 0 || g.height <= 0) continue;
-        PlaneTexture t = sampleGrid(g, camera, scene, photo, points, options);
+        PlaneTexture t = sampleGrid(g, scene, photo, points, options);
         std::vector<uint8_t> unfilled;
         if (options.synthesis == SurfaceSynthesis::inpaint) {
             unfilled = inpaintGrid(g, t);

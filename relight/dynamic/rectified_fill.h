@@ -16,8 +16,13 @@
 //     caller keeps free of sources) are synthesised from the plane's sources only:
 //     non-parametric sampling (pipeline/texture_fill.h, Efros & Leung with coherent
 //     candidates), or, as the baseline to compare with, OpenCV's cv::inpaint (Telea);
-//  5. each hidden point reads its plane's texture bilinearly at its plane coordinates: the
-//     homography of the plane done per point, so the corner lines stay straight.
+//  5. each hidden point reads its plane's texture bilinearly where the plane's homography
+//     (relight/dynamic/plane_homography.h) takes its pixel position back into the plane, so
+//     the corner lines stay straight.
+// Steps 3 and 5 go through one matrix per plane, H = K [R u | R v | R o + t] composed with
+// the grid's texel scale (a cv::Matx33d): texel centre to pixel for the sampling (the photo
+// warped into the plane, nearest pixel), and H^-1 from each hidden sample's pixel position
+// to its texel coordinates (the texture warped into the photo, bilinear).
 #pragma once
 
 #include <cstdint>
@@ -49,8 +54,9 @@ struct PhotoWindow {
 /// A hidden point: where a camera ray met the model without the removed objects.
 struct HiddenPoint {
     radiosity::Vec3 point;
-    int polygon = -1;  ///< the scene polygon it lies on
-    int surface = -1;  ///< its surface
+    int polygon = -1;     ///< the scene polygon it lies on
+    int surface = -1;     ///< its surface
+    double x = 0, y = 0;  ///< the photo position its camera ray went through (pixels)
 };
 
 struct RectifiedFillOptions {
