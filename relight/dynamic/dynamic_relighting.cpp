@@ -550,7 +550,13 @@ Image DynamicRelighting::render(DisplayMode mode) {
     const PreparedImage& P = r_.prepared;
     const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
     Image img;
-    if (mode == DisplayMode::ratio || mode == DisplayMode::pixel) {
+    if (mode == DisplayMode::ratioMap) {
+        // ../shared/seeds/000, Eq. (3): the direct irradiance alone, now and in the photo.
+        img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
+        const std::vector<Rgb> noIndirect(P.vertexIndirect.size());
+        renderPixelLight(P.display, P.photo, P.pixelDirect, noIndirect, radiance_, P.photoRadiance,
+                         ratioFloor(P.D), img, PixelLightChange{pixelDirect(), {}});
+    } else if (mode == DisplayMode::ratio || mode == DisplayMode::pixel) {
         img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
         // The ratio display stays where a pixel sees a lamp's face or nothing.
         if (mode == DisplayMode::pixel)
