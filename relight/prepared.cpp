@@ -32,6 +32,7 @@ std::vector<Rgb> vertexRatio(const PreparedImage& p, std::span<const Rgb> H) {
 const char* displayModeName(DisplayMode mode) {
     return mode == DisplayMode::ratio        ? "ratio"
            : mode == DisplayMode::confidence ? "confidence"
+           : mode == DisplayMode::ratioMap   ? "ratio-map"
                                              : "pixel";
 }
 
@@ -39,7 +40,9 @@ DisplayMode parseDisplayMode(const std::string& name) {
     if (name == "ratio") return DisplayMode::ratio;
     if (name == "confidence") return DisplayMode::confidence;
     if (name == "pixel") return DisplayMode::pixel;
-    throw std::invalid_argument("unknown display \"" + name + "\" (ratio, confidence or pixel)");
+    if (name == "ratio-map") return DisplayMode::ratioMap;
+    throw std::invalid_argument("unknown display \"" + name +
+                                "\" (ratio, confidence, pixel or ratio-map)");
 }
 
 SplitIrradiance splitIrradiance(const PreparedImage& p, std::span<const Rgb> radiance) {
@@ -59,7 +62,7 @@ VertexDisplay vertexDisplay(const PreparedImage& p, const SplitIrradiance& H, Di
         throw std::invalid_argument("vertexDisplay: kept and fresh irradiance differ in size");
     // The per-pixel display is not a value per vertex (renderEdit draws it): no silent
     // fallback to the ratio display for a caller that asks for it (virtual parts).
-    if (mode == DisplayMode::pixel)
+    if (mode == DisplayMode::pixel || mode == DisplayMode::ratioMap)
         throw std::invalid_argument("vertexDisplay: the per-pixel display has no vertex values");
     VertexDisplay d;
     const bool fresh =
@@ -99,6 +102,20 @@ void renderPixelEditReference(const PreparedImage& p, std::span<const Rgb> radia
                 /*leafRuns=*/false);
     renderPixelLight(p.display, p.photo, p.pixelDirect, p.vertexIndirect, radiance, p.photoRadiance,
                      ratioFloor(p.D), out, {}, p.pixelReflectance, &p.photoPixels);
+}
+
+void renderRatioMap(const PreparedImage& p, std::span<const Rgb> radiance, Image& out) {
+    if (p.pixelDirect.empty())
+        throw std::invalid_argument(
+            "renderEdit: the ratio-map display needs a preparation with per-pixel light");
+    renderRatio(p.display, p.photo, vertexRatio(p, vertexIrradiance(p, radiance)), radiance,
+                p.photoRadiance, out, {}, /*leafRuns=*/false);
+    // ../shared/seeds/000, Eq. (3): L_r = L_o I_r / I_o, I the direct irradiance of the lights
+    // (the sun with its shadows, point lamps, the sky through what the pixel sees); the
+    // indirect part is left out, as the paper's ratio of two direct irradiances does.
+    const std::vector<Rgb> noIndirect(p.vertexIndirect.size());
+    renderPixelLight(p.display, p.photo, p.pixelDirect, noIndirect, radiance, p.photoRadiance,
+                     ratioFloor(p.D), out);
 }
 
 namespace {
@@ -144,6 +161,10 @@ void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& ou
     }
     if (mode == DisplayMode::pixel) {
         renderPixelEditReference(p, radiance, out);
+        return;
+    }
+    if (mode == DisplayMode::ratioMap) {
+        renderRatioMap(p, radiance, out);
         return;
     }
     if (mode == DisplayMode::ratio) {

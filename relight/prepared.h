@@ -108,8 +108,12 @@ enum class DisplayMode {
     ratio,       ///< Loscos et al. 2000: T k B / D everywhere
     confidence,  ///< the ratio where the photo is trusted, the model where it is not
     pixel,       ///< per-pixel direct light (pipeline/pixel_light.h): relight render's default
+    /// The ratio map of ../shared/seeds/000 (Eq. 3): L_r = L_o I_r / I_o per pixel with I the
+    /// lights' direct irradiance alone (the per-pixel display's h_l(p) = pi Gbar_l(p), no
+    /// indirect part, no pooled reflectance): the paper's variant, kept to compare with.
+    ratioMap,
 };
-/// "ratio", "confidence", "pixel"; and back (std::invalid_argument naming the modes).
+/// "ratio", "confidence", "pixel", "ratio-map"; and back (std::invalid_argument naming the modes).
 const char* displayModeName(DisplayMode mode);
 DisplayMode parseDisplayMode(const std::string& name);
 
@@ -141,6 +145,9 @@ Image renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radianc
 /// The same into `out`, reused from edit to edit (renderRatio).
 void renderEdit(const PreparedImage& p, std::span<const radiosity::Rgb> radiance, Image& out,
                 DisplayMode mode = DisplayMode::ratio);
+/// DisplayMode::ratioMap (000 Eq. 3): the ratio display, then the per-pixel display with
+/// the direct irradiance alone where the per-pixel display draws.
+void renderRatioMap(const PreparedImage& p, std::span<const radiosity::Rgb> radiance, Image& out);
 /// DisplayMode::pixel by the general path (renderRatio, then renderPixelLight in double),
 /// which renderEdit() takes only where the fast table (p.pixelTable) cannot serve: the
 /// reference the fast path is tested and timed against.

@@ -630,6 +630,12 @@ Image DynamicRelighting::render(DisplayMode mode) {
                          P.photoRadiance, ratioFloor(P.D), img,
                          PixelLightChange{pixelDirect(), pixelIndirect()}, P.pixelReflectance,
                          &P.photoPixels);
+    } else if (mode == DisplayMode::ratioMap) {
+        // ../shared/seeds/000, Eq. (3): the direct irradiance alone, now and in the photo.
+        img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
+        const std::vector<Rgb> noIndirect(P.vertexIndirect.size());
+        renderPixelLight(P.display, P.photo, P.pixelDirect, noIndirect, radiance_, P.photoRadiance,
+                         ratioFloor(P.D), img, PixelLightChange{pixelDirect(), {}});
     } else if (mode == DisplayMode::ratio) {
         img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
     } else {
