@@ -51,7 +51,7 @@ namespace {
 
 struct Args {
     std::string scene, edit, screenshot, saveEdit, framebuffer = "float", view = "relit";
-    std::string display = "ratio";
+    std::string display = "pixel";  // relight render's default display
     std::vector<std::string> actions;
     std::string windowShot;
     bool saveLamps = false;
@@ -397,9 +397,9 @@ int main(int argc, char** argv) {
                    "float (one pass) or multipass (8-bit, the paper's §5.3 passes)");
     app.add_option("--view", a.view, "relit, mesh, B, D, T_orig, T_final, reflectance or frontier");
     app.add_option("--display", a.display,
-                   "the relit view: ratio (Loscos et al. 2000, on the GPU) or pixel (the "
-                   "direct light per pixel, Loscos et al. 1999, drawn on the CPU as relight "
-                   "render's default; prepares the per-pixel light)")
+                   "the relit view: pixel (the default, as relight render's: the direct light "
+                   "per pixel, Loscos et al. 1999, drawn on the CPU; prepares the per-pixel "
+                   "light) or ratio (Loscos et al. 2000 vertex ratios, on the GPU)")
         ->capture_default_str()
         ->check(CLI::IsMember({"ratio", "pixel"}));
     app.add_option("--do", a.actions,

@@ -1,4 +1,7 @@
 # relight-viewer end to end, under a virtual X server with Mesa's llvmpipe:
+#  - in the per-pixel display (the viewer's default, render's) and in the ratio display
+#    (--display ratio, on the GPU), the screenshot of each room light edit, a session by
+#    clicks (a lamp, a box dragged), a removal and its restore are render's within one step;
 #  - the screenshot of each room light edit is `relight render`'s PNG within one 8-bit step
 #    (the GPU sums in float what the CPU sums in double: only values within about 1e-6 of a
 #    rounding boundary change, by one step; tests/viewer/viewer_test.cpp bounds the rest);
@@ -15,13 +18,15 @@
 include(${CMAKE_CURRENT_LIST_DIR}/viewer_common.cmake)
 set(cache "${WORK}/prepared.bin")
 
-# The viewer shows the ratio display (Loscos et al. 2000) on the GPU; render is asked for the
-# same display, prepared the viewer's way (no per-pixel light), so both share the cache.
+# With --display ratio the viewer shows the ratio display (Loscos et al. 2000) on the GPU;
+# render is asked for the same display, prepared the viewer's way (no per-pixel light), so
+# both share the cache. The viewer's default is render's (per pixel), checked further down.
 set(as_viewer --display ratio --no-pixel-light)
 foreach(edit identity back_off left_off_right_double right_off_left_double colours)
   relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/${edit}.json" -o "${WORK}/${edit}_render.png"
           --cache "${cache}" ${as_viewer})
-  viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/${edit}.json" --screenshot "${WORK}/${edit}_viewer.png")
+  viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/${edit}.json" --display ratio
+         --screenshot "${WORK}/${edit}_viewer.png")
   expect("${o}" "wrote .*${edit}_viewer.png \\(320x240, float framebuffer" "screenshot ${edit}")
   same_within_one_step("${WORK}/${edit}_viewer.png" "${WORK}/${edit}_render.png" "edit ${edit}")
 endforeach()
@@ -29,14 +34,15 @@ endforeach()
 # Exposure is applied as render applies it (before the sRGB transfer function).
 relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/back_off.json" -o "${WORK}/exposed_render.png"
         --cache "${cache}" --exposure 1.5 ${as_viewer})
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --exposure 1.5
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --display ratio --exposure 1.5
        --screenshot "${WORK}/exposed_viewer.png")
 same_within_one_step("${WORK}/exposed_viewer.png" "${WORK}/exposed_render.png" "exposure 1.5")
 
 # A session by clicks: a lamp on the ceiling, a box on the floor dragged 60 pixels along it.
 set(saved "${WORK}/saved/session.json")
 file(MAKE_DIRECTORY "${WORK}/saved")
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --do light:200,20 --do box:90,200
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --display ratio --do light:200,20
+       --do box:90,200
        --do drag:90,195:150,210 --save-edit "${saved}" --screenshot "${WORK}/session_viewer.png")
 file(READ "${saved}" json)
 expect("${json}" "\"add_lights\"" "saved session")
@@ -49,16 +55,20 @@ relight(o 0 render "${SCENE}" --edit "${saved}" -o "${WORK}/session_render.png" 
 expect("${o}" "inserted object box1" "render of the saved session")
 same_within_one_step("${WORK}/session_viewer.png" "${WORK}/session_render.png" "saved session")
 
-# The per-pixel display (--display pixel: the direct light per pixel, drawn on the CPU) is
-# render's default display: a light edit, and a session by clicks (a lamp, a box dragged)
-# whose saved edit render draws with its virtual parts per pixel.
-relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/back_off.json" -o "${WORK}/pixel_render.png"
-        --cache "${WORK}/pixel.bin")
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --display pixel
-       --screenshot "${WORK}/pixel_viewer.png")
-same_within_one_step("${WORK}/pixel_viewer.png" "${WORK}/pixel_render.png" "per-pixel display")
+# The per-pixel display (the direct light per pixel, drawn on the CPU) is the viewer's
+# default, as it is render's: every light edit of the room, a session by clicks (a lamp
+# added, a box inserted and dragged) whose saved edit render draws with its virtual parts per
+# pixel, a removal, and a removal brought back (the photo's display again).
+foreach(edit identity back_off left_off_right_double right_off_left_double colours)
+  relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/${edit}.json"
+          -o "${WORK}/pixel_${edit}_render.png" --cache "${WORK}/pixel.bin")
+  viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/${edit}.json"
+         --screenshot "${WORK}/pixel_${edit}_viewer.png")
+  same_within_one_step("${WORK}/pixel_${edit}_viewer.png" "${WORK}/pixel_${edit}_render.png"
+                       "per-pixel display (default), edit ${edit}")
+endforeach()
 file(MAKE_DIRECTORY "${WORK}/pixel_saved")
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --display pixel --do light:200,20
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --do light:200,20
        --do box:90,200 --do drag:90,195:150,210 --save-edit "${WORK}/pixel_saved/session.json"
        --screenshot "${WORK}/pixel_session_viewer.png")
 relight(o 0 render "${SCENE}" --edit "${WORK}/pixel_saved/session.json"
@@ -69,7 +79,7 @@ same_within_one_step("${WORK}/pixel_session_viewer.png" "${WORK}/pixel_session_r
 # names it and renders to the screenshot, in the ratio display (the GPU's) and per pixel;
 # brought back from the panel, the photo's display again.
 file(MAKE_DIRECTORY "${WORK}/removal")
-viewer(o 0 "${SCENE}" --do remove:180,155 --save-edit "${WORK}/removal/edit.json"
+viewer(o 0 "${SCENE}" --display ratio --do remove:180,155 --save-edit "${WORK}/removal/edit.json"
        --screenshot "${WORK}/removal_viewer.png")
 file(READ "${WORK}/removal/edit.json" json)
 expect("${json}" "\"remove_objects\": \\[[^]]*\"table\"" "saved removal")
@@ -77,33 +87,38 @@ relight(o 0 render "${SCENE}" --edit "${WORK}/removal/edit.json" -o "${WORK}/rem
         --cache "${cache}" ${as_viewer})
 expect("${o}" "removed object table: [0-9]+ links cut, [0-9]+ pixels filled" "render of the removal")
 same_within_one_step("${WORK}/removal_viewer.png" "${WORK}/removal_render.png" "removal")
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/remove_table.json" --display pixel
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/remove_table.json"
        --screenshot "${WORK}/pixel_removal_viewer.png")
 relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/remove_table.json"
         -o "${WORK}/pixel_removal_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_removal_viewer.png" "${WORK}/pixel_removal_render.png"
                      "per-pixel display, removal")
-viewer(o 0 "${SCENE}" --do remove:180,155 --do restore:table --screenshot "${WORK}/restored.png")
+viewer(o 0 "${SCENE}" --do remove:180,155 --do restore:table
+       --screenshot "${WORK}/pixel_restored.png")
+same_within_one_step("${WORK}/pixel_restored.png" "${WORK}/pixel_identity_render.png"
+                     "per-pixel display, table brought back")
+viewer(o 0 "${SCENE}" --display ratio --do remove:180,155 --do restore:table
+       --screenshot "${WORK}/restored.png")
 same_within_one_step("${WORK}/restored.png" "${WORK}/identity_render.png" "table brought back")
 # The cabinet against two walls (issue 34): its first frame in the viewer (per pixel) is
 # render's; removed by a click and brought back, the viewer's photo display bit for bit.
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/remove_cabinet.json" --display pixel
+viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/remove_cabinet.json"
        --screenshot "${WORK}/pixel_cabinet_viewer.png")
 relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/remove_cabinet.json"
         -o "${WORK}/pixel_cabinet_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_cabinet_viewer.png" "${WORK}/pixel_cabinet_render.png"
                      "per-pixel display, cabinet removed")
-viewer(o 0 "${SCENE}" --screenshot "${WORK}/photo_viewer.png")
-viewer(o 0 "${SCENE}" --do remove:118,140 --do restore:cabinet
+viewer(o 0 "${SCENE}" --display ratio --screenshot "${WORK}/photo_viewer.png")
+viewer(o 0 "${SCENE}" --display ratio --do remove:118,140 --do restore:cabinet
        --screenshot "${WORK}/cabinet_restored.png")
 execute_process(COMMAND "${IDIFF}" -fail 0 -failpercent 0 "${WORK}/cabinet_restored.png"
                 "${WORK}/photo_viewer.png" OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "cabinet brought back: not the photo's display bit for bit\n${o}${e}")
 endif()
-viewer(o 2 "${SCENE}" --do remove:250,60 --screenshot "${WORK}/never.png")
+viewer(o 2 "${SCENE}" --display ratio --do remove:250,60 --screenshot "${WORK}/never.png")
 expect("${o}" "remove:250,60: no removable real object at that pixel" "removal of a wall")
-viewer(o 2 "${SCENE}" --do restore:table --screenshot "${WORK}/never.png")
+viewer(o 2 "${SCENE}" --display ratio --do restore:table --screenshot "${WORK}/never.png")
 expect("${o}" "\"table\" is not taken out" "restoring what is there")
 viewer(o 2 "${SCENE}" --display vertex --screenshot "${WORK}/never.png")
 expect("${o}" "--display" "a display that does not exist")
@@ -112,7 +127,7 @@ expect("${o}" "--display" "a display that does not exist")
 # scene.json as the format's quad lights, their radiance estimated from the photo; the
 # scene then renders with them.
 copy_room("${WORK}/lamps")
-viewer(o 0 "${WORK}/lamps" --epsilon 1e-3 --spp 2 --do lamp:160,20:0.3,0.2 --do lamp:60,120
+viewer(o 0 "${WORK}/lamps" --display ratio --epsilon 1e-3 --spp 2 --do lamp:160,20:0.3,0.2 --do lamp:60,120
        --save-lamps --screenshot "${WORK}/lamps.png")
 expect("${o}" "added 2 lamps to [^\n]*lamps/scene.json" "lamps saved")
 file(READ "${WORK}/lamps/scene.json" json)
@@ -126,7 +141,7 @@ if(NOT count EQUAL 6 OR NOT name STREQUAL "L1" OR NOT radiance STREQUAL "estimat
 endif()
 relight(o 0 render "${WORK}/lamps" --epsilon 1e-3 --spp 2 --no-cache -o "${WORK}/lamps_render.png")
 expect("${o}" "light \"L1\": [^\n]* from [0-9]+ photo pixels on its face" "render with the lamps")
-viewer(o 2 "${SCENE}" --do lamp:160,20:0,1 --screenshot "${WORK}/never.png")
+viewer(o 2 "${SCENE}" --display ratio --do lamp:160,20:0,1 --screenshot "${WORK}/never.png")
 expect("${o}" "--do lamp:160,20:0,1: the size must be positive" "a lamp of no size")
 
 # The window itself, panel included.

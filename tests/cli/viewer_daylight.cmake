@@ -44,7 +44,7 @@ scores_within("${WORK}/sun_render.exr" sun_moved 0.03 "sun turned, saved and ren
 set(as_viewer --display ratio --no-pixel-light)
 set(cache "${WORK}/ratio.bin")
 function(session name)
-  viewer(o 0 "${SCENE}" ${ARGN} --save-edit "${WORK}/${name}.json"
+  viewer(o 0 "${SCENE}" --display ratio ${ARGN} --save-edit "${WORK}/${name}.json"
          --screenshot "${WORK}/${name}_viewer.png")
   relight(o 0 render "${SCENE}" --edit "${WORK}/${name}.json" -o "${WORK}/${name}_render.png"
           --cache "${cache}" ${as_viewer})
@@ -67,9 +67,9 @@ foreach(edit evening night_lamp)
 endforeach()
 
 # A control the light lacks: refused, naming the action, nothing written.
-viewer(o 2 "${SCENE}" --do rotate:sun:0,0,1:90 --screenshot "${WORK}/never.png")
+viewer(o 2 "${SCENE}" --display ratio --do rotate:sun:0,0,1:90 --screenshot "${WORK}/never.png")
 expect("${o}" "rotate:sun:0,0,1:90.*has no[ \n]+rotate" "a sun turned like a sky")
-viewer(o 2 "${SCENE}" --do sh9:sky:9:0,0,0 --screenshot "${WORK}/never.png")
+viewer(o 2 "${SCENE}" --display ratio --do sh9:sky:9:0,0,0 --screenshot "${WORK}/never.png")
 expect("${o}" "K must be 0 to 8" "a tenth coefficient")
 if(EXISTS "${WORK}/never.png")
   message(FATAL_ERROR "a refused action wrote a screenshot")
