@@ -26,12 +26,30 @@ function(viewer out expected_rc)
   set(${out} "${o}" PARENT_SCOPE)
 endfunction()
 
+# idiff fails on any pixel further apart than `limit` (0: any difference at all).
+function(same_within a b limit what)
+  execute_process(COMMAND "${IDIFF}" -fail ${limit} -failpercent 0 "${a}" "${b}"
+                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what}: ${a} and ${b} differ by more than ${limit}\n${o}${e}")
+  endif()
+endfunction()
+
 # One 8-bit step is 1/255 = 0.00392: idiff fails on any pixel further apart than 0.004. The
 # screenshot is the display's 8-bit output, so that is as close as two displays can agree.
 function(same_within_one_step a b what)
-  execute_process(COMMAND "${IDIFF}" -fail 0.004 -failpercent 0 "${a}" "${b}"
-                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${what}: ${a} and ${b} differ by more than one 8-bit step\n${o}${e}")
+  same_within("${a}" "${b}" 0.004 "${what}: more than one 8-bit step")
+endfunction()
+
+# rel_rmse of `image` against truth/`edit` must be at most `bound`.
+function(scores_within image edit bound what)
+  relight(o 0 eval "${SCENE}" ${edit} "${image}")
+  if(NOT o MATCHES "rel_rmse ([0-9.]+)")
+    message(FATAL_ERROR "${what}: no rel_rmse in\n${o}")
   endif()
+  set(score ${CMAKE_MATCH_1})
+  if(score GREATER ${bound})
+    message(FATAL_ERROR "${what}: rel_rmse ${score} > ${bound}\n${o}")
+  endif()
+  message(STATUS "${what}: rel_rmse ${score} (bound ${bound})")
 endfunction()

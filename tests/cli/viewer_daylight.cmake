@@ -10,18 +10,6 @@
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=<data/courtyard> -DWORK=...
 include(${CMAKE_CURRENT_LIST_DIR}/viewer_common.cmake)
 
-# rel_rmse of `image` against truth/`edit` must be at most `bound`.
-function(scores_within image edit bound what)
-  relight(o 0 eval "${SCENE}" ${edit} "${image}")
-  if(NOT o MATCHES "rel_rmse ([0-9.]+)")
-    message(FATAL_ERROR "${what}: no rel_rmse in\n${o}")
-  endif()
-  set(score ${CMAKE_MATCH_1})
-  if(score GREATER ${bound})
-    message(FATAL_ERROR "${what}: rel_rmse ${score} > ${bound}\n${o}")
-  endif()
-  message(STATUS "${what}: rel_rmse ${score} (bound ${bound})")
-endfunction()
 
 # The sun turned by the sliders to edits/sun_moved.json's direction (0.453154, -0.784886,
 # 0.422618): azimuth atan2(y, x) = -60 degrees, elevation asin(z) = 25 degrees. Per pixel.

@@ -8,46 +8,7 @@
 #  - both taken out and brought back, the screenshot is the photo-only frame bit for bit
 #    (idiff -fail 0 on float EXRs), per pixel and in the ratio display (the GPU's).
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=<data/furnished> -DWORK=...
-include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
-foreach(var VIEWER XVFB_RUN)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "define ${var}")
-  endif()
-endforeach()
-set(viewer_cmd "${VIEWER}")
-if(VIEWER_PRELOAD)
-  set(viewer_cmd env "LD_PRELOAD=${VIEWER_PRELOAD}" "${VIEWER}")
-endif()
-find_program(IDIFF idiff REQUIRED)
-file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}")
-
-function(viewer out expected_rc)
-  run_checked(o ${expected_rc} "${XVFB_RUN}" -a -f "${WORK}/Xauthority" -s "-screen 0 1280x1024x24"
-              ${viewer_cmd} ${ARGN})
-  set(${out} "${o}" PARENT_SCOPE)
-endfunction()
-
-# idiff fails on any pixel further apart than `limit` (0: any difference at all).
-function(same_within a b limit what)
-  execute_process(COMMAND "${IDIFF}" -fail ${limit} -failpercent 0 "${a}" "${b}"
-                  OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${what}: ${a} and ${b} differ by more than ${limit}\n${o}${e}")
-  endif()
-endfunction()
-
-function(scores_within image edit bound what)
-  relight(o 0 eval "${SCENE}" ${edit} "${image}")
-  if(NOT o MATCHES "rel_rmse ([0-9.]+)")
-    message(FATAL_ERROR "${what}: no rel_rmse in\n${o}")
-  endif()
-  set(score ${CMAKE_MATCH_1})
-  if(score GREATER ${bound})
-    message(FATAL_ERROR "${what}: rel_rmse ${score} > ${bound}\n${o}")
-  endif()
-  message(STATUS "${what}: rel_rmse ${score} (bound ${bound})")
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/viewer_common.cmake)
 
 # Clicks on the objects in the 320x240 photo: the bookshelf's books at (50, 120), the
 # cabinet's front at (258, 140).
