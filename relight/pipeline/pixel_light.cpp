@@ -244,17 +244,10 @@ namespace {
 /// PhotoPixels::indirect at pixel px, as renderPixelLight() interpolates it.
 void derivePixelIndirect(const DisplayMap& map, size_t px, std::span<const Rgb> indirect, size_t L,
                          PhotoPixels& out) {
-    const int k0 = map.start[px], k1 = map.start[px + 1];
-    double wsum = 0;
-    for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
-    for (size_t l = 0; l < L; ++l) {
-        Rgb ind;
-        for (int k = k0; k < k1; ++k)
-            ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
-                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+    pixelIndirectParts(map, px, indirect, L, [&](size_t l, const Rgb& ind) {
         for (int c = 0; c < 3; ++c)
             out.indirect[(px * L + l) * 3 + static_cast<size_t>(c)] = static_cast<float>(ind[c]);
-    }
+    });
 }
 
 }  // namespace

@@ -47,6 +47,24 @@ std::vector<float> measurePixelDirect(const ItemBuffer& items,
 std::vector<radiosity::Rgb> vertexIndirect(const VertexLighting& lighting,
                                            const VertexDirect& direct);
 
+/// The indirect part of each light's response at pixel px, interpolated over the pixel's
+/// vertices with the display map's weights (normalised by their sum), as renderPixelLight()
+/// interpolates it: calls part(l, value) for l = 0..L-1. `indirect` is [vertex * L + l].
+template <class Part>
+void pixelIndirectParts(const DisplayMap& map, size_t px, std::span<const radiosity::Rgb> indirect,
+                        size_t L, const Part& part) {
+    const int k0 = map.start[px], k1 = map.start[px + 1];
+    double wsum = 0;
+    for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+    for (size_t l = 0; l < L; ++l) {
+        radiosity::Rgb ind;
+        for (int k = k0; k < k1; ++k)
+            ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
+                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+        part(l, ind);
+    }
+}
+
 /// Whether the per-pixel display draws pixel px: no sample on a lamp's face, none that sees
 /// nothing, at least one leaf vertex. The others keep the ratio display's value.
 inline bool shownPerPixel(const DisplayMap& map, size_t px) {

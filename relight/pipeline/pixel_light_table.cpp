@@ -20,16 +20,9 @@ constexpr size_t kChunk = 512;
 /// interpolated with the display map's weights, as renderPixelLight() sums them.
 void pixelResponses(const DisplayMap& map, size_t px, std::span<const float> pixelDirect,
                     std::span<const Rgb> indirect, size_t L, std::vector<Rgb>& h) {
-    const int k0 = map.start[px], k1 = map.start[px + 1];
-    double wsum = 0;
-    for (int k = k0; k < k1; ++k) wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
-    for (size_t l = 0; l < L; ++l) {
-        Rgb ind;
-        for (int k = k0; k < k1; ++k)
-            ind += indirect[static_cast<size_t>(map.vertex[static_cast<size_t>(k)]) * L + l] *
-                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+    pixelIndirectParts(map, px, indirect, L, [&](size_t l, const Rgb& ind) {
         h[l] = Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind;
-    }
+    });
 }
 
 /// The pixels the per-pixel display does not draw and the vertices they read.

@@ -30,14 +30,9 @@ namespace {
 
 const std::string kRoom = RELIGHT_DATA_DIR "/room";
 
-/// The room prepared once with the tests' coarse settings and the direct light per pixel.
+/// The room prepared with per-pixel light, shared by the test files (room_fixture.h).
 const Relighting& pixelRoom() {
-    static const auto r = [] {
-        RelightOptions o = test::coarseOptions();
-        o.pixelLight = true;
-        return prepareRelighting(loadScene(kRoom), o);
-    }();
-    return *r;
+    return test::coarsePixelRoom();
 }
 
 }  // namespace

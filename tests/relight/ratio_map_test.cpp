@@ -23,13 +23,9 @@ namespace {
 
 const std::string kRoom = RELIGHT_DATA_DIR "/room";
 
+/// The room prepared with per-pixel light, shared by the test files (room_fixture.h).
 const Relighting& pixelRoom() {
-    static const auto r = [] {
-        RelightOptions o = test::coarseOptions();
-        o.pixelLight = true;
-        return prepareRelighting(loadScene(kRoom), o);
-    }();
-    return *r;
+    return test::coarsePixelRoom();
 }
 
 /// sum_l L_l pi Gbar_l(p) + delta in channel c: the direct irradiance the ratio map divides.

@@ -28,6 +28,17 @@ inline const Relighting& coarseRoom() {
     return *r;
 }
 
+/// The room prepared once per test program with coarseOptions() and the direct light per
+/// pixel (RelightOptions::pixelLight), as render's default display needs.
+inline const Relighting& coarsePixelRoom() {
+    static const auto r = [] {
+        RelightOptions o = coarseOptions();
+        o.pixelLight = true;
+        return prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
+    }();
+    return *r;
+}
+
 /// The spec's score (relight/display/metric.h) of `image`, relit for the edit `edit` of the
 /// scene in `dir`, against its path-traced truth, with the truth's and the photo's masks.
 inline Score scoreAgainstTruth(const std::string& dir, const std::string& edit, const Image& image,
