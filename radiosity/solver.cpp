@@ -189,7 +189,9 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
         if (needsVisibility(l)) pending.push_back(links_.size());
         links_.push_back(l);
     };
+    lastClock_ = {};
     while (!queue.empty()) {
+        ++pops_;
         std::pop_heap(queue.begin(), queue.end(), lower);
         Link link = queue.back().link;
         queue.pop_back();
@@ -200,7 +202,7 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
             accept(link);
             continue;
         }
-        if (!forced && (!withinBudget(queue.size()) || outOfTime(queue.size() + pending.size()))) {
+        if (!forced && (!withinBudget(queue.size()) || outOfTime(queue.size(), pending.size()))) {
             // Out of budget: keep the link as it is; what is still queued has a smaller
             // oracle value.
             budgetReached_ = true;
@@ -249,17 +251,29 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
     evaluateVisibility(pending);
 }
 
-bool HierarchicalSolver::outOfTime(size_t queued) {
+bool HierarchicalSolver::outOfTime(size_t queued, size_t pending) {
     // Only solve() sets a deadline: dynamic updates refine their own links in full, also
     // after a preparation whose refinement ran out of time.
     if (refineDeadline_ == Clock::time_point::max()) return false;
     if (timeBudgetReached_) return true;
     if (clockCalls_++ % kClockStride != 0) return false;
     const auto now = Clock::now();
+    // What a queued link costs once the time is out: it is popped and judged by the oracle
+    // once more, then accepted, and its visibility evaluated. The pops' cost is measured
+    // here, over the kClockStride pops since the last reading (those that split do more
+    // than a drain's pops: the estimate errs on the early side). Not across calls of
+    // refineLinks: the time between them is spent elsewhere.
+    if (lastClock_ != Clock::time_point{} && pops_ > lastPops_)
+        secondsPerPop_ = std::chrono::duration<double>(now - lastClock_).count() /
+                         static_cast<double>(pops_ - lastPops_);
+    lastClock_ = now;
+    lastPops_ = pops_;
     // What is queued or accepted still needs its visibility: stop while there is time for
     // it (a real stair hall's second round queued 37 M links in a minute).
+    const double owedSeconds = static_cast<double>(queued) * (secondsPerPop_ + secondsPerLink_) +
+                               static_cast<double>(pending) * secondsPerLink_;
     const auto owed = std::chrono::duration_cast<Clock::duration>(
-        std::chrono::duration<double>(static_cast<double>(queued) * secondsPerLink_));
+        std::chrono::duration<double>(owedSeconds));
     if (now + owed >= refineDeadline_) {
         timeBudgetReached_ = true;
         report("time budget of the refinement reached: " + std::to_string(links_.size()) +
@@ -500,11 +514,12 @@ void HierarchicalSolver::solve() {
     const auto start = Clock::now();
     lastProgress_ = start;
     // A later solve() (the reflectance rounds) refines nothing more once the time is out.
+    Clock::time_point deadline = options_.refineUntil;
     if (options_.refineSeconds > 0)
-        refineDeadline_ = timeBudgetReached_
-                              ? start
-                              : start + std::chrono::duration_cast<Clock::duration>(
-                                            std::chrono::duration<double>(options_.refineSeconds));
+        deadline = std::min(deadline, start + std::chrono::duration_cast<Clock::duration>(
+                                                  std::chrono::duration<double>(
+                                                      options_.refineSeconds)));
+    if (deadline != Clock::time_point::max()) refineDeadline_ = timeBudgetReached_ ? start : deadline;
     for (int round = 0; round < options_.maxRefineRounds; ++round) {
         auto t0 = Clock::now();
         const size_t refined = refineAll();

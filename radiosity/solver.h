@@ -126,6 +126,10 @@ struct SolverOptions {
     /// (the largest oracle values were refined first), no later round refines, and the
     /// links from lights still go down to the leaves (the method needs them there).
     double refineSeconds = 0;
+    /// The same as a time point (a command's TimeBudget, radiosity/stopwatch.h): no
+    /// refinement goes on past it, whichever of the two comes first. The largest time
+    /// point: none.
+    Clock::time_point refineUntil = Clock::time_point::max();
     double minArea = 0;
     double tolerance = 1e-4;
     int maxSweeps = 2000;     ///< gather/push-pull sweeps per solve, a safety bound
@@ -572,14 +576,19 @@ class HierarchicalSolver {
     /// The end of solve()'s time budget (SolverOptions::refineSeconds); the largest time
     /// point outside solve() and without a budget.
     Clock::time_point refineDeadline_ = Clock::time_point::max();
-    /// Whether the refinement's time is up, with `queued` links (queued or accepted) still
-    /// to have their visibility evaluated (reads the clock every kClockStride calls);
-    /// reports progress every kProgressSeconds while refining.
-    bool outOfTime(size_t queued);
+    /// Whether the refinement's time is up, with `queued` links still to be popped and
+    /// `pending` accepted links still to have their visibility evaluated (reads the clock
+    /// every kClockStride calls); reports progress every kProgressSeconds while refining.
+    bool outOfTime(size_t queued, size_t pending);
     static constexpr int kClockStride = 1024;
     /// Seconds a link's visibility takes, measured on batches of at least kLinksTimed
     /// links; before that, 5 microseconds (a 2-core laptop on a 10^5-triangle room).
     double secondsPerLink_ = 5e-6;
+    /// Seconds a pop of the refinement's queue takes (the oracle, the heap), measured
+    /// between clock readings; before that, 1 microsecond.
+    double secondsPerPop_ = 1e-6;
+    Clock::time_point lastClock_{};  ///< the last reading in this refineLinks() ({}: none)
+    size_t pops_ = 0, lastPops_ = 0;  ///< pops of the queue, all and at lastClock_
     static constexpr size_t kLinksTimed = 10000;
     static constexpr double kProgressSeconds = 10;
     size_t clockCalls_ = 0;

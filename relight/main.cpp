@@ -33,10 +33,10 @@ namespace {
 /// The budget options, the same for `solve`, `prepare` and `render`.
 void addBudgetOptions(CLI::App* app, size_t& maxLinks, double& maxMemoryMB, double& timeBudget) {
     app->add_option("--time-budget", timeBudget,
-                    "seconds the preparation may take (the default suits a 2-core laptop), "
-                    "split over its phases: the refinement stops at half of it, its largest "
-                    "errors refined first; the reflectance rounds at 15 %, after a complete "
-                    "round (0: no limit)")
+                    "seconds the solution may take from the command's start (the default "
+                    "suits a 2-core laptop), split over its phases: the refinement stops when "
+                    "half of it has passed, its largest errors refined first; the reflectance "
+                    "rounds at 65 %, after a complete round (0: no limit)")
         ->capture_default_str()
         ->check(finiteNumber(Sign::kNonNegative));
     app->add_option("--max-links", maxLinks,

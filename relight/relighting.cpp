@@ -147,7 +147,7 @@ void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     so.darkFloor = o.darkFloor;
     so.maxLinks = o.maxLinks;
     so.maxMemory = o.maxMemory;
-    so.refineSeconds = o.timeBudget * RelightOptions::kRefineShare;
+    so.refineUntil = r.budget.until(RelightOptions::kRefineShare);
     so.transfer.minRays = o.minRays;
     so.transfer.maxRays = o.maxRays;
     so.progress = o.progress;
@@ -214,7 +214,7 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
     if (const auto st = r.solver->stats(); st.timeBudgetReached) {
         char msg[200];
         std::snprintf(msg, sizeof msg,
-                      "warning: the refinement's time budget (%g s, half of --time-budget) was "
+                      "warning: the refinement's time budget (until %g s, half of --time-budget) was "
                       "reached at %d links: the solution is coarser where the oracle's error "
                       "was smallest",
                       o.timeBudget * RelightOptions::kRefineShare, st.links);
@@ -230,7 +230,7 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
         computeLightingBuffer(r.items, *r.solver, directLightOptions(o), r.sampling.stride);
     const ReflectanceReport rep = estimatePolygonReflectance(
         *r.solver, r.scene, r.items, lighting, P.photo, o.reflectanceRounds, 16, 1e-3,
-        o.timeBudget * RelightOptions::kReflectanceShare);
+        r.budget.secondsUntil(RelightOptions::kRefineShare + RelightOptions::kReflectanceShare));
     r.surface = rep.surface;
     r.reflectanceRounds = rep.rounds;
     r.reflectanceBudgetReached = rep.budgetReached;
@@ -440,6 +440,7 @@ void mapDisplay(Relighting& r, const RelightOptions& o) {
 
 std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& o) {
     auto r = std::make_unique<Relighting>();
+    r->budget = {Clock::now(), o.timeBudget};
     r->scene = std::move(scene);
     r->directOptions = directLightOptions(o);
     checkEstimableLights(r->scene);  // before the long work: an "estimate" light off in the photo

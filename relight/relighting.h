@@ -63,14 +63,18 @@ struct RelightOptions {
     double darkFloor = 0.1;
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
-    /// Time budget of the preparation, seconds (0: none), split over its phases: the
-    /// solver's refinement may take kRefineShare of it (SolverOptions::refineSeconds),
-    /// refining the links of largest error first; the reflectance rounds kReflectanceShare
-    /// (estimatePolygonReflectance: fewer complete rounds when it is spent). The phases
-    /// after them are linear in the leaves and the display's vertices and run to their end.
+    /// Time budget of the preparation, seconds (0: none), counted from its start
+    /// (radiosity::TimeBudget) and split over its phases: the solver's refinement ends when
+    /// kRefineShare of it has passed (SolverOptions::refineUntil), having refined the links
+    /// of largest error first; the reflectance rounds when kRefineShare + kReflectanceShare
+    /// has (estimatePolygonReflectance: fewer complete rounds). The phases after them are
+    /// linear in the leaves and the display's vertices and run to their end.
     /// The default suits a 2-core laptop: the bundled scenes prepare in a few seconds, far
     /// inside it; a 10^5-10^6-triangle room ends its refinement within half a minute.
     double timeBudget = 60;
+    /// `relight solve`'s default: the solve is the first look at a scene and the radiosity
+    /// part of a preparation (its refinement and reflectance rounds, 65 % of the above).
+    static constexpr double kSolveTimeBudget = 30;
     static constexpr double kRefineShare = 0.5;
     static constexpr double kReflectanceShare = 0.15;
     int spp = 16;  ///< item-buffer samples per pixel, at most (sampleBudget)
@@ -147,6 +151,8 @@ struct Relighting {
     /// The reflectance rounds done, and whether their share of the time budget stopped them.
     int reflectanceRounds = 0;
     bool reflectanceBudgetReached = false;
+    /// RelightOptions::timeBudget, from prepareRelighting's start.
+    radiosity::TimeBudget budget;
     ShadowRefinementReport refinement;
     VertexDirect direct;    ///< direct light per vertex and light, with and without blockers
     ShadowRemoval removal;  ///< empty when options.shadowRemoval is off

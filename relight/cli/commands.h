@@ -21,8 +21,10 @@ struct SolveArgs {
     double minArea = 0;
     size_t maxLinks = 0;     ///< refinement budget in links (0: from the memory budget)
     double maxMemoryMB = 0;  ///< refinement budget in MiB (0: 40 % of the machine's memory)
-    /// Seconds the refinement may take (0: none); the preparation's default share.
-    double timeBudget = RelightOptions{}.timeBudget;
+    /// Seconds the whole solve may take, from its start (0: none), split as the
+    /// preparation's: half of the preparation's default, since a solve is the first look at
+    /// a scene and the radiosity part of a preparation (RelightOptions::kSolveTimeBudget).
+    double timeBudget = RelightOptions::kSolveTimeBudget;
     int minRays = radiosity::kDefaultMinRays, maxRays = radiosity::kDefaultMaxRays;
     int spp = 16;
     int reflectanceRounds = 12;

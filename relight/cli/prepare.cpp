@@ -116,9 +116,10 @@ int runPrepare(const PrepareArgs& a) {
                                         : "");
     if (p.budgetReached & 4)
         std::printf(
-            "time budget: the reflectance rounds stopped at their share (%.0f %% of "
-            "--time-budget %g s), after a complete round\n",
-            100 * RelightOptions::kReflectanceShare, o.timeBudget);
+            "time budget: the reflectance rounds stopped before %.0f %% of --time-budget "
+            "%g s had passed, after a complete round\n",
+            100 * (RelightOptions::kRefineShare + RelightOptions::kReflectanceShare),
+            o.timeBudget);
     if (s.written)
         std::printf("time: prepare %.3f s (%s)\n", s.seconds, stepTimes(p.times).c_str());
     else

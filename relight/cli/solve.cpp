@@ -22,13 +22,13 @@ namespace relight::cli {
 
 namespace {
 
-radiosity::SolverOptions solverOptions(const SolveArgs& a) {
+radiosity::SolverOptions solverOptions(const SolveArgs& a, const radiosity::TimeBudget& budget) {
     radiosity::SolverOptions o;
     o.epsilon = a.epsilon;
     o.minArea = a.minArea;
     o.maxLinks = a.maxLinks;
     o.maxMemory = static_cast<size_t>(a.maxMemoryMB * 1048576.0);
-    o.refineSeconds = a.timeBudget * RelightOptions::kRefineShare;
+    o.refineUntil = budget.until(RelightOptions::kRefineShare);
     o.transfer.minRays = a.minRays;
     o.transfer.maxRays = a.maxRays;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
@@ -110,7 +110,8 @@ struct ReflectanceEstimate {
 /// Solves; with --photo-reflectance (the default) and a photo, then estimates the polygons'
 /// reflectance from it, solving again in rounds.
 ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
-                               radiosity::HierarchicalSolver& solver, CameraSamples& camera) {
+                               radiosity::HierarchicalSolver& solver, CameraSamples& camera,
+                               const radiosity::TimeBudget& budget) {
     if (!a.photoReflectance || sf.photos.empty()) {
         solver.solve();
         return {};
@@ -125,7 +126,8 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
                  a.reflectanceRounds);
     auto rep =
         estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds, 16,
-                                   1e-3, a.timeBudget * RelightOptions::kReflectanceShare);
+                                   1e-3, budget.secondsUntil(RelightOptions::kRefineShare +
+                                                             RelightOptions::kReflectanceShare));
     std::fprintf(stderr, "  %d reflectance round(s)%s\n", rep.rounds,
                  rep.budgetReached ? ": their share of --time-budget was spent, stopped after "
                                      "a complete round"
@@ -225,8 +227,11 @@ nlohmann::json solveReport(const SolveArgs& a, const radiosity::HierarchicalSolv
              {{"reached", st.budgetReached},
               {"time_budget_reached", st.timeBudgetReached},
               {"time_budget_s", a.timeBudget},
-              {"refine_seconds_allowed", a.timeBudget * RelightOptions::kRefineShare},
-              {"reflectance_seconds_allowed", a.timeBudget * RelightOptions::kReflectanceShare},
+              // Counted from the command's start: the refinement ends at this many
+              // seconds, the reflectance rounds at the second.
+              {"refine_ends_at_s", a.timeBudget * RelightOptions::kRefineShare},
+              {"reflectance_ends_at_s",
+               a.timeBudget * (RelightOptions::kRefineShare + RelightOptions::kReflectanceShare)},
               {"max_links", st.maxLinks},
               {"max_memory_bytes", st.maxMemory},
               {"memory_bytes", st.memoryBytes}}},
@@ -244,18 +249,20 @@ nlohmann::json solveReport(const SolveArgs& a, const radiosity::HierarchicalSolv
 
 int runSolve(const SolveArgs& a) {
     const auto tAll = Clock::now();
+    // Counted from here: the loading of a large mesh is part of what the user waits for.
+    const radiosity::TimeBudget budget{tAll, a.timeBudget};
     SceneFile sf = loadScene(a.scene);
     for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::fprintf(stderr, "relight solve %s: %zu polygons, %zu lights, epsilon %g\n",
                  a.scene.c_str(), sf.scene.polygons.size(), sf.scene.lights.size(), a.epsilon);
-    radiosity::HierarchicalSolver solver(sf.scene, solverOptions(a));
+    radiosity::HierarchicalSolver solver(sf.scene, solverOptions(a, budget));
     for (const auto& w : lightReachWarnings(sf, solver.scene(), solver.visibility()))
         std::fprintf(stderr, "warning: %s\n", w.c_str());
     CameraSamples camera(a, sf, solver);
     if (std::find(sf.estimateRadiance.begin(), sf.estimateRadiance.end(), true) !=
         sf.estimateRadiance.end())
         estimateLightRadiances(sf, solver, camera);
-    const ReflectanceEstimate reflectance = solveScene(a, sf, solver, camera);
+    const ReflectanceEstimate reflectance = solveScene(a, sf, solver, camera, budget);
     const radiosity::SolverStats st = solver.stats();
     printStats(st);
     if (!a.output.empty()) writeRadiosityImage(a, solver, camera);

@@ -13,6 +13,7 @@
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/parallel.h"
 #include "radiosity/shared_gather.h"
+#include "radiosity/stopwatch.h"
 #include "relight/pipeline/leaf_texture.h"
 
 namespace relight {
@@ -262,7 +263,7 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
                                              const LightingBuffer& lighting, const Image& photo,
                                              int rounds, int minSamples, double tolerance,
                                              double seconds) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = radiosity::Clock::now();
     ReflectanceReport report;
     const radiosity::Scene& scene = solver.scene();
     PhotoSums sums = sumPhotoSamples(scene, items, lighting, photo);
@@ -271,6 +272,7 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
     const std::vector<int>& surface = report.surface;
     // The gather points' terms, once: between rounds only the radiosities change.
     const GatherTerms terms = gatherTerms(solver, sums, lighting);
+    double spentBefore = radiosity::secondsSince(start);  // at the start of a round
     for (int round = 0; round < rounds; ++round) {
         RoundEstimates e =
             estimateFromSums(scene, surface, sums, sumIrradiance(solver, sums, terms), minSamples);
@@ -283,9 +285,12 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         report.rounds = round + 1;
         if (round > 0 && report.lastChange < tolerance) break;
         // The budget is checked between rounds only, so the solution is always that of
-        // complete rounds (consistent reflectances and radiosities), never half a round.
-        const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
-        if (seconds > 0 && spent.count() >= seconds && round + 1 < rounds) {
+        // complete rounds (consistent reflectances and radiosities), never half a round:
+        // the next round is begun only when a round as long as this one fits.
+        const double spent = radiosity::secondsSince(start);
+        const double thisRound = spent - spentBefore;
+        spentBefore = spent;
+        if (seconds > 0 && spent + thisRound > seconds && round + 1 < rounds) {
             report.budgetReached = true;
             break;
         }

@@ -81,8 +81,9 @@ struct ReflectanceReport {
 /// over its surface (the polygons joined by shared corners within 25 degrees: a wall that
 /// a reconstruction cut into small triangles) when that has enough.
 /// `seconds` > 0 is a time budget for the rounds, from the call: a round is never cut in
-/// the middle (it sets every polygon's reflectance, then solves); once the budget is spent
-/// after a round, no later round starts (at least one always runs), and the report says so.
+/// the middle (it sets every polygon's reflectance, then solves); a round starts only when
+/// one as long as the last fits in what is left (at least one always runs), and the report
+/// says when one did not.
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const LightingBuffer& lighting, const Image& photo,

@@ -1,4 +1,5 @@
-// The refinement's time budget (SolverOptions::refineSeconds, solver.h).
+// The refinement's time budget (SolverOptions::refineSeconds and refineUntil, solver.h), and
+// a command's (TimeBudget, stopwatch.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -83,4 +84,42 @@ TEST(TimeBudget, ObjectsInsertedAfterwardsAreRefinedInFull) {
                 a.linksNew, b.linksNew);
     EXPECT_NEAR(static_cast<double>(b.linksNew), static_cast<double>(a.linksNew),
                 0.25 * a.linksNew);
+}
+
+TEST(TimeBudget, ItsPhasesEndAtSharesCountedFromTheStart) {
+    // radiosity::TimeBudget (stopwatch.h): no budget gives "no limit" (0 seconds, the
+    // largest time point), as the options it feeds read them; a share already past gives the
+    // smallest positive limit, never 0 (which would read as no limit); otherwise the time
+    // left is the share's seconds less what has passed, to the clock's resolution (the
+    // tolerance, 1 s, is far above the microseconds between the two readings).
+    const TimeBudget none{Clock::now(), 0};
+    EXPECT_EQ(none.secondsUntil(0.5), 0);
+    EXPECT_EQ(none.until(0.5), Clock::time_point::max());
+    const TimeBudget fresh{Clock::now(), 10};
+    EXPECT_NEAR(fresh.secondsUntil(0.5), 5, 1);
+    EXPECT_LE(fresh.secondsUntil(0.5), 5);
+    EXPECT_NEAR(std::chrono::duration<double>(fresh.until(0.65) - fresh.start).count(), 6.5,
+                1e-6);
+    const TimeBudget spent{Clock::now() - std::chrono::seconds(100), 10};
+    EXPECT_EQ(spent.secondsUntil(0.5), TimeBudget::kSpentSeconds);
+    EXPECT_LT(spent.until(1.0), Clock::now());
+}
+
+TEST(TimeBudget, ADeadlineAlreadyPastStopsTheRefinementAsNoTimeDoes) {
+    // SolverOptions::refineUntil, a command's budget counted from its start: when the loading
+    // took all of the refinement's share, the refinement stops at its first reading of the
+    // clock, exactly as with no time at all (refineSeconds 1e-9): the same links.
+    const Scene room = test::cutRoom(8, 0.5);
+    SolverOptions o;
+    o.epsilon = 1e-5;
+    o.refineSeconds = 1e-9;
+    HierarchicalSolver a(room, o);
+    a.solve();
+    o.refineSeconds = 0;
+    o.refineUntil = Clock::now() - std::chrono::seconds(1);
+    HierarchicalSolver b(room, o);
+    b.solve();
+    EXPECT_TRUE(b.stats().timeBudgetReached);
+    EXPECT_EQ(a.stats().links, b.stats().links);
+    EXPECT_EQ(a.stats().leaves, b.stats().leaves);
 }
