@@ -128,10 +128,13 @@ void flatten(std::vector<std::vector<T>>& lists, std::vector<size_t>& start, std
 }  // namespace
 
 SharedGather sharedFinalGather(const HierarchicalSolver& solver,
-                               std::span<const GatherPoint> points, int partialRays) {
+                               std::span<const GatherPoint> points, int partialRays,
+                               const ProgressFn& progress) {
     const Hierarchy& h = solver.hierarchy();
     SharedGather out;
     const SampleLayout layout = layOutSamples(solver, points);
+    ProgressMeter meter(progress, "final gather (element corners, then points)",
+                        layout.nodes.size() + points.size());
     out.sharedLinks = layout.shared;
     out.nearLinks = layout.near;
     std::atomic<uint64_t> rays{0};
@@ -155,6 +158,7 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                     detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
         }
         rays += cast;
+        meter.add(1);
     });
     flatten(sampleTerms, out.sampleStart, out.sampleTerms);
     // Each point's near links, and its references to the corners above it.
@@ -189,6 +193,7 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
             }
         }
         rays += cast;
+        meter.add(to - from);
     });
     flatten(pointTerms, out.pointStart, out.pointTerms);
     flatten(refs, out.refStart, out.refs);

@@ -33,6 +33,7 @@
 
 #include "radiosity/final_gather.h"
 #include "radiosity/light_response.h"
+#include "radiosity/progress.h"
 #include "radiosity/solver.h"
 
 namespace radiosity {
@@ -82,7 +83,9 @@ inline constexpr double kSharedGatherFar = 4.0;
 
 /// The terms of every point's final gather, far links shared per element (see above). In
 /// parallel, deterministic (each point's rays from its seed, each corner's from its node).
+/// `progress` hears how far it is every ProgressMeter::kEverySeconds.
 SharedGather sharedFinalGather(const HierarchicalSolver& solver,
-                               std::span<const GatherPoint> points, int partialRays = 4);
+                               std::span<const GatherPoint> points, int partialRays = 4,
+                               const ProgressFn& progress = {});
 
 }  // namespace radiosity

@@ -272,8 +272,8 @@ bool HierarchicalSolver::outOfTime(size_t queued, size_t pending) {
     // it (a real stair hall's second round queued 37 M links in a minute).
     const double owedSeconds = static_cast<double>(queued) * (secondsPerPop_ + secondsPerLink_) +
                                static_cast<double>(pending) * secondsPerLink_;
-    const auto owed = std::chrono::duration_cast<Clock::duration>(
-        std::chrono::duration<double>(owedSeconds));
+    const auto owed =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(owedSeconds));
     if (now + owed >= refineDeadline_) {
         timeBudgetReached_ = true;
         report("time budget of the refinement reached: " + std::to_string(links_.size()) +
@@ -516,10 +516,11 @@ void HierarchicalSolver::solve() {
     // A later solve() (the reflectance rounds) refines nothing more once the time is out.
     Clock::time_point deadline = options_.refineUntil;
     if (options_.refineSeconds > 0)
-        deadline = std::min(deadline, start + std::chrono::duration_cast<Clock::duration>(
-                                                  std::chrono::duration<double>(
-                                                      options_.refineSeconds)));
-    if (deadline != Clock::time_point::max()) refineDeadline_ = timeBudgetReached_ ? start : deadline;
+        deadline =
+            std::min(deadline, start + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(options_.refineSeconds)));
+    if (deadline != Clock::time_point::max())
+        refineDeadline_ = timeBudgetReached_ ? start : deadline;
     for (int round = 0; round < options_.maxRefineRounds; ++round) {
         auto t0 = Clock::now();
         const size_t refined = refineAll();

@@ -587,7 +587,7 @@ class HierarchicalSolver {
     /// Seconds a pop of the refinement's queue takes (the oracle, the heap), measured
     /// between clock readings; before that, 1 microsecond.
     double secondsPerPop_ = 1e-6;
-    Clock::time_point lastClock_{};  ///< the last reading in this refineLinks() ({}: none)
+    Clock::time_point lastClock_{};   ///< the last reading in this refineLinks() ({}: none)
     size_t pops_ = 0, lastPops_ = 0;  ///< pops of the queue, all and at lastClock_
     static constexpr size_t kLinksTimed = 10000;
     static constexpr double kProgressSeconds = 10;

@@ -213,11 +213,12 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
     P.times.solve = since(t0);
     if (const auto st = r.solver->stats(); st.timeBudgetReached) {
         char msg[200];
-        std::snprintf(msg, sizeof msg,
-                      "warning: the refinement's time budget (until %g s, half of --time-budget) was "
-                      "reached at %d links: the solution is coarser where the oracle's error "
-                      "was smallest",
-                      o.timeBudget * RelightOptions::kRefineShare, st.links);
+        std::snprintf(
+            msg, sizeof msg,
+            "warning: the refinement's time budget (until %g s, half of --time-budget) was "
+            "reached at %d links: the solution is coarser where the oracle's error "
+            "was smallest",
+            o.timeBudget * RelightOptions::kRefineShare, st.links);
         say(o, msg);
     } else if (st.budgetReached)
         say(o, "warning: the refinement budget was reached (" + std::to_string(st.links) +
@@ -280,8 +281,8 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     r.mesh = std::make_unique<radiosity::LeafMesh>(
         r.solver->hierarchy(), displaySplits(*r.texture, r.sampling, o.displayPiecePixels));
     say(o, "lighting at " + std::to_string(r.mesh->vertices().size()) + " leaf vertices");
-    P.lighting =
-        measureVertexLighting(*r.solver, *r.mesh, *r.responses, directLightOptions(o), r.direct);
+    P.lighting = measureVertexLighting(*r.solver, *r.mesh, *r.responses, directLightOptions(o),
+                                       r.direct, o.progress);
     say(o, "  final gather: " + std::to_string(r.direct.gather.sharedLinks) +
                " far links gathered at " + std::to_string(r.direct.gather.samples()) +
                " element corners, " + std::to_string(r.direct.gather.nearLinks) +
@@ -346,9 +347,11 @@ void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
     auto t0 = Clock::now();
     if (o.shadowRemoval) {
         say(o, "real-shadow removal");
-        r.removal = removeRealShadows(*r.solver, r.responses,
-                                      {*r.mesh, *r.texture, P.photoRadiance, P.lighting, r.direct},
-                                      o.removal);
+        ShadowRemovalOptions ro = o.removal;
+        ro.progress = o.progress;
+        r.removal =
+            removeRealShadows(*r.solver, r.responses,
+                              {*r.mesh, *r.texture, P.photoRadiance, P.lighting, r.direct}, ro);
         say(o, "  " + std::to_string(r.removal.occluded) + " occluded leaves, " +
                    std::to_string(r.removal.frontier) + " on the frontier, " +
                    std::to_string(r.removal.referenced) + " with a reference; " +

@@ -118,8 +118,7 @@ int runPrepare(const PrepareArgs& a) {
         std::printf(
             "time budget: the reflectance rounds stopped before %.0f %% of --time-budget "
             "%g s had passed, after a complete round\n",
-            100 * (RelightOptions::kRefineShare + RelightOptions::kReflectanceShare),
-            o.timeBudget);
+            100 * (RelightOptions::kRefineShare + RelightOptions::kReflectanceShare), o.timeBudget);
     if (s.written)
         std::printf("time: prepare %.3f s (%s)\n", s.seconds, stepTimes(p.times).c_str());
     else

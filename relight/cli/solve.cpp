@@ -124,10 +124,9 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
     const LightingBuffer& lighting = camera.lighting();
     std::fprintf(stderr, "estimating reflectance from %s (%d rounds)\n", ph.file.c_str(),
                  a.reflectanceRounds);
-    auto rep =
-        estimatePolygonReflectance(solver, sf, items, lighting, photo, a.reflectanceRounds, 16,
-                                   1e-3, budget.secondsUntil(RelightOptions::kRefineShare +
-                                                             RelightOptions::kReflectanceShare));
+    auto rep = estimatePolygonReflectance(
+        solver, sf, items, lighting, photo, a.reflectanceRounds, 16, 1e-3,
+        budget.secondsUntil(RelightOptions::kRefineShare + RelightOptions::kReflectanceShare));
     std::fprintf(stderr, "  %d reflectance round(s)%s\n", rep.rounds,
                  rep.budgetReached ? ": their share of --time-budget was spent, stopped after "
                                      "a complete round"

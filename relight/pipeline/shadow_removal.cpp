@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "relight/display/ratio_display.h"
@@ -293,6 +294,13 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
                                 std::unique_ptr<radiosity::LightResponses>& responses,
                                 const ShadowRemovalInputs& in, const ShadowRemovalOptions& o) {
     ShadowRemoval out;
+    const auto start = radiosity::Clock::now();
+    const auto step = [&](const char* what) {
+        if (!o.progress) return;
+        char msg[160];
+        std::snprintf(msg, sizeof msg, "  %s (%.0f s)", what, radiosity::secondsSince(start));
+        o.progress(msg);
+    };
     const std::span<const Rgb> L = in.photoRadiance;
     const size_t nv = in.mesh.vertices().size();
     const VertexShadowLight light = vertexShadowLight(in.mesh, in.lighting, in.direct, L);
@@ -302,6 +310,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
     ShadowClasses classes = classifyShadowLeaves(solver, in.texture, L, o);
     out.frontier = static_cast<int>(classes.frontier.size());
 
+    step("step 1 of 2 (§4.4.1): reference patches and the texture factor");
     // §4.4.1 Step 1: reference patches (Fig. 15, Eq. (10)-(11)), the texture factor
     // k_inter (Eq. (12)-(13)), and a radiosity step with the reflectance of T_inter.
     const radiosity::Hierarchy& h = solver.hierarchy();
@@ -318,6 +327,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
     const std::vector<Rgb> Hinter =
         irradianceAtVertices(regatherVertexLighting(solver, in.mesh, *responses, in.direct), L, nv);
 
+    step("step 2 of 2 (§4.4.2): link and umbra corrections");
     // §4.4.2 Step 2: the link correction (Eq. (14)-(15)) where some direct light arrives,
     // the umbra correction (Eq. (16)) elsewhere, each followed by a radiosity step.
     LinkCorrection link = linkCorrection(light, Hinter, out.kInter, o.umbraThreshold);
@@ -330,6 +340,7 @@ ShadowRemoval removeRealShadows(radiosity::HierarchicalSolver& solver,
     out.umbraCorrection = umbraCorrection(light, Hinter, Hlink, out.kInter, link.umbra);
     applyReflectanceFactor(solver, in.mesh, out.umbraCorrection, responses);  // T_final's
 
+    step("D_final and T_final");
     // D_final and T_final. Eq. (14) and (16) ask that the unedited display T_final B/D give
     // back T_orig. Each correction above was computed from the previous step's radiosity;
     // the steps change the indirect light a little, so the factor is closed with the final

@@ -40,6 +40,7 @@
 #include "radiosity/direct_light.h"
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/light_response.h"
+#include "radiosity/progress.h"
 #include "radiosity/solver.h"
 #include "relight/pipeline/leaf_texture.h"
 #include "relight/pipeline/vertex_lighting.h"
@@ -52,6 +53,8 @@ struct ShadowRemovalOptions {
                                    ///< is not used (umbra), dimensionless
     double minShare = 0.02;        ///< as in relight/pipeline/shadow_refinement.h
     int minSamples = 32;           ///< photo samples a leaf needs to have a colour
+    /// Hears each step as it begins, with the seconds spent (may be empty).
+    radiosity::ProgressFn progress;
 };
 
 enum class LeafShadowClass : uint8_t { none, lit, occluded, frontier };

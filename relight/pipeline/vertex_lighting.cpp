@@ -34,7 +34,8 @@ VertexLighting emptyLighting(const radiosity::LeafMesh& mesh,
 VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver,
                                      const radiosity::LeafMesh& mesh,
                                      const radiosity::LightResponses& responses,
-                                     radiosity::DirectLightOptions options, VertexDirect& direct) {
+                                     radiosity::DirectLightOptions options, VertexDirect& direct,
+                                     const radiosity::ProgressFn& progress) {
     const radiosity::DirectLight light(solver, options);
     VertexLighting out = emptyLighting(mesh, responses);
     const int L = out.lights;
@@ -51,9 +52,12 @@ VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver
         if (solver.scene().polygons[p].light >= 0) continue;
         points[v] = {p, mesh.insidePoint(v), static_cast<uint64_t>(v)};
     }
-    direct.gather = radiosity::sharedFinalGather(solver, points, 4);
+    direct.gather = radiosity::sharedFinalGather(solver, points, 4, progress);
     direct.gather.addResponses(responses, out.response.data());
+    radiosity::ProgressMeter meter(progress, "direct light at the vertices",
+                                   static_cast<size_t>(n));
     radiosity::parallelForChunks(static_cast<size_t>(n), 64, [&](size_t first, size_t last) {
+        meter.add(last - first);
         std::vector<double> G(static_cast<size_t>(L)), G0(static_cast<size_t>(L));
         for (int v = static_cast<int>(first); v != static_cast<int>(last); ++v) {
             const int p = points[v].polygon;

@@ -61,7 +61,8 @@ struct VertexDirect {
 VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver,
                                      const radiosity::LeafMesh& mesh,
                                      const radiosity::LightResponses& responses,
-                                     radiosity::DirectLightOptions options, VertexDirect& direct);
+                                     radiosity::DirectLightOptions options, VertexDirect& direct,
+                                     const radiosity::ProgressFn& progress = {});
 
 /// The lighting again after the radiosities changed but not the geometry (new reflectances,
 /// scaled light links): the direct light is `direct`'s, as measureVertexLighting measured

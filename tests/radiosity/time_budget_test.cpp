@@ -98,8 +98,7 @@ TEST(TimeBudget, ItsPhasesEndAtSharesCountedFromTheStart) {
     const TimeBudget fresh{Clock::now(), 10};
     EXPECT_NEAR(fresh.secondsUntil(0.5), 5, 1);
     EXPECT_LE(fresh.secondsUntil(0.5), 5);
-    EXPECT_NEAR(std::chrono::duration<double>(fresh.until(0.65) - fresh.start).count(), 6.5,
-                1e-6);
+    EXPECT_NEAR(std::chrono::duration<double>(fresh.until(0.65) - fresh.start).count(), 6.5, 1e-6);
     const TimeBudget spent{Clock::now() - std::chrono::seconds(100), 10};
     EXPECT_EQ(spent.secondsUntil(0.5), TimeBudget::kSpentSeconds);
     EXPECT_LT(spent.until(1.0), Clock::now());
