@@ -8,7 +8,8 @@
 //
 //   ./build/bench/removal_fill [SCENE_DIR] [--write DIR]     (default: data/room)
 //
-// --write DIR: each image as DIR/<edit>-<method>.png (sRGB, as relight render writes).
+// --write DIR: each image as DIR/<edit>-<method>.png (sRGB, as relight render writes) and
+// .exr (linear, for bench/removal_strip.py).
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -80,6 +81,7 @@ int main(int argc, char** argv) {
             if (!write.empty()) {
                 fs::create_directories(write);
                 writeImage(write / (edit + "-" + name + ".png"), image);
+                writeImage(write / (edit + "-" + name + ".exr"), image);
             }
             std::fflush(stdout);
         }

@@ -13,15 +13,14 @@
 //     shows none of the surface;
 //  4. the irradiance at each sample: the direct light of every light (shadow rays, the
 //     edit's radiances) and the indirect light interpolated at the sample's leaf.
-// Around the objects (a ring as wide as half their extent in the photo) the pixels keep the
-// photo's reflectance, T / H_photo as the display reads it, but are lit as the revealed ones
-// (direct light by shadow rays and indirect light gathered at their points, the objects
-// out). The display's indirect change there is interpolated from vertex changes measured through
-// the links that ran to the object's faces, and read up to 1.6 times the truth's light beside a
-// cabinet (bench/RESULTS.md, 2026-11-26, third session).
-// A mask pixel then shows R(p) times the mean irradiance of its samples that see a
-// reflecting surface, plus the radiance of those that see a lamp's face
-// (DynamicRelighting::overlay(): the pixel is replaced whole).
+// Around the objects (a ring from the mask's edge, as wide as half their extent in the photo)
+// the pixels keep the photo's reflectance, T / H_photo as the display reads it, but are lit as the
+// revealed ones (direct light by shadow rays and indirect light gathered at their points, the
+// objects out). The display's indirect change there is interpolated from vertex changes measured
+// through the links that ran to the object's faces, and read up to 1.6 times the truth's light
+// beside a cabinet (bench/RESULTS.md, 2026-11-26, third session). A mask pixel then shows R(p)
+// times the mean irradiance of its samples that see a reflecting surface, plus the radiance of
+// those that see a lamp's face (DynamicRelighting::overlay(): the pixel is replaced whole).
 #pragma once
 
 #include <cstdint>
@@ -38,7 +37,8 @@ struct RemovedRegion {
     int x0 = 0, y0 = 0, width = 0, height = 0;  ///< the mask's box, pixels
     int k = 1;                                  ///< samples per pixel: k x k, stratified
     std::vector<char> mask;                     ///< per box pixel: replaced by the fill
-    std::vector<float> reflectance;             ///< 3 per box pixel: R (above)
+    std::vector<char> covered;       ///< per box pixel: an item-buffer sample on a removed object
+    std::vector<float> reflectance;  ///< 3 per box pixel: R (above)
     /// Per box pixel and sample ([pixel * k * k + s]): the polygon now seen (-1: none),
     /// the point, the scene leaf, and the direct irradiance at the edit's radiances.
     std::vector<int> polygon, leaf;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "relight/dynamic/dynamic_relighting.h"
@@ -255,6 +256,47 @@ int keptColour(const Relighting& r, const RemovedRegion& g, const Image& image,
     return kept;
 }
 
+/// The mean of (image - truth) over the pixels at Chebyshev distance dMin..dMax from those
+/// the removed object covered in the photo (RemovedRegion::covered), relative to the truth's
+/// mean there (channels averaged): a light outline around the region shows as a positive bias.
+double bandBias(const RemovedRegion& g, const Image& image, const Image& truth, int dMin,
+                int dMax) {
+    double diff = 0, sum = 0;
+    for (int y = std::max(0, g.y0 - dMax); y < std::min(image.height, g.y0 + g.height + dMax); ++y)
+        for (int x = std::max(0, g.x0 - dMax); x < std::min(image.width, g.x0 + g.width + dMax);
+             ++x) {
+            int d = dMax + 1;
+            for (int v = y - dMax; v <= y + dMax; ++v)
+                for (int u = x - dMax; u <= x + dMax; ++u) {
+                    const int bx = u - g.x0, by = v - g.y0;
+                    if (bx < 0 || by < 0 || bx >= g.width || by >= g.height ||
+                        !g.covered[static_cast<size_t>(by * g.width + bx)])
+                        continue;
+                    d = std::min(d, std::max(std::abs(u - x), std::abs(v - y)));
+                }
+            if (d < dMin || d > dMax) continue;
+            for (int c = 0; c < 3; ++c) {
+                diff += static_cast<double>(image.at(x, y)[c] - truth.at(x, y)[c]);
+                sum += static_cast<double>(truth.at(x, y)[c]);
+            }
+        }
+    return sum > 0 ? diff / sum : 0.0;
+}
+
+/// No light outline around a removed object: the pixels 2 and 3 beside the covered ones (past
+/// the mask's one-pixel growth at 320 x 240) are as right as the ring 4 to 8 pixels out, against
+/// the truth. The display's light, which they kept before, read +0.22 (room's cabinet),
+/// +0.32 / +0.22 (furnished bookshelf / cabinet) there against +0.02..+0.05 beyond (bench/
+/// RESULTS.md, 2026-11-27, fifth session; +0.216 against +0.022 at these test settings).
+/// Bounds: 0.06 above the ring's bias, 2.5 times the largest gap measured now (0.023, the
+/// bookshelf) and under a third of the outline's excess; 0.10 either way in all (now <= 0.062).
+void expectNoOutline(const RemovedRegion& g, const Image& image, const Image& truth) {
+    const double band = bandBias(g, image, truth, 2, 3), beyond = bandBias(g, image, truth, 4, 8);
+    std::printf("outline: bias 2-3 px %+.3f, 4-8 px %+.3f\n", band, beyond);
+    EXPECT_LT(band, beyond + 0.06);
+    EXPECT_LT(std::abs(band), 0.10);
+}
+
 }  // namespace
 
 TEST(ObjectRemoval, TheCabinetAgainstTwoWallsLeavesNoGhost) {
@@ -282,6 +324,7 @@ TEST(ObjectRemoval, TheCabinetAgainstTwoWallsLeavesNoGhost) {
     EXPECT_EQ(keptColour(*r, g, without, "cabinet"), 0);
     // The photo there is the cabinet: the check is not vacuous.
     EXPECT_GT(keptColour(*r, g, before, "cabinet"), 100);
+    expectNoOutline(g, without, readImage(kRoom + "/truth/remove_cabinet.exr"));
     dyn.removeLast();
     const Image back = dyn.render(DisplayMode::pixel);
     EXPECT_EQ(back.rgb, before.rgb);  // bit for bit
@@ -349,6 +392,7 @@ TEST(ObjectRemoval, TheFurnishedRoomsBookshelfAndCabinetMeetTheTruth) {
         EXPECT_LE(s.changedRelRmse, 0.25);
         EXPECT_EQ(keptColour(*r, g, without, object), 0);
         EXPECT_GT(keptColour(*r, g, before, object), 100);  // not vacuous
+        expectNoOutline(g, without, readImage(dir + "/truth/remove_" + object + ".exr"));
         dyn.removeLast();
         // Back to the photo's display bit for bit: the direct light measured again at the
         // pixels the removal changed is summed as the preparation summed it (float per
