@@ -116,7 +116,7 @@ TEST(Specular, WithAFlatLobeEveryLightGivesItsIrradiance) {
         radiosity::Rng rng(3);
         quad->unitGlossy(vis, p, one, 1024, rng, &glossy);
         // 32 x 32 stratified points of an integrand that varies smoothly over the face:
-        // the estimate's error is far below 0.5 % (measured: < 1e-4).
+        // the estimate's error is far below 0.5 % (measured: 4.9e-5 and 1.1e-4).
         EXPECT_NEAR(glossy, exact, 5e-3 * exact);
     }
 }
