@@ -145,6 +145,25 @@ class Sun final : public SingleEmitter {
     void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
         out[0] = std::max(0.0, glm::dot(p.n, d_));
     }
+    void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
+                    Rng& rng, double* out) const override {
+        // The disc's directions as unitIrradiance draws them, each weighed by the lobe.
+        const int k = tanHalf_ > 0 ? strataSide(std::max(rays, 1)) : 1;
+        const HemisphereFrame f(d_);
+        double sum = 0;
+        for (int cell = 0; cell < k * k; ++cell) {
+            Vec3 w = d_;
+            if (tanHalf_ > 0) {
+                double x = 0, y = 0;
+                discPoint(cell, k, rng, x, y);
+                w = glm::normalize(d_ + tanHalf_ * (x * f.t + y * f.b));
+            }
+            const double c = glm::dot(p.n, w);
+            if (c <= 0) continue;
+            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += c * lobe(w);
+        }
+        out[0] = sum / (k * k);
+    }
     Rgb power(const Bounds3& b) const override {
         const double R = boundingRadius(b);
         return s_ * (kPi * R * R);
@@ -201,6 +220,12 @@ class PointLamp final : public SingleEmitter {
         if (!(d2 > 1e-18)) return;  // guard: the lamp on the point itself
         const double c = glm::dot(p.n, v) / std::sqrt(d2);
         if (c > 0) out[0] = c / d2;  // cos(theta) / d^2
+    }
+    void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
+                    Rng& rng, double* out) const override {
+        // One direction: the irradiance I cos / d^2 weighed by the lobe towards the lamp.
+        unitIrradiance(vis, p, rays, rng, out);
+        if (out[0] > 0) out[0] *= lobe(glm::normalize(pos_ - p.x));
     }
     Rgb power(const Bounds3&) const override { return s_ * (4 * kPi); }
     void apply(const EmitterEdit& e) override {
@@ -267,6 +292,23 @@ class Environment final : public Emitter {
             if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon >= 0) continue;
             const Sh9 Y = sh9Basis(w);
             for (size_t c = 0; c < Y.size(); ++c) sum[c] += Y[c];
+        }
+        for (size_t c = 0; c < sum.size(); ++c) out[c] = sum[c] * (kPi / (k * k));
+    }
+    void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
+                    Rng& rng, double* out) const override {
+        // pi E[Y_k(w) lobe(w) V(w)] over cosine-distributed directions: unitIrradiance's
+        // estimate with each direction weighed (a sharp lobe is noisy: a sky's highlight
+        // is broad).
+        const int k = strataSide(std::max(rays, 1));
+        const HemisphereFrame f(p.n);
+        Sh9 sum{};
+        for (int cell = 0; cell < k * k; ++cell) {
+            const Vec3 w = cosineDirection(f, cell, k, rng);
+            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon >= 0) continue;
+            const double weight = lobe(w);
+            const Sh9 Y = sh9Basis(w);
+            for (size_t c = 0; c < Y.size(); ++c) sum[c] += weight * Y[c];
         }
         for (size_t c = 0; c < sum.size(); ++c) out[c] = sum[c] * (kPi / (k * k));
     }
@@ -376,6 +418,32 @@ class QuadLamp final : public SingleEmitter {
         }
         out[0] = kPi * G;  // H = pi L G: E = pi L (scene.h)
     }
+    void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
+                    Rng& rng, double* out) const override {
+        // dE = L cos(x) cos(y) / d^2 dA(y): k x k stratified points of each face, each
+        // weighed by the lobe towards it and by the area its (u, v) cell stands for.
+        const int k = strataSide(std::max(rays, 1));
+        double sum = 0;
+        for (size_t q = 0; q < faces_.size(); ++q) {
+            const int own = polygons_.empty() ? -1 : polygons_[q];
+            double face = 0;
+            for (int cell = 0; cell < k * k; ++cell) {
+                const double u = ((cell % k) + rng.uniform()) / k;
+                const double v = ((cell / k) + rng.uniform()) / k;
+                const Vec3 y = polygonPoint(faces_[q], u, v);
+                const Vec3 d = y - p.x;
+                const double d2 = glm::dot(d, d);
+                if (!(d2 > 1e-18)) continue;  // guard: the point on the lamp itself
+                const Vec3 w = d / std::sqrt(d2);
+                const double cx = glm::dot(p.n, w), cy = -glm::dot(normals_[q], w);
+                if (cx <= 0 || cy <= 0) continue;
+                if (!vis.visible(p.x, y, p.polygon, own)) continue;
+                face += cx * cy / d2 * jacobian(q, u, v) * lobe(w);
+            }
+            sum += face / (k * k);
+        }
+        out[0] = sum;
+    }
     void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
         double G = 0;
         for (size_t q = 0; q < faces_.size(); ++q) G += formFactor(p, q);
@@ -413,6 +481,15 @@ class QuadLamp final : public SingleEmitter {
     }
 
   private:
+    /// Area per unit (u, v) of polygonPoint at (u, v): the face's area for a triangle
+    /// (uniform by area), |dP/du x dP/dv| of the bilinear map for a quad.
+    double jacobian(size_t q, double u, double v) const {
+        const std::vector<Vec3>& c = faces_[q];
+        if (c.size() == 3) return areas_[q];
+        const Vec3 du = (1 - v) * (c[1] - c[0]) + v * (c[2] - c[3]);
+        const Vec3 dv = (1 - u) * (c[3] - c[0]) + u * (c[2] - c[1]);
+        return glm::length(glm::cross(du, dv));
+    }
     double formFactor(const ReceiverPoint& p, size_t q) const {
         return pointToPolygon(p.x, p.n, faces_[q].data(), static_cast<int>(faces_[q].size()),
                               normals_[q]);

@@ -10,6 +10,9 @@
 //   irradiance(x, n)  the direct irradiance at point x with unit normal n, shadows included
 //                     (Embree rays through radiosity/visibility.h), in radiosity units: a
 //                     white Lambertian surface there has radiosity B = irradiance (scene.h);
+//   unitGlossy(x, n, lobe)  the same irradiance weighed per direction of arrival by a lobe
+//                     f(w): integral of f(w) dE(w) V(w), for a reflection that is not
+//                     Lambertian (the specular pass: relight/dynamic/specular.h);
 //   power()           what it emits (radiosity units x m^2), for the solver's scale and to
 //                     tell whether it is on;
 //   apply(edit)       the edit's fields (docs/scene-format.md, "Edit"): scale; radiance,
@@ -20,6 +23,7 @@
 // in the layers that use them.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -105,6 +109,18 @@ class Emitter {
                                 double* out) const = 0;
     /// The same without blockers.
     virtual void unitUnoccluded(const ReceiverPoint& p, double* out) const = 0;
+    /// A weight per direction of arrival: w is the unit direction from the point towards
+    /// the light. A BRDF lobe (the specular pass, relight/dynamic/specular.h).
+    using Lobe = std::function<double(const Vec3& w)>;
+    /// The irradiance each component gives at unit strength, weighed per direction of
+    /// arrival by `lobe`: out[c] = integral of lobe(w) dE_c(w) V(w) over the directions w
+    /// that reach the light (cos included, shadows by Embree rays as unitIrradiance). With
+    /// lobe = 1 it is unitIrradiance in expectation; with lobe = a BRDF it is the radiance
+    /// reflected towards the eye per unit strength. Sampled where the light has extent: a
+    /// quad by `rays` points per face, uniform by area (its irradiance form factor is exact,
+    /// this is not); a sun's disc and a sky's hemisphere as unitIrradiance draws them.
+    virtual void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe,
+                            int rays, Rng& rng, double* out) const = 0;
 
     /// Emitted power, radiosity units x m^2. A light at infinity emits without bound; its
     /// power is what crosses the bounding sphere of `sceneBounds` (radius R): the sun

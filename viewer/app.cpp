@@ -61,6 +61,7 @@ class App {
     void emitterControls(LightControl& l);
     void skyControls(const LightControl& l, const radiosity::EmitterField& sh9);
     void objectsPanel();
+    void specularControls(int i);  ///< object i's specular term (its ks, shininess)
     void displayPanel();
     void lampsPanel();
     void drawLamps(const PhotoRect& r);
@@ -289,6 +290,7 @@ void App::objectsPanel() {
                         std::clamp(c[2], 0.0f, 0.99f)};
             act("reflectance change", [&] { session_.setReflectance(static_cast<int>(i), r); });
         }
+        specularControls(static_cast<int>(i));
         ImGui::PopID();
     }
     if (remove >= 0) act("removing the object", [&] { session_.removeObject(remove); });
@@ -303,6 +305,31 @@ void App::objectsPanel() {
     }
     if (!restore.empty())
         act("bringing the object back", [&] { session_.restoreRealObject(restore); });
+}
+
+void App::specularControls(int i) {
+    // The specular pass (../shared/seeds/000, §6): a Blinn-Phong term on top of the relit
+    // image, saved in the session's edit ("specular", docs/scene-format.md).
+    const std::optional<Specular>& now = session_.objects()[static_cast<size_t>(i)].object.specular;
+    bool on = now.has_value();
+    const Specular s = now.value_or(Specular{Rgb{0.5, 0.5, 0.5}, 32});
+    float ks[3] = {static_cast<float>(s.ks.r), static_cast<float>(s.ks.g),
+                   static_cast<float>(s.ks.b)};
+    float shininess = static_cast<float>(s.shininess);
+    bool edited = ImGui::Checkbox("specular", &on);
+    if (on) {
+        ImGui::ColorEdit3("ks", ks, ImGuiColorEditFlags_Float);
+        edited = edited || ImGui::IsItemDeactivatedAfterEdit();
+        ImGui::DragFloat("shininess", &shininess, 1.0f, 1.0f, 10000.0f, "%.0f",
+                         ImGuiSliderFlags_Logarithmic);
+        edited = edited || ImGui::IsItemDeactivatedAfterEdit();
+    }
+    if (!edited) return;
+    // ks >= 0 and a shininess > 0 (edit_file.h); the colour picker may go below 0.
+    const Specular next{Rgb{std::max(ks[0], 0.0f), std::max(ks[1], 0.0f), std::max(ks[2], 0.0f)},
+                        std::clamp(static_cast<double>(shininess), 1.0, 1e4)};
+    act("specular change",
+        [&] { session_.setSpecular(i, on ? std::optional<Specular>(next) : std::nullopt); });
 }
 
 void App::lampsPanel() {

@@ -22,6 +22,9 @@
 //   sh9:NAME:K:R,G,B   the sky NAME's coefficient K (0..8) set to (R, G, B)
 //   point:U,V          a virtual point lamp above the surface under (U, V)
 //   movepoint:NAME:U,V the point lamp NAME moved above the surface under (U, V) (a drag's end)
+// and the object panel's specular term (relight/dynamic/specular.h):
+//   specular:NAME:R,G,B:S  the virtual object NAME's ks (R, G, B) and shininess S
+//                      (ks 0,0,0: no term)
 // Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option, a
 // screenshot that cannot be written) print one clear line and exit with 2 for bad input, 3
 // for an output that cannot be written, 1 otherwise (relight/errors.h).
@@ -100,6 +103,7 @@ struct Action {
         scale,
         sh9,
         point,
+        specular,
         movepoint
     } kind = Kind::light;
     double u = 0, v = 0, u1 = 0, v1 = 0;  ///< pixel; drag: from (u, v) to (u1, v1)
@@ -142,6 +146,18 @@ bool parseLightAction(Action& a, const std::string& kind, const std::string& res
             throw std::invalid_argument("--do " + text + ": expected sundrag:NAME:U0,V0:U1,V1");
         parsePoint(tail.substr(0, sep), text, a.u, a.v);
         parsePoint(tail.substr(sep + 1), text, a.u1, a.v1);
+    } else if (kind == "specular") {
+        a.kind = Action::Kind::specular;
+        a.name = splitName(rest, text, tail);
+        const auto sep = tail.find(':');
+        if (sep == std::string::npos)
+            throw std::invalid_argument("--do " + text + ": expected specular:NAME:R,G,B:S");
+        a.numbers = parseNumbers(tail.substr(0, sep), text, 3);
+        a.numbers.push_back(parseNumbers(tail.substr(sep + 1), text, 1)[0]);
+        if (a.numbers[0] < 0 || a.numbers[1] < 0 || a.numbers[2] < 0)
+            throw std::invalid_argument("--do " + text + ": ks must be >= 0");
+        if (!(a.numbers[3] > 0))
+            throw std::invalid_argument("--do " + text + ": the shininess must be > 0");
     } else if (kind == "rotate" || kind == "sh9") {
         a.kind = kind == "rotate" ? Action::Kind::rotate : Action::Kind::sh9;
         a.name = splitName(rest, text, tail);
@@ -200,7 +216,7 @@ Action parseAction(const std::string& text) {
                                     "remove:U,V, restore:NAME, lamp:U,V[:W,H], sun:NAME:AZ,EL, "
                                     "sundrag:NAME:U0,V0:U1,V1, rotate:NAME:X,Y,Z:DEG, "
                                     "scale:NAME:S, sh9:NAME:K:R,G,B, point:U,V, "
-                                    "movepoint:NAME:U,V)");
+                                    "movepoint:NAME:U,V, specular:NAME:R,G,B:S)");
     }
     return a;
 }
@@ -251,6 +267,19 @@ bool runLightAction(Session& s, const Action& a) {
                 throw InputError("--do " + a.text + ": " + ex.what());
             }
             return true;
+        case Action::Kind::specular: {
+            const auto& objects = s.objects();
+            const auto it = std::find_if(objects.begin(), objects.end(),
+                                         [&](const auto& o) { return o.object.name == a.name; });
+            if (it == objects.end())
+                throw InputError("--do " + a.text + ": no virtual object \"" + a.name + "\"");
+            const Rgb ks{a.numbers[0], a.numbers[1], a.numbers[2]};
+            s.setSpecular(static_cast<int>(it - objects.begin()),
+                          ks.maxComponent() > 0
+                              ? std::optional<Specular>(Specular{ks, a.numbers[3]})
+                              : std::nullopt);
+            return true;
+        }
         default:
             return false;
     }
@@ -404,7 +433,7 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"ratio", "pixel"}));
     app.add_option("--do", a.actions,
                    "light:U,V | box:U,V | drag:U0,V0:U1,V1 | remove:U,V | restore:NAME | "
-                   "lamp:U,V[:W,H] (in order)");
+                   "lamp:U,V[:W,H] | specular:NAME:R,G,B:S (in order)");
     app.add_flag("--save-lamps", a.saveLamps,
                  "with --screenshot: add the real lamps placed (--do lamp:...) to scene.json");
     app.add_option("--save-edit", a.saveEdit,

@@ -377,6 +377,29 @@ void Session::setReflectance(int i, const Rgb& reflectance) {
     update();
 }
 
+void Session::setSpecular(int i, const std::optional<Specular>& specular) {
+    ObjectControl& o = objects_.at(static_cast<size_t>(i));
+    if (specular) {
+        for (int c = 0; c < 3; ++c)
+            if (!(specular->ks[c] >= 0 && std::isfinite(specular->ks[c])))
+                throw std::invalid_argument("ks must be finite and >= 0");
+        if (!(specular->shininess > 0 && specular->shininess <= 1e5))
+            throw std::invalid_argument("the shininess must be in (0, 100000]");
+    }
+    o.object.specular = specular;
+    const auto sameName = std::count_if(objects_.begin(), objects_.end(), [&](const auto& x) {
+        return x.object.name == o.object.name;
+    });
+    // The term is the overlay's alone (DynamicRelighting::setObjectSpecular): no update,
+    // unless a name is shared and only inserting the parts again tells the objects apart.
+    if (dyn_ && sameName == 1 && dyn_->setObjectSpecular(o.object.name, specular) == 1) {
+        changed();
+        return;
+    }
+    stale_ = true;
+    update();
+}
+
 Pick Session::pick(double u, double v) const {
     const Camera& camera = r_->scene.camera;
     const Vec3 eye = camera.position();

@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,10 @@ class Session {
     void update();
     /// Sets object i's reflectance (inserted again).
     void setReflectance(int i, const Rgb& reflectance);
+    /// Sets object i's specular term (none: Lambertian; relight/dynamic/specular.h). It
+    /// changes the overlay only: nothing is inserted again unless another object shares
+    /// its name. Throws std::invalid_argument for ks < 0 or a shininess that is not > 0.
+    void setSpecular(int i, const std::optional<Specular>& specular);
 
     /// What the camera ray through pixel (u, v) hits (OpenCV pixel coordinates).
     Pick pick(double u, double v) const;

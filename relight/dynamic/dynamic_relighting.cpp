@@ -29,6 +29,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 // Seeds of the shadow rays of the virtual objects' vertices, apart from the scene's.
 constexpr uint64_t kObjectSeed = 0x0b1ec7ull << 24;
+// Seeds of the specular pass's light samples, apart from both.
+constexpr uint64_t kSpecularSeed = 0x5bec01ull << 32;
 
 // What a node reflects, as the final gathers read it: an emitter's own emission is direct
 // light (radiosity/final_gather.h).
@@ -150,7 +152,36 @@ void DynamicRelighting::addObject(const VirtualObject& object) {
     completeVertexGather();
     radiosity::DynamicUpdate u;
     solver_.insertObject(object.name, object.polygons, nullptr, &u);
+    // The solver gave the object the next index of its scene's objects (an object taken
+    // out frees its index, which the next one reuses: the entry is set either way).
+    objectSpecular_.resize(solver_.scene().objects.size());
+    objectSpecular_.back() = object.specular;
     afterUpdate(u, false);
+}
+
+int DynamicRelighting::setObjectSpecular(const std::string& name,
+                                         const std::optional<Specular>& specular) {
+    const auto& objects = solver_.scene().objects;
+    const size_t firstVirtual = r_.scene.scene.objects.size();
+    int set = 0;
+    for (size_t i = firstVirtual; i < objects.size() && i < objectSpecular_.size(); ++i)
+        if (objects[i] == name) {
+            objectSpecular_[i] = specular;
+            ++set;
+        }
+    return set;
+}
+
+Rgb DynamicRelighting::specularAt(const SpecularLights* lights, int polygon, const Vec3& point,
+                                  const Vec3& dir, uint64_t sample) const {
+    if (!lights) return {};
+    const auto& poly = solver_.scene().polygons[static_cast<size_t>(polygon)];
+    const size_t object = static_cast<size_t>(poly.object);
+    if (poly.object < 0 || object >= objectSpecular_.size() || !objectSpecular_[object]) return {};
+    // The direct light's shadow rays (Relighting::directOptions): maxRays per lamp face.
+    return lights->radiance(*objectSpecular_[object], solver_.visibility(),
+                            {point, poly.normal, polygon}, -dir, r_.directOptions.maxRays,
+                            kSpecularSeed + sample);
 }
 
 void DynamicRelighting::moveLastObject(std::vector<radiosity::Polygon> polygons) {
@@ -180,6 +211,7 @@ void DynamicRelighting::removeLast() {
     radiosity::DynamicUpdate u;
     solver_.removeLastObject(&u);
     if (light) radiance_.pop_back();
+    objectSpecular_.resize(std::min(objectSpecular_.size(), solver_.scene().objects.size()));
     afterUpdate(u, light);
 }
 
@@ -704,6 +736,10 @@ VirtualOverlay DynamicRelighting::overlay() {
     const Vec3 eye = camera.position();
     const auto& h = solver_.hierarchy();
     const auto& vis = solver_.visibility();
+    // The lights of the specular pass, when a virtual object in the scene has a term.
+    std::unique_ptr<SpecularLights> specular;
+    for (size_t i = 0; i < objectSpecular_.size() && i < scene.objects.size() && !specular; ++i)
+        if (objectSpecular_[i]) specular = std::make_unique<SpecularLights>(scene, radiance_);
     parallelFor(static_cast<size_t>(o.height), 1, [&](size_t row) {
         const int by = static_cast<int>(row);
         for (int bx = 0; bx < o.width; ++bx) {
@@ -745,8 +781,15 @@ VirtualOverlay DynamicRelighting::overlay() {
                     added += radiance_[poly.light];
                     continue;
                 }
-                if (!objectMesh_) continue;
                 const Vec3 point = eye + hit.t * dir;
+                // ../shared/seeds/000, §6: the specular radiance on top of the diffuse.
+                const uint64_t sample =
+                    (static_cast<uint64_t>(y) * static_cast<uint64_t>(camera.width) +
+                     static_cast<uint64_t>(x)) *
+                        static_cast<uint64_t>(k * k) +
+                    static_cast<uint64_t>(s);
+                added += specularAt(specular.get(), hit.polygon, point, dir, sample);
+                if (!objectMesh_) continue;
                 const int leaf = h.locateLeaf(hit.polygon, point);
                 const auto w = objectMesh_->weights(leaf, point);
                 const auto& corners = objectMesh_->corners(leaf);

@@ -38,6 +38,7 @@
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/solver.h"
 #include "relight/dynamic/object_removal.h"
+#include "relight/dynamic/specular.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/image.h"
 #include "relight/relighting.h"
@@ -84,8 +85,14 @@ class DynamicRelighting {
 
     /// Inserts a virtual light; returns its index among the solver's lights.
     int addLight(const VirtualLight& light);
-    /// Inserts a virtual object (its polygons in world space, VirtualObject::polygons).
+    /// Inserts a virtual object (its polygons in world space, VirtualObject::polygons). Its
+    /// specular term (VirtualObject::specular), if any, is added to its samples in overlay()
+    /// (relight/dynamic/specular.h; ../shared/seeds/000, §6).
     void addObject(const VirtualObject& object);
+    /// Sets the specular term of the virtual objects named `name` (none: Lambertian). It
+    /// changes what overlay() adds on them, not the radiosity: no update. Returns how many
+    /// objects it set.
+    int setObjectSpecular(const std::string& name, const std::optional<Specular>& specular);
     /// Moves the object added last to new world-space polygons (same faces).
     void moveLastObject(std::vector<radiosity::Polygon> polygons);
     /// Takes the scene's object `name` out (Loscos et al. 1999, §5.3): out of the solver
@@ -195,7 +202,13 @@ class DynamicRelighting {
     // divides out. indirectPixel_ is then the per-pixel display's indirect_.
     std::vector<Rgb> gatherDeltaRays_, indirectPixel_;
     std::unique_ptr<radiosity::LeafMesh> objectMesh_;  ///< virtual objects' leaf corners
-    std::vector<Rgb> objectRadiance_;                  ///< per object vertex: rho H / pi
+    /// Per object of the solver's scene: the specular term of a virtual object that has one.
+    std::vector<std::optional<Specular>> objectSpecular_;
+    /// The specular radiance L_s of overlay sample `sample` seeing polygon `polygon` at
+    /// `point` along the camera ray `dir`; 0 without a specular term.
+    Rgb specularAt(const SpecularLights* lights, int polygon, const radiosity::Vec3& point,
+                   const radiosity::Vec3& dir, uint64_t sample) const;
+    std::vector<Rgb> objectRadiance_;  ///< per object vertex: rho H / pi
     // The per-pixel display (pixelDirect()): the scene leaf of each item-buffer sample (-1:
     // none), the leaves whose light changed since the last call and since the photo, and the
     // direct light per pixel with its number of lights.

@@ -119,9 +119,28 @@ VirtualLight readVirtualLight(const JsonReader& r, const json& lj, const std::st
     return {std::move(l.name), std::move(l.corners), l.radiance, std::move(l.emitter)};
 }
 
+/// "specular": {"ks": [r, g, b], "shininess": s} (an engine extension, docs/scene-format.md):
+/// ks finite and >= 0, s finite and > 0.
+Specular readSpecular(const JsonReader& r, const json& sj, const std::string& path) {
+    if (!sj.is_object()) r.fail(path, "expected an object {\"ks\": [r, g, b], \"shininess\": s}");
+    r.checkKeys(sj, path, {"ks", "shininess"});
+    Specular s;
+    const std::string kPath = child(path, "ks");
+    s.ks = r.rgb(r.require(sj, path, "ks"), kPath);
+    for (int k = 0; k < 3; ++k)
+        if (!(s.ks[k] >= 0)) r.fail(element(kPath, static_cast<size_t>(k)), "ks must be >= 0");
+    const std::string sPath = child(path, "shininess");
+    s.shininess = r.number(r.require(sj, path, "shininess"), sPath);
+    if (!(s.shininess > 0)) r.fail(sPath, "shininess must be > 0 (the lobe's exponent)");
+    // (n.h)^s of a double underflows to 0 past about 1e5 at n.h = 0.99: refused as a
+    // highlight no pixel could show rather than drawn as nothing.
+    if (s.shininess > 1e5) r.fail(sPath, "shininess must be <= 100000");
+    return s;
+}
+
 VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::string& path,
                                 const fs::path& editFile, std::vector<std::string>& warnings) {
-    r.checkKeys(oj, path, {"name", "file", "reflectance", "transform"});
+    r.checkKeys(oj, path, {"name", "file", "reflectance", "transform", "specular"});
     VirtualObject v;
     v.name = r.string(r.require(oj, path, "name"), child(path, "name"));
     if (v.name.empty()) r.fail(child(path, "name"), "empty object name");
@@ -151,6 +170,8 @@ VirtualObject readVirtualObject(const JsonReader& r, const json& oj, const std::
         r.fail(tPath, "the transform is singular (it flattens the object to a plane or less)");
     for (size_t i = 0; i < 4; ++i)
         for (size_t j = 0; j < 4; ++j) v.transform[i][j] = M[i][j];
+    if (auto it = oj.find("specular"); it != oj.end())
+        v.specular = readSpecular(r, *it, child(path, "specular"));
 
     const std::string fPath = child(path, "file");
     const std::string name = r.string(r.require(oj, path, "file"), fPath);

@@ -49,6 +49,13 @@ struct VirtualLight {
     std::shared_ptr<const radiosity::Emitter> emitter{};
 };
 
+/// A Blinn-Phong specular term on a virtual object (an engine extension of the edit format:
+/// "specular": {"ks": [r, g, b], "shininess": s}; relight/dynamic/specular.h draws it).
+struct Specular {
+    Rgb ks;                 ///< every channel >= 0: the lobe's share of the light at its peak
+    double shininess = 32;  ///< the exponent s > 0
+};
+
 /// A virtual object ("add_objects"), its faces in world space.
 struct VirtualObject {
     std::string name;
@@ -57,6 +64,8 @@ struct VirtualObject {
     std::array<std::array<double, 4>, 4> transform{};  ///< row-major, as in the file
     /// Checked, repaired faces after the transform (object index 0, reflectance set).
     std::vector<radiosity::Polygon> polygons;
+    /// Its specular term added on top of the relit image ("specular"), or none (Lambertian).
+    std::optional<Specular> specular{};
 };
 
 struct EditFile {

@@ -142,10 +142,16 @@ json virtualObject(const VirtualObject& v, const std::string& path, const fs::pa
             row.push_back(number(v.transform[i][j], element(element(tPath, i), j)));
         transform.push_back(std::move(row));
     }
-    return {{"name", v.name},
-            {"file", objectFileName(v.file, editFolder)},
-            {"reflectance", rgb(v.reflectance, child(path, "reflectance"))},
-            {"transform", std::move(transform)}};
+    json o = {{"name", v.name},
+              {"file", objectFileName(v.file, editFolder)},
+              {"reflectance", rgb(v.reflectance, child(path, "reflectance"))},
+              {"transform", std::move(transform)}};
+    if (v.specular) {
+        const std::string sPath = child(path, "specular");
+        o["specular"] = {{"ks", rgb(v.specular->ks, child(sPath, "ks"))},
+                         {"shininess", number(v.specular->shininess, child(sPath, "shininess"))}};
+    }
+    return o;
 }
 
 }  // namespace
