@@ -221,6 +221,21 @@ class HierarchicalSolver {
     /// Removes the lights from `first` on, which must all have an emitter (added by
     /// addEmitter after every inserted object is removed), and their direct light.
     void removeEmitterLights(int first);
+    /// The solution's light: per node B, Bsent, H, Hd, Hx and Hv, and the lights'
+    /// radiances (what a relighting session changes without changing the nodes).
+    struct LightState {
+        struct NodeLight {
+            Rgb B, Bsent, H, Hd, Hx;
+            DirectionalIrradiance Hv;
+        };
+        std::vector<NodeLight> nodes;
+        std::vector<Rgb> radiance;
+    };
+    LightState lightState() const;
+    /// Puts `state` back bit for bit, without gathering again (from the edited state a
+    /// gather converges to within its tolerance of the old solution, not to it). The nodes
+    /// and lights must be those it was taken with; throws std::logic_error otherwise.
+    void restoreLightState(const LightState& state);
     /// Applies `edit` to the emitter of light `light` (any of its components; its strengths
     /// taken from their radiances), then as setLightEmitter. Throws as Emitter::apply.
     void editEmitter(int light, const EmitterEdit& edit);

@@ -38,6 +38,33 @@ void HierarchicalSolver::removeEmitterLights(int first) {
     if (started_) gatherPushPull();
 }
 
+HierarchicalSolver::LightState HierarchicalSolver::lightState() const {
+    LightState s;
+    s.nodes.reserve(h_.nodes.size());
+    for (const Node& n : h_.nodes) s.nodes.push_back({n.B, n.Bsent, n.H, n.Hd, n.Hx, n.Hv});
+    for (const Light& l : scene_.lights) s.radiance.push_back(l.radiance);
+    return s;
+}
+
+void HierarchicalSolver::restoreLightState(const LightState& state) {
+    if (state.nodes.size() != h_.nodes.size() || state.radiance.size() != scene_.lights.size())
+        throw std::logic_error("restoreLightState: the solver's nodes or lights changed since");
+    for (size_t l = 0; l < state.radiance.size(); ++l)
+        scene_.lights[l].radiance = state.radiance[l];
+    h_.updateEmittance(scene_);
+    sumDirectIrradiance();  // the emitters' power at these radiances
+    for (size_t i = 0; i < h_.nodes.size(); ++i) {
+        Node& n = h_.nodes[i];
+        const LightState::NodeLight& b = state.nodes[i];
+        n.B = b.B;
+        n.Bsent = b.Bsent;
+        n.H = b.H;
+        n.Hd = b.Hd;
+        n.Hx = b.Hx;
+        n.Hv = b.Hv;
+    }
+}
+
 void HierarchicalSolver::editEmitter(int light, const EmitterEdit& edit) {
     const Light& l = scene_.lights.at(static_cast<size_t>(light));
     if (!l.emitter) throw std::invalid_argument("editEmitter: light '" + l.name + "' is faces");
@@ -77,7 +104,10 @@ void HierarchicalSolver::updateDirectIrradiance(bool all) {
         all = true;
     }
     const size_t J = emitterLights_.size();
-    if (J == 0) return;
+    if (J == 0) {
+        sumDirectIrradiance();  // the last emitter removed: its light leaves the leaves too
+        return;
+    }
     Hunit_.resize(h_.nodes.size() * J, 0.0);
     std::vector<int> leaves;
     for (size_t n = 0; n < h_.nodes.size(); ++n) {
@@ -117,7 +147,13 @@ void HierarchicalSolver::updateDirectIrradiance(bool all) {
 void HierarchicalSolver::sumDirectIrradiance() {
     const size_t J = emitterLights_.size();
     directPower_ = Rgb{};
-    if (J == 0) return;
+    if (J == 0) {
+        // No emitter, or none left: no leaf keeps a removed one's light (a viewer session
+        // that added a point lamp, then the next session, would see it in B before it adds
+        // its own).
+        for (Node& e : h_.nodes) e.Hx = Rgb{};
+        return;
+    }
     Hunit_.resize(h_.nodes.size() * J, 0.0);
     for (size_t n = 0; n < h_.nodes.size(); ++n) {
         Node& e = h_.nodes[n];

@@ -174,10 +174,11 @@ class DynamicRelighting {
     Relighting& r_;
     radiosity::HierarchicalSolver& solver_;
     int realLights_ = 0;
-    size_t realPolygons_ = 0;            ///< polygons below this index are the scene's
-    size_t realNodes_ = 0;               ///< nodes below this id are the scene's
-    std::vector<Rgb> radiance_;          ///< real lights, then virtual lights (solver order)
-    std::vector<Rgb> photoRadiance_;     ///< the solver's radiances before (restored at the end)
+    size_t realPolygons_ = 0;    ///< polygons below this index are the scene's
+    size_t realNodes_ = 0;       ///< nodes below this id are the scene's
+    std::vector<Rgb> radiance_;  ///< real lights, then virtual lights (solver order)
+    /// The solver's light and radiances before the session (restored at its end).
+    radiosity::HierarchicalSolver::LightState prepared_;
     std::vector<Rgb> base_;              ///< per vertex: sum_l L_l h_l(v)
     std::vector<Rgb> realDirect_;        ///< per vertex: the real lights' direct light change
     std::vector<Rgb> virtualDirect_;     ///< per vertex: the virtual lights' direct light
