@@ -157,9 +157,7 @@ TEST(Specular, TheRelitImageAddsTheLobeAtTheMirrorPixelAndOffIt) {
     const Vec3 lamp = m + ((1.2 - zp) / out.z) * out;
     VirtualLight P{"P", {}, Rgb{}, radiosity::makePointLamp("P", lamp, Rgb::gray(I))};
     const std::vector<Rgb> off(r.scene.scene.lights.size());
-    // One session, the term set and taken off again: a session of its own would not do, as
-    // two sessions with a virtual lamp differ (by up to 2e-4 with the room's lamps on,
-    // measured): the comparison is of the term alone.
+    // One session, the term set and taken off again: the comparison is of the term alone.
     DynamicRelighting dyn(r, off);
     dyn.addLight(P);
     dyn.addObject(plane);
