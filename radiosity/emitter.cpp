@@ -123,24 +123,7 @@ class Sun final : public SingleEmitter {
 
     void unitIrradiance(const Visibility& vis, const ReceiverPoint& p, int rays, Rng& rng,
                         double* out) const override {
-        // Directions towards points of the disc, uniform over it: for the small discs of a
-        // sun (tan of the half angle << 1) the tangent-plane disc is the cone to within
-        // (tan a)^2 (the real sun: 2e-5), and cos and V are averaged over it.
-        const int k = tanHalf_ > 0 ? strataSide(std::max(rays, 1)) : 1;
-        const HemisphereFrame f(d_);
-        double sum = 0;
-        for (int cell = 0; cell < k * k; ++cell) {
-            Vec3 w = d_;
-            if (tanHalf_ > 0) {
-                double x = 0, y = 0;
-                discPoint(cell, k, rng, x, y);
-                w = glm::normalize(d_ + tanHalf_ * (x * f.t + y * f.b));
-            }
-            const double c = glm::dot(p.n, w);
-            if (c <= 0) continue;
-            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += c;
-        }
-        out[0] = sum / (k * k);
+        out[0] = discMean(vis, p, rays, rng, [](const Vec3&) { return 1.0; });
     }
     void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
         out[0] = std::max(0.0, glm::dot(p.n, d_));
@@ -148,21 +131,7 @@ class Sun final : public SingleEmitter {
     void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
                     Rng& rng, double* out) const override {
         // The disc's directions as unitIrradiance draws them, each weighed by the lobe.
-        const int k = tanHalf_ > 0 ? strataSide(std::max(rays, 1)) : 1;
-        const HemisphereFrame f(d_);
-        double sum = 0;
-        for (int cell = 0; cell < k * k; ++cell) {
-            Vec3 w = d_;
-            if (tanHalf_ > 0) {
-                double x = 0, y = 0;
-                discPoint(cell, k, rng, x, y);
-                w = glm::normalize(d_ + tanHalf_ * (x * f.t + y * f.b));
-            }
-            const double c = glm::dot(p.n, w);
-            if (c <= 0) continue;
-            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += c * lobe(w);
-        }
-        out[0] = sum / (k * k);
+        out[0] = discMean(vis, p, rays, rng, [&](const Vec3& w) { return lobe(w); });
     }
     Rgb power(const Bounds3& b) const override {
         const double R = boundingRadius(b);
@@ -189,6 +158,28 @@ class Sun final : public SingleEmitter {
     }
 
   private:
+    /// Directions towards points of the disc, uniform over it: for the small discs of a
+    /// sun (tan of the half angle << 1) the tangent-plane disc is the cone to within
+    /// (tan a)^2 (the real sun: 2e-5), and cos V weight(w) is averaged over it.
+    template <class Weight>
+    double discMean(const Visibility& vis, const ReceiverPoint& p, int rays, Rng& rng,
+                    Weight weight) const {
+        const int k = tanHalf_ > 0 ? strataSide(std::max(rays, 1)) : 1;
+        const HemisphereFrame f(d_);
+        double sum = 0;
+        for (int cell = 0; cell < k * k; ++cell) {
+            Vec3 w = d_;
+            if (tanHalf_ > 0) {
+                double x = 0, y = 0;
+                discPoint(cell, k, rng, x, y);
+                w = glm::normalize(d_ + tanHalf_ * (x * f.t + y * f.b));
+            }
+            const double c = glm::dot(p.n, w);
+            if (c <= 0) continue;
+            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += c * weight(w);
+        }
+        return sum / (k * k);
+    }
     void setDirection(const Vec3& d) {
         d_ = unitDirection(d, "sun '" + name() + "'");
         given_ = d;  // as given: written back, it reads to the same d_ bit for bit
