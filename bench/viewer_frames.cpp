@@ -20,9 +20,11 @@
 //   - box drag: the box dragged over the floor, the pointer moving in equal steps along a
 //     straight line of 60 K pixels (about a pixel of the photo per frame at N = 60, as a
 //     mouse reports it); the solver moves the last part incrementally (moveLastObject).
-// each with both framebuffers: float (one pass) and the paper's 8-bit multipass (Loscos et
-// al. 2000, §5.3: ratios above 1 drawn as passes added in the framebuffer, n = ceil(max
-// ratio), so the draw grows with the brightest ratio). A frame is timed from the session's
+// each in the ratio display with both framebuffers: float (one pass) and the paper's 8-bit
+// multipass (Loscos et al. 2000, §5.3: ratios above 1 drawn as passes added in the
+// framebuffer, n = ceil(max ratio), so the draw grows with the brightest ratio), and in the
+// per-pixel display (the viewer's default: Session::relitPerPixel on the CPU, shown as an
+// image; its "passes" column is 0). A frame is timed from the session's
 // change (update() or dragTo) to the end of FrameRenderer::render(), which ends with
 // glFinish. Prints the median and 90th percentile of the frame and its parts, in ms.
 // The pass count is taken over the vertices some pixel shows: with the box, a floor vertex
@@ -136,9 +138,22 @@ struct Samples {
 /// Draws `frames` frames with framebuffer `fb`; frame i is `change(i)` (the session's
 /// update or drag) followed by render(). One untimed frame first: the first draw into a
 /// target compiles llvmpipe's shader variants for it, which the window pays once.
+/// How a frame is drawn: the ratio display on the GPU into one of its framebuffers, or the
+/// per-pixel display (relight render's and the viewer's default), drawn on the CPU and shown
+/// as an image.
+struct Display {
+    const char* name;
+    bool perPixel;
+    Framebuffer framebuffer;
+};
+constexpr Display kDisplays[] = {{"ratio, float32", false, Framebuffer::float32},
+                                 {"ratio, multipass8", false, Framebuffer::multipass8},
+                                 {"per-pixel", true, Framebuffer::float32}};
+
 template <class Change>
-Samples timeFrames(FrameRenderer& frame, Framebuffer fb, int frames, Change change) {
-    frame.framebuffer = fb;
+Samples timeFrames(FrameRenderer& frame, const Display& display, int frames, Change change) {
+    frame.framebuffer = display.framebuffer;
+    frame.perPixel = display.perPixel;
     frame.render();
     Samples s;
     for (int i = 0; i < frames; ++i) {
@@ -156,11 +171,11 @@ Samples timeFrames(FrameRenderer& frame, Framebuffer fb, int frames, Change chan
 }
 
 void printHeader() {
-    std::printf("%-26s %-11s %-17s %-17s %-17s %-17s %6s %6s\n", "scenario", "framebuffer", "frame",
+    std::printf("%-26s %-18s %-17s %-17s %-17s %-17s %6s %6s\n", "scenario", "display", "frame",
                 "update", "upload", "draw", "fps", "passes");
 }
 
-void printRow(const char* scenario, Framebuffer fb, const Samples& s) {
+void printRow(const char* scenario, const Display& display, const Samples& s) {
     const auto cell = [](const std::vector<double>& v) {
         char buf[32];
         std::snprintf(buf, sizeof buf, "%7.2f (%7.2f)", quantile(v, 0.5), quantile(v, 0.9));
@@ -169,26 +184,24 @@ void printRow(const char* scenario, Framebuffer fb, const Samples& s) {
     const auto [lo, hi] = std::minmax_element(s.passes.begin(), s.passes.end());
     char passes[16];
     std::snprintf(passes, sizeof passes, *lo == *hi ? "%.0f" : "%.0f-%.0f", *lo, *hi);
-    std::printf("%-26s %-11s %-17s %-17s %-17s %-17s %6.1f %6s\n", scenario,
-                fb == Framebuffer::float32 ? "float32" : "multipass8", cell(s.frame).c_str(),
+    std::printf("%-26s %-18s %-17s %-17s %-17s %-17s %6.1f %6s\n", scenario, display.name,
+                cell(s.frame).c_str(),
                 cell(s.update).c_str(), cell(s.upload).c_str(), cell(s.draw).c_str(),
                 1e3 / quantile(s.frame, 0.5), passes);
 }
 
-constexpr Framebuffer kFramebuffers[] = {Framebuffer::float32, Framebuffer::multipass8};
-
-/// The light slider over both framebuffers: light 0 from 0.2x its intensity up to 2x and
+/// The light slider in every display: light 0 from 0.2x its intensity up to 2x and
 /// back (a raised cosine, as a hand moves a slider), then the photo's intensity again.
 void lightSlider(const char* scenario, Session& session, FrameRenderer& frame, int frames) {
     LightControl& light = session.lights().at(0);
     const double initial = light.intensity;
-    for (Framebuffer fb : kFramebuffers) {
-        const Samples s = timeFrames(frame, fb, frames, [&](int i) {
+    for (const Display& display : kDisplays) {
+        const Samples s = timeFrames(frame, display, frames, [&](int i) {
             const double phase = 2 * std::numbers::pi * i / frames;
             light.intensity = initial * (0.2 + 1.8 * 0.5 * (1 - std::cos(phase)));
             session.update();
         });
-        printRow(scenario, fb, s);
+        printRow(scenario, display, s);
     }
     light.intensity = initial;
     session.update();
@@ -210,6 +223,7 @@ int run(const Args& a) {
                       ("relight_viewer_frames_" + std::to_string(getpid())));
     if (a.upscale > 1) upscaleScene(sf, a.upscale, tmp.path);
     RelightOptions o;
+    o.pixelLight = true;  // the viewer's default display, per pixel, needs it
     const auto t0 = Clock::now();
     o.progress = [&](const std::string& m) {
         std::fprintf(stderr, "  [%6.1f s] %s\n", secondsSince(t0), m.c_str());
@@ -224,8 +238,8 @@ int run(const Args& a) {
         p.leaves, p.links, p.vertexCount());
 
     Session session(*r, EditFile{});
-    GpuRatioDisplay display(session.prepared());
-    FrameRenderer frame(session, display);
+    GpuRatioDisplay gpu(session.prepared());
+    FrameRenderer frame(session, gpu);
     std::printf(
         "%d frames per row; ms: median (90th percentile). update: Session::update or dragTo "
         "(the solver, on the CPU); upload: the values per vertex computed and sent to the GPU, "
@@ -249,7 +263,7 @@ int run(const Args& a) {
 
     // The drag: grabbed where it was put, towards where virtual_box_moved puts the box (a
     // straight line over the floor, which the box stays on), 60 K pixels in all; forwards
-    // with one framebuffer, back with the other, in one gesture.
+    // in one display, back in the next, and so on, in one gesture.
     const Pick grab = session.pick(u, v);
     if (grab.object != 0) throw std::runtime_error("the box is not under its own pixel");
     double u1 = 0, v1 = 0;
@@ -264,15 +278,16 @@ int run(const Args& a) {
     session.beginDrag(grab.object, grab);
     int misses = 0;
     Vec3 end = start;
-    for (Framebuffer fb : kFramebuffers) {
-        const bool forwards = fb == Framebuffer::float32;
-        const Samples s = timeFrames(frame, fb, a.frames, [&](int i) {
+    bool forwards = true;
+    for (const Display& display : kDisplays) {
+        const Samples s = timeFrames(frame, display, a.frames, [&](int i) {
             const double f = static_cast<double>(i + 1) / a.frames;
             const double t = forwards ? f : 1 - f;
             if (!session.dragTo(u + t * du, v + t * dv)) ++misses;
         });
         if (forwards) end = boxAt();
-        printRow("box drag", fb, s);
+        printRow("box drag", display, s);
+        forwards = !forwards;
     }
     session.endDrag();
     const auto& m = session.objects().at(0).object.transform;  // the unit box scaled
