@@ -428,7 +428,7 @@ TEST(PreparedCache, LayoutGuard) {
     EXPECT_EQ(sizeof(PrepareTimes), 64u) << "PrepareTimes changed: update serialize(PrepareTimes)";
     // PreparedImage::photoPixels (its per-pixel indirect parts included) and pixelTable are
     // derived: derivePhotoPixels() after reading, not written.
-    EXPECT_EQ(sizeof(PreparedImage), 872u)
+    EXPECT_EQ(sizeof(PreparedImage), 920u)
         << "PreparedImage changed: update serialize(PreparedImage)";
     EXPECT_EQ(sizeof(ShadowRefinementOptions), 64u)
         << "ShadowRefinementOptions changed: hash the new option in hashOptions()";
