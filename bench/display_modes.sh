@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every edit of a scene scored (`relight eval` against its Cycles truth) with the default
-# per-pixel display and the ratio map of ../shared/seeds/000 (Eq. 3, `--display ratio-map`):
-# one prepared cache per scene (the same preparation serves both displays).
+# per-pixel display, the ratio map of ../shared/seeds/000 (Eq. 3, `--display ratio-map`) and
+# Wen et al.'s unoccluded E(n) of ../shared/seeds/002 (Eq. 13, `--display wen`): one
+# prepared cache per scene (the same preparation serves every display).
 #   bash bench/display_modes.sh [SCENE_DIR...]     (default: data/courtyard data/window_room)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,7 +17,7 @@ for scene in "${scenes[@]}"; do
     name=$(basename "$scene")
     for e in "$scene"/edits/*.json; do
         edit=$(basename "$e" .json)
-        for display in pixel ratio-map; do
+        for display in pixel ratio-map wen; do
             out="$work/$name-$edit-$display.exr"
             "$relight" render "$scene" --edit "$e" -o "$out" --display "$display" \
                 --cache "$work/$name.bin" --report "$work/r.json" >/dev/null 2>"$work/log" ||

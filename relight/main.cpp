@@ -3,7 +3,7 @@
 //   relight prepare <scene_dir> [preparation options] [--cache FILE] [--force]
 //   relight render  <scene_dir> [--edit edit.json] -o out.exr|png [--report r.json]
 //                   [preparation options] [--cache FILE | --no-cache] [--debug-views DIR]
-//                   [--display ratio|confidence|pixel|ratio-map]
+//                   [--display ratio|confidence|pixel|ratio-map|wen]
 //   preparation options: --epsilon E, --spp N, --no-refinement, --no-shadow-removal,
 //                        --max-links N, --max-memory MiB, --time-budget S, --display-pixels P,
 //                        --no-pixel-light, --all-photos
@@ -152,15 +152,18 @@ CLI::App* addRenderCommand(CLI::App& app, cli::RenderArgs& ra) {
     render->add_option("--exposure", ra.exposure, "exposure in stops for 8-bit output")
         ->check(finiteNumber(Sign::kAny));
     render
-        ->add_option("--display", ra.display,
-                     "ratio: T B/D everywhere (Loscos et al. 2000); confidence: the light an "
-                     "edit adds (lamps off in the photo, virtual parts) as the model's "
-                     "rho B / pi where the photo's lamps did not light a point (Loscos et al. "
-                     "1999's confidence); pixel: T H/H_photo with the direct light per pixel "
-                     "(Loscos et al. 1999; prepares with --pixel-light); ratio-map: L_o I_r / I_o "
-                     "with I the lights' direct irradiance per pixel (the 000 paper's Eq. 3)")
+        ->add_option(
+            "--display", ra.display,
+            "ratio: T B/D everywhere (Loscos et al. 2000); confidence: the light an "
+            "edit adds (lamps off in the photo, virtual parts) as the model's "
+            "rho B / pi where the photo's lamps did not light a point (Loscos et al. "
+            "1999's confidence); pixel: T H/H_photo with the direct light per pixel "
+            "(Loscos et al. 1999; prepares with --pixel-light); ratio-map: L_o I_r / I_o "
+            "with I the lights' direct irradiance per pixel (the 000 paper's Eq. 3); wen: as "
+            "pixel, with the sky's part its unoccluded irradiance E(n) at the pixel's "
+            "normal (Wen et al. 2003)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"ratio", "confidence", "pixel", "ratio-map"}));
+        ->check(CLI::IsMember({"ratio", "confidence", "pixel", "ratio-map", "wen"}));
     auto* renderCache =
         render->add_option("--cache", ra.cache.file,
                            "prepared-state cache (default <scene_dir>/.relight/prepared.bin)");

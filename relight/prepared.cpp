@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "radiosity/parallel.h"
+#include "relight/display/wen_display.h"
 #include "relight/pipeline/pixel_light.h"
 
 namespace relight {
@@ -33,7 +34,12 @@ const char* displayModeName(DisplayMode mode) {
     return mode == DisplayMode::ratio        ? "ratio"
            : mode == DisplayMode::confidence ? "confidence"
            : mode == DisplayMode::ratioMap   ? "ratio-map"
+           : mode == DisplayMode::wen        ? "wen"
                                              : "pixel";
+}
+
+bool drawsPerPixel(DisplayMode mode) {
+    return mode == DisplayMode::pixel || mode == DisplayMode::ratioMap || mode == DisplayMode::wen;
 }
 
 DisplayMode parseDisplayMode(const std::string& name) {
@@ -41,8 +47,9 @@ DisplayMode parseDisplayMode(const std::string& name) {
     if (name == "confidence") return DisplayMode::confidence;
     if (name == "pixel") return DisplayMode::pixel;
     if (name == "ratio-map") return DisplayMode::ratioMap;
+    if (name == "wen") return DisplayMode::wen;
     throw std::invalid_argument("unknown display \"" + name +
-                                "\" (ratio, confidence, pixel or ratio-map)");
+                                "\" (ratio, confidence, pixel, ratio-map or wen)");
 }
 
 SplitIrradiance splitIrradiance(const PreparedImage& p, std::span<const Rgb> radiance) {
@@ -62,7 +69,7 @@ VertexDisplay vertexDisplay(const PreparedImage& p, const SplitIrradiance& H, Di
         throw std::invalid_argument("vertexDisplay: kept and fresh irradiance differ in size");
     // The per-pixel display is not a value per vertex (renderEdit draws it): no silent
     // fallback to the ratio display for a caller that asks for it (virtual parts).
-    if (mode == DisplayMode::pixel || mode == DisplayMode::ratioMap)
+    if (drawsPerPixel(mode))
         throw std::invalid_argument("vertexDisplay: the per-pixel display has no vertex values");
     VertexDisplay d;
     const bool fresh =
@@ -165,6 +172,10 @@ void renderEdit(const PreparedImage& p, std::span<const Rgb> radiance, Image& ou
     }
     if (mode == DisplayMode::ratioMap) {
         renderRatioMap(p, radiance, out);
+        return;
+    }
+    if (mode == DisplayMode::wen) {
+        renderWen(p, radiance, out);
         return;
     }
     if (mode == DisplayMode::ratio) {

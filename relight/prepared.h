@@ -76,6 +76,13 @@ struct PreparedImage {
     /// empty otherwise (the per-pixel display then reads the first photo alone).
     std::vector<float> pixelReflectance;
     std::vector<radiosity::Rgb> modelReflectance;  ///< per vertex: the polygon's rho
+    /// With per-pixel light (empty otherwise), for Wen et al.'s display
+    /// (DisplayMode::wen, relight/display/wen_display.h): each pixel's normal, 3 floats, the
+    /// unit mean of the polygon normals of its samples that see a reflecting surface (0
+    /// where none does); and per light, the sky coefficient k (0-8) it scales when it is a
+    /// component of an environment light, -1 for any other light.
+    std::vector<float> pixelNormal;
+    std::vector<int> skyCoefficient;
     /// Derived, not cached (derivePhotoPixels): the photo per pixel as the per-pixel
     /// display's pooled reflectance reads it; empty without per-pixel light.
     PhotoPixels photoPixels;
@@ -112,9 +119,19 @@ enum class DisplayMode {
     /// lights' direct irradiance alone (the per-pixel display's h_l(p) = pi Gbar_l(p), no
     /// indirect part, no pooled reflectance): the paper's variant, kept to compare with.
     ratioMap,
+    /// Wen, Liu & Huang 2003 (../shared/seeds/002, Eqs. (13), (15)): the per-pixel display with the
+    /// environment light's part the unoccluded irradiance E(n) of its 9 coefficients at the
+    /// pixel's normal (Ramamoorthi & Hanrahan 2001, Eq. 7), for the photo's sky and the
+    /// edit's, in place of the occluded transfer and its bounces; every other light as in
+    /// DisplayMode::pixel. Kept to compare with (relight/display/wen_display.h).
+    wen,
 };
-/// "ratio", "confidence", "pixel", "ratio-map"; and back (std::invalid_argument naming the modes).
+/// "ratio", "confidence", "pixel", "ratio-map", "wen"; and back (std::invalid_argument naming the
+/// modes).
 const char* displayModeName(DisplayMode mode);
+/// Whether the display draws per pixel (pixel, ratio-map, wen): it needs a preparation with
+/// per-pixel light (RelightOptions::pixelLight) and has no values per vertex.
+bool drawsPerPixel(DisplayMode mode);
 DisplayMode parseDisplayMode(const std::string& name);
 
 /// The edit's irradiance per vertex in the two parts the confidence display weighs apart:

@@ -313,6 +313,8 @@ void lightPixels(Relighting& r, const RelightOptions& o) {
         say(o, "direct light per pixel");
         P.pixelDirect = measurePixelDirect(r.items, *r.solver, directLightOptions(o));
     }
+    P.pixelNormal = pixelNormals(r.items, r.solver->scene());
+    P.skyCoefficient = skyCoefficients(r.solver->scene());
     // The indirect part of each vertex's response per light, gathered by rays that read
     // the leaves' radiosity where they land (radiosity::rayGatherResponses), not through
     // the links' sources: the per-pixel display divides the photo by it, and where the

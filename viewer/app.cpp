@@ -422,8 +422,21 @@ void App::displayPanel() {
     frame_.framebuffer = fb == 0 ? Framebuffer::float32 : Framebuffer::multipass8;
     // The per-pixel display when the preparation measured the light per pixel (--display
     // pixel): drawn on the CPU, the ratio display on the GPU.
-    if (!session_.prepared().pixelDirect.empty())
+    if (!session_.prepared().pixelDirect.empty()) {
         ImGui::Checkbox("per-pixel display (CPU)", &frame_.perPixel);
+        // Which one (relight render's --display): the default, 000's ratio map, or Wen et
+        // al.'s unoccluded sky.
+        constexpr DisplayMode kModes[] = {DisplayMode::pixel, DisplayMode::ratioMap,
+                                          DisplayMode::wen};
+        int mode = 0;
+        for (int i = 0; i < 3; ++i)
+            if (kModes[i] == frame_.perPixelMode) mode = i;
+        for (int i = 0; i < 3; ++i) {
+            if (i > 0) ImGui::SameLine();
+            ImGui::RadioButton(displayModeName(kModes[i]), &mode, i);
+        }
+        frame_.perPixelMode = kModes[mode];
+    }
     float exposure = static_cast<float>(frame_.exposure);
     if (ImGui::SliderFloat("exposure (stops)", &exposure, -4.0f, 4.0f, "%.1f"))
         frame_.exposure = exposure;

@@ -56,7 +56,7 @@ const DebugViews& FrameRenderer::debugViews() {
 FrameStats FrameRenderer::render() {
     const bool valuesChanged = session_.generation() != generation_;
     const bool viewChanged = view != lastView_ || generation_ < 0;
-    const bool modeChanged = perPixel != lastPerPixel_;
+    const bool modeChanged = perPixel != lastPerPixel_ || perPixelMode != lastPerPixelMode_;
     drew_ = valuesChanged || viewChanged || modeChanged || framebuffer != lastFramebuffer_ ||
             exposure != lastExposure_;
     if (!drew_) return last_;
@@ -66,7 +66,7 @@ FrameStats FrameRenderer::render() {
     const bool cpuRelit = view == ViewKind::relit && perPixel;
     if (cpuRelit) {
         if (valuesChanged || viewChanged || modeChanged)
-            display_.setImage(session_.relitPerPixel());
+            display_.setImage(session_.relitPerPixel(perPixelMode));
     } else if (view == ViewKind::relit || view == ViewKind::B) {
         if (valuesChanged || viewChanged) {
             display_.setVertexValues(view == ViewKind::B ? session_.vertexIrradiance()
@@ -121,6 +121,7 @@ FrameStats FrameRenderer::render() {
     lastFramebuffer_ = framebuffer;
     lastExposure_ = exposure;
     lastPerPixel_ = perPixel;
+    lastPerPixelMode_ = perPixelMode;
     last_ = s;
     return s;
 }

@@ -39,6 +39,8 @@ class FrameRenderer {
     /// The relit view in the per-pixel display (Session::relitPerPixel, drawn on the CPU and
     /// shown as an image) rather than the ratio display on the GPU.
     bool perPixel = false;
+    /// Which per-pixel display it is: pixel (relight render's default), ratio-map or wen.
+    DisplayMode perPixelMode = DisplayMode::pixel;
 
     /// Uploads what changed since the last call and draws the photo area into the display's
     /// offscreen target. Returns the times.
@@ -61,6 +63,7 @@ class FrameRenderer {
     Framebuffer lastFramebuffer_ = Framebuffer::float32;
     double lastExposure_ = 0;
     bool lastPerPixel_ = false;
+    DisplayMode lastPerPixelMode_ = DisplayMode::pixel;
     bool drew_ = false;
     FrameStats last_;
 };

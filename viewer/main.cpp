@@ -363,7 +363,8 @@ int run(const Args& a) {
     RelightOptions o;
     o.epsilon = a.epsilon;
     o.spp = a.spp;
-    o.pixelLight = a.display == "pixel";
+    const DisplayMode mode = parseDisplayMode(a.display);
+    o.pixelLight = drawsPerPixel(mode);
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     std::fprintf(stderr, "relight-viewer: preparing %s\n", a.scene.c_str());
     const std::unique_ptr<Relighting> prepared = prepareRelighting(sf, o);
@@ -378,7 +379,8 @@ int run(const Args& a) {
     frame.view = view;
     frame.framebuffer = a.framebuffer == "float" ? Framebuffer::float32 : Framebuffer::multipass8;
     frame.exposure = a.exposure;
-    frame.perPixel = a.display == "pixel";
+    frame.perPixel = drawsPerPixel(mode);
+    if (frame.perPixel) frame.perPixelMode = mode;
     // The first frame, refused when not finite before it is shown or anything is written
     // (the session refuses a radiance that overflows; a finite one may overflow the floats).
     const FrameStats s = frame.render();
@@ -428,9 +430,11 @@ int main(int argc, char** argv) {
     app.add_option("--display", a.display,
                    "the relit view: pixel (the default, as relight render's: the direct light "
                    "per pixel, Loscos et al. 1999, drawn on the CPU; prepares the per-pixel "
-                   "light) or ratio (Loscos et al. 2000 vertex ratios, on the GPU)")
+                   "light), ratio-map (000 Eq. 3: the direct light alone) and wen (the sky "
+                   "unoccluded, Wen et al. 2003), drawn on the CPU as relight render draws "
+                   "them, or ratio (Loscos et al. 2000 vertex ratios, on the GPU)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"ratio", "pixel"}));
+        ->check(CLI::IsMember({"ratio", "pixel", "ratio-map", "wen"}));
     app.add_option("--do", a.actions,
                    "light:U,V | box:U,V | drag:U0,V0:U1,V1 | remove:U,V | restore:NAME | "
                    "lamp:U,V[:W,H] | specular:NAME:R,G,B:S (in order)");

@@ -677,9 +677,12 @@ std::vector<Rgb> Session::vertexRatios() const {
     return vertexRatio(r_->prepared, relight::vertexIrradiance(r_->prepared, realRadiance()));
 }
 
-Image Session::relitPerPixel() {
-    if (dyn_) return dyn_->render(DisplayMode::pixel);
-    return renderEdit(r_->prepared, realRadiance(), DisplayMode::pixel);
+Image Session::relitPerPixel(DisplayMode mode) {
+    if (!drawsPerPixel(mode))
+        throw std::invalid_argument(std::string("relitPerPixel: the ") + displayModeName(mode) +
+                                    " display does not draw per pixel");
+    if (dyn_) return dyn_->render(mode);
+    return renderEdit(r_->prepared, realRadiance(), mode);
 }
 
 VirtualOverlay Session::overlay() {

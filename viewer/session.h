@@ -184,10 +184,11 @@ class Session {
     std::vector<Rgb> realRadiance() const;
     /// The virtual parts' overlay box (empty without virtual parts); casts rays.
     VirtualOverlay overlay();
-    /// The relit photo in the per-pixel display (relight/pipeline/pixel_light.h), drawn on
-    /// the CPU as `relight render --display pixel` draws it; needs a preparation with
-    /// per-pixel light (std::invalid_argument otherwise).
-    Image relitPerPixel();
+    /// The relit photo in a per-pixel display (relight/pipeline/pixel_light.h; `mode`
+    /// pixel, ratio-map or wen: drawsPerPixel()), drawn on the CPU as `relight render
+    /// --display MODE` draws it; needs a preparation with per-pixel light
+    /// (std::invalid_argument otherwise, and for a mode that does not draw per pixel).
+    Image relitPerPixel(DisplayMode mode = DisplayMode::pixel);
 
     /// The edit as it stands, to be written to `editFile`: every real light by radiance
     /// (off: scale 0), the virtual lights, the objects (the viewer's boxes refer to the unit

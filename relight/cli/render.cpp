@@ -193,7 +193,7 @@ int runRender(const RenderArgs& a) {
     const auto tAll = Clock::now();
     RelightOptions o = a.prep.relightOptions();
     const DisplayMode mode = parseDisplayMode(a.display);
-    if (mode == DisplayMode::pixel || mode == DisplayMode::ratioMap) o.pixelLight = true;
+    if (drawsPerPixel(mode)) o.pixelLight = true;
     std::fprintf(stderr, "relight render %s\n", a.scene.c_str());
     // The edit is read (and checked against the scene) before the long preparation, so a
     // bad edit fails at once.

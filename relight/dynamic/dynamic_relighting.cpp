@@ -14,6 +14,7 @@
 #include "radiosity/final_gather.h"
 #include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
+#include "relight/display/wen_display.h"
 #include "relight/pipeline/pixel_light.h"
 
 namespace relight {
@@ -654,23 +655,40 @@ Image DynamicRelighting::render(DisplayMode mode) {
     const PreparedImage& P = r_.prepared;
     const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
     Image img;
-    if (mode == DisplayMode::pixel) {
+    if (drawsPerPixel(mode)) {
         // The ratio display stays where the per-pixel display does not draw (a lamp's face,
         // nothing, an edge): only those pixels' vertices need the vertices' gather, and the
-        // leaf runs, all drawn per pixel, are left out (renderRatio's leafRuns).
+        // leaf runs, all drawn per pixel, are left out (renderRatio's leafRuns). The same for
+        // every per-pixel display.
         completeVertexGather(&ratioPixelVertices());
         renderRatio(P.display, P.photo, vertexRatio(P, irradianceAsItStands()), real,
                     P.photoRadiance, img, {}, /*leafRuns=*/false);
+    }
+    const Rgb delta = ratioFloor(P.D);
+    if (mode == DisplayMode::pixel) {
         renderPixelLight(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
-                         P.photoRadiance, ratioFloor(P.D), img,
+                         P.photoRadiance, delta, img,
                          PixelLightChange{pixelDirect(), pixelIndirect()}, P.pixelReflectance,
                          &P.photoPixels);
     } else if (mode == DisplayMode::ratioMap) {
         // ../shared/seeds/000, Eq. (3): the direct irradiance alone, now and in the photo.
-        img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
         const std::vector<Rgb> noIndirect(P.vertexIndirect.size());
         renderPixelLight(P.display, P.photo, P.pixelDirect, noIndirect, radiance_, P.photoRadiance,
-                         ratioFloor(P.D), img, PixelLightChange{pixelDirect(), {}});
+                         delta, img, PixelLightChange{pixelDirect(), {}});
+    } else if (mode == DisplayMode::wen) {
+        // Wen et al. 2003 (relight/display/wen_display.h): the sky unoccluded and not
+        // reflected, in the photo and now (a virtual object does not shade it either); the
+        // other lights' light and the virtual parts' bounces as in the per-pixel display.
+        const size_t L = P.photoRadiance.size();
+        const std::vector<float> photoDirect = unoccludedSkyDirect(P, P.pixelDirect, L);
+        const std::span<const float> now = pixelDirect();  // real lights, then virtual ones
+        const std::vector<float> nowDirect = unoccludedSkyDirect(P, now, radiance_.size());
+        const std::vector<Rgb> indirect = indirectWithoutSky(P);
+        const PhotoPixels pool =
+            photoPixels(P.display, P.photo, photoDirect, indirect, P.photoRadiance, delta);
+        renderPixelLight(P.display, P.photo, photoDirect, indirect, radiance_, P.photoRadiance,
+                         delta, img, PixelLightChange{nowDirect, pixelIndirect()},
+                         P.pixelReflectance, &pool);
     } else if (mode == DisplayMode::ratio) {
         img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
     } else {

@@ -268,6 +268,8 @@ void serialize(A& a, T& x) {
     a(x.pixelDirect);
     a(x.vertexIndirect);
     a(x.pixelReflectance);
+    a(x.pixelNormal);
+    a(x.skyCoefficient);
     a(x.leaves);
     a(x.links);
     a(x.budgetReached);
@@ -411,6 +413,16 @@ std::string checkPrepared(const PreparedImage& p) {
                n(pixels) + " pixels x 3";
     for (const float f : p.pixelReflectance)
         if (!std::isfinite(f)) return "pixelReflectance holds a value that is not finite";
+    if (p.pixelNormal.size() != (p.pixelDirect.empty() ? 0 : pixels * 3))
+        return "pixelNormal has " + n(p.pixelNormal.size()) + " entries, not " + n(pixels) +
+               " pixels x 3";
+    for (const float f : p.pixelNormal)
+        if (!(std::abs(f) <= 1.0f + 1e-5f)) return "pixelNormal holds a value outside [-1, 1]";
+    if (p.skyCoefficient.size() != (p.pixelDirect.empty() ? 0 : lights))
+        return "skyCoefficient has " + n(p.skyCoefficient.size()) + " entries, not " + n(lights);
+    for (const int k : p.skyCoefficient)
+        if (k < -1 || k >= radiosity::kSh9Count)
+            return "skyCoefficient holds " + std::to_string(k) + ", not -1 or 0-8";
     if (p.modelReflectance.size() != vertices)
         return "modelReflectance has " + n(p.modelReflectance.size()) + " entries, not " +
                n(vertices);

@@ -32,14 +32,14 @@ namespace relight {
 /// removed from or reordered in any serialize() in prepared_cache.cpp (PreparedImage,
 /// Image, DisplayMap, VertexLighting, PrepareTimes), or an encoding changed. Files of
 /// another version are rebuilt, never read.
-constexpr uint32_t kPreparedFormatVersion = 5;
+constexpr uint32_t kPreparedFormatVersion = 6;
 
 /// Version of the preparation itself, part of the preparation key. Bump it whenever
 /// prepareRelighting() gives a different PreparedImage for the same inputs and options
 /// (a new step, a changed algorithm or default): caches made by the old code are then
 /// stale. (On Linux the key also hashes the program's own bytes, which catches a forgotten
 /// bump; elsewhere this constant is all there is.)
-constexpr uint32_t kPreparationEngineVersion = 4;
+constexpr uint32_t kPreparationEngineVersion = 5;
 
 /// FNV-1a 64 of the preparation's inputs: the two versions above, the bytes of the running
 /// program (on Linux: a cache made by another build is stale), the bytes of scene.json,

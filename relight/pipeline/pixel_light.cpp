@@ -6,7 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "radiosity/emitter.h"
 #include "radiosity/parallel.h"
+#include "radiosity/sh9.h"
 
 namespace relight {
 
@@ -38,6 +40,37 @@ std::vector<float> pixelDirect(const ItemBuffer& items, const radiosity::Scene& 
             out[px * L + l] = static_cast<float>(std::numbers::pi * sum[l] / n);
     });
     return out;
+}
+
+std::vector<float> pixelNormals(const ItemBuffer& items, const radiosity::Scene& scene) {
+    const size_t pixels = static_cast<size_t>(items.width) * static_cast<size_t>(items.height);
+    std::vector<float> out(3 * pixels, 0.0f);
+    radiosity::parallelFor(pixels, 256, [&](size_t px) {
+        const int x = static_cast<int>(px % static_cast<size_t>(items.width));
+        const int y = static_cast<int>(px / static_cast<size_t>(items.width));
+        radiosity::Vec3 sum{0, 0, 0};
+        for (int s = 0; s < items.spp; ++s) {
+            const int p = items.polygon[static_cast<size_t>(items.sampleIndex(x, y, s))];
+            if (p < 0 || scene.polygons[static_cast<size_t>(p)].light >= 0) continue;
+            sum += scene.polygons[static_cast<size_t>(p)].normal;
+        }
+        // Samples on faces turned apart (an edge seen edge-on) may cancel: no normal then.
+        const double len = glm::length(sum);
+        if (!(len > 1e-9)) return;
+        for (int c = 0; c < 3; ++c)
+            out[3 * px + static_cast<size_t>(c)] = static_cast<float>(sum[c] / len);
+    });
+    return out;
+}
+
+std::vector<int> skyCoefficients(const radiosity::Scene& scene) {
+    std::vector<int> k(scene.lights.size(), -1);
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+        const auto& e = scene.lights[l].emitter;
+        // A sky is the emitter of 9 components, its coefficients (radiosity/emitter.h).
+        if (e && e->components() == radiosity::kSh9Count) k[l] = scene.lights[l].component;
+    }
+    return k;
 }
 
 std::vector<float> measurePixelDirect(const ItemBuffer& items,

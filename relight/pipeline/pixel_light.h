@@ -41,6 +41,15 @@ std::vector<float> measurePixelDirect(const ItemBuffer& items,
                                       const radiosity::HierarchicalSolver& solver,
                                       radiosity::DirectLightOptions options);
 
+/// What Wen et al.'s display (relight/display/wen_display.h) reads, kept by the preparation
+/// with the per-pixel light: each pixel's normal, 3 floats per pixel, the unit mean of the
+/// polygon normals of its samples that see a reflecting surface (0 where none does: an
+/// emitting face, nothing), as pixelDirect() averages its samples
+/// (PreparedImage::pixelNormal); and each light's sky coefficient, k for the component k of
+/// an environment light (one of 9), -1 for any other light (PreparedImage::skyCoefficient).
+std::vector<float> pixelNormals(const ItemBuffer& items, const radiosity::Scene& scene);
+std::vector<int> skyCoefficients(const radiosity::Scene& scene);
+
 /// The indirect part of each vertex's response, h_l(v) - pi G_l(v), [vertex * lights + l]:
 /// `lighting` and `direct` as measureVertexLighting() gave them (before real-shadow
 /// removal scales the light links).

@@ -5,6 +5,7 @@
 #    both score within the issue's bound (0.03) against truth/sun_moved;
 #  - the sun turned by a drag on the image; the sky turned, scaled and one coefficient set;
 #    a point lamp added by a click and moved: each saved, rendered again, the same image;
+#  - the sun and the sky turned in the ratio-map and wen displays: as render draws them;
 #  - an edit of every kind opened and saved again renders to the same image;
 #  - a control given a light that lacks it is refused, naming it.
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=<data/courtyard> -DWORK=...
@@ -26,6 +27,18 @@ same_within_one_step("${WORK}/sun_viewer.exr" "${WORK}/sun_render.exr" "sun turn
 # The issue's bound for light edits (the data's noise floor is 0.0064).
 scores_within("${WORK}/sun_viewer.exr" sun_moved 0.03 "sun turned, viewer")
 scores_within("${WORK}/sun_render.exr" sun_moved 0.03 "sun turned, saved and rendered")
+
+# render's other per-pixel displays (ratio-map: 000 Eq. 3, the direct light alone; wen: the
+# sky unoccluded, Wen et al. 2003) from the viewer's --display: the sun turned (a virtual sun,
+# DynamicRelighting) and the sky turned, saved, rendered in the same display: one 8-bit step.
+foreach(display ratio-map wen)
+  viewer(o 0 "${SCENE}" --display ${display} --do sun:sun:-60,25 --do rotate:sky:0,0,1:120
+         --save-edit "${WORK}/${display}.json" --screenshot "${WORK}/${display}_viewer.exr")
+  relight(o 0 render "${SCENE}" --edit "${WORK}/${display}.json" --display ${display}
+          -o "${WORK}/${display}_render.exr" --cache "${WORK}/pixel.bin")
+  same_within_one_step("${WORK}/${display}_viewer.exr" "${WORK}/${display}_render.exr"
+                       "${display}: sun and sky turned")
+endforeach()
 
 # The other controls in the ratio display (the GPU's; render asked for it, as the viewer
 # prepares), which needs no per-pixel preparation.

@@ -3,6 +3,8 @@
 // light model's components, and edits of the sun and the sky match the truth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -90,6 +92,29 @@ TEST(Courtyard, TheSunMovedMatchesTheTruth) {
     std::printf("sun_moved, pixel display: rel_rmse %.4f, changed %.4f\n", s.relRmse,
                 s.changedRelRmse);
     EXPECT_LE(s.relRmse, kLightEditBound);
+}
+
+TEST(Courtyard, WensDisplayOfASessionWithoutPartsIsTheLightEdit) {
+    // DynamicRelighting's wen display (relight/display/wen_display.h) with no virtual part:
+    // the photo's direct light per pixel and no indirect change, so the light edit's sums
+    // (1e-6: float rounding of the same terms, as the pixel display's test in
+    // dynamic_relighting_test.cpp).
+    Relighting& r = courtyard();
+    const EditFile e = loadEdit(kCourtyard + "/edits/sky_rotated.json", r.scene);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
+    const Image edit = renderEdit(r.prepared, radiance, DisplayMode::wen);
+    double diff = 0, changed = 0;
+    {
+        DynamicRelighting dyn(r, radiance);
+        const Image session = dyn.render(DisplayMode::wen);
+        for (size_t i = 0; i < edit.rgb.size(); ++i) {
+            diff = std::max(diff, static_cast<double>(std::abs(session.rgb[i] - edit.rgb[i])));
+            changed = std::max(
+                changed, static_cast<double>(std::abs(edit.rgb[i] - r.prepared.photo.rgb[i])));
+        }
+    }
+    EXPECT_LE(diff, 1e-6);
+    EXPECT_GT(changed, 0.01) << "the sky turned changed nothing";
 }
 
 namespace {

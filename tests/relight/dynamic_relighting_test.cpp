@@ -13,6 +13,7 @@
 
 #include "relight/display/debug_views.h"
 #include "relight/display/metric.h"
+#include "relight/pipeline/pixel_light.h"
 #include "room_fixture.h"
 
 using namespace relight;
@@ -317,6 +318,30 @@ TEST(DynamicRelighting, TheVerticesGatherWaitsForAVertexDisplayAndGivesTheSameVa
     (void)ref.vertexIrradiance();
     ref.addObject(box);
     EXPECT_EQ(withObject, ref.vertexIrradiance());
+}
+
+TEST(DynamicRelighting, TheRatioMapGathersAsThePixelDisplayAndGivesTheFullGathersImage) {
+    // The ratio map (000 Eq. 3) draws per pixel as the pixel display does: its render
+    // gathers only at the vertices of the pixels left to the ratio display and leaves the
+    // leaf runs out, as DisplayMode::pixel. Its image must be the one of the former path
+    // (every vertex's ratio, leaf runs, then the per-pixel pixels and the overlay) bit for
+    // bit: the same gather per vertex, and the leaf runs' pixels are all drawn again per
+    // pixel (tolerance 0).
+    const EditFile e = edit("virtual_light_and_box");
+    DynamicRelighting dyn(room(), radianceOf(e));
+    dyn.addObject(e.addObjects.at(0));
+    dyn.addLight(e.addLights.at(0));
+    const Image fast = dyn.render(DisplayMode::ratioMap);
+    const PreparedImage& P = room().prepared;
+    const std::span<const Rgb> all = dyn.radiance();
+    const std::span<const Rgb> real = all.first(static_cast<size_t>(dyn.realLights()));
+    Image ref = renderRatio(P.display, P.photo, dyn.vertexRatios(), real, P.photoRadiance);
+    const std::vector<Rgb> noIndirect(P.vertexIndirect.size());
+    renderPixelLight(P.display, P.photo, P.pixelDirect, noIndirect, all, P.photoRadiance,
+                     ratioFloor(P.D), ref, PixelLightChange{dyn.pixelDirect(), {}});
+    applyOverlay(ref, dyn.overlay());
+    EXPECT_EQ(maxAbsDiff(fast, ref), 0.0);
+    EXPECT_GT(maxAbsDiff(fast, P.photo), 0.05) << "the edit changed nothing";
 }
 
 TEST(DynamicRelighting, ThePixelDisplayOfTheRoomsVirtualEditsIsAtLeastAsNearTheTruth) {
