@@ -275,33 +275,16 @@ class Environment final : public Emitter {
         // The transfer vector T_k = integral of Y_k V cos dw = pi E[Y_k V] over
         // cosine-distributed directions (stratified: radiosity/detail/hemisphere.h), as
         // sky_transfer.h (Sloan et al. 2002); E = sum_k L_k T_k.
-        const int k = strataSide(std::max(rays, 1));
-        const HemisphereFrame f(p.n);
-        Sh9 sum{};
-        for (int cell = 0; cell < k * k; ++cell) {
-            const Vec3 w = cosineDirection(f, cell, k, rng);
-            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon >= 0) continue;
-            const Sh9 Y = sh9Basis(w);
-            for (size_t c = 0; c < Y.size(); ++c) sum[c] += Y[c];
-        }
-        for (size_t c = 0; c < sum.size(); ++c) out[c] = sum[c] * (kPi / (k * k));
+        hemisphereMean(
+            vis, p, rays, rng, [](const Vec3&) { return 1.0; }, out);
     }
     void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
                     Rng& rng, double* out) const override {
         // pi E[Y_k(w) lobe(w) V(w)] over cosine-distributed directions: unitIrradiance's
         // estimate with each direction weighed (a sharp lobe is noisy: a sky's highlight
         // is broad).
-        const int k = strataSide(std::max(rays, 1));
-        const HemisphereFrame f(p.n);
-        Sh9 sum{};
-        for (int cell = 0; cell < k * k; ++cell) {
-            const Vec3 w = cosineDirection(f, cell, k, rng);
-            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon >= 0) continue;
-            const double weight = lobe(w);
-            const Sh9 Y = sh9Basis(w);
-            for (size_t c = 0; c < Y.size(); ++c) sum[c] += weight * Y[c];
-        }
-        for (size_t c = 0; c < sum.size(); ++c) out[c] = sum[c] * (kPi / (k * k));
+        hemisphereMean(
+            vis, p, rays, rng, [&](const Vec3& w) { return lobe(w); }, out);
     }
     void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
         const Sh9 T = sh9CosineTransfer(p.n);  // R&H 2001, Eq. 7
@@ -343,6 +326,23 @@ class Environment final : public Emitter {
     }
 
   private:
+    /// pi E[Y_k(w) weight(w) V(w)] over stratified cosine-distributed directions w, into
+    /// out[0..8].
+    template <class Weight>
+    static void hemisphereMean(const Visibility& vis, const ReceiverPoint& p, int rays, Rng& rng,
+                               Weight weight, double* out) {
+        const int k = strataSide(std::max(rays, 1));
+        const HemisphereFrame f(p.n);
+        Sh9 sum{};
+        for (int cell = 0; cell < k * k; ++cell) {
+            const Vec3 w = cosineDirection(f, cell, k, rng);
+            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon >= 0) continue;
+            const double wt = weight(w);
+            const Sh9 Y = sh9Basis(w);
+            for (size_t c = 0; c < Y.size(); ++c) sum[c] += wt * Y[c];
+        }
+        for (size_t c = 0; c < sum.size(); ++c) out[c] = sum[c] * (kPi / (k * k));
+    }
     void set(const Sh9Rgb& L) {
         for (const Rgb& c : L.c)
             for (int k = 0; k < 3; ++k)
