@@ -88,11 +88,11 @@ int main(int argc, char** argv) {
         size_t own = s.linksOf(leaf).size();
         for (int n = leaf; n >= 0; n = h.nodes[static_cast<size_t>(n)].parent)
             for (const Link& l : s.linksOf(n)) ++from[objectOf(s, l.source)];
-        std::printf("leaf %d (%s, area %.3g m^2, level %d): %zu links in its chain, %zu its own;"
-                    " sources:",
-                    leaf, objectOf(s, leaf).c_str(), h.nodes[static_cast<size_t>(leaf)].area,
-                    h.nodes[static_cast<size_t>(leaf)].level, chain[static_cast<size_t>(leaf)],
-                    own);
+        std::printf(
+            "leaf %d (%s, area %.3g m^2, level %d): %zu links in its chain, %zu its own;"
+            " sources:",
+            leaf, objectOf(s, leaf).c_str(), h.nodes[static_cast<size_t>(leaf)].area,
+            h.nodes[static_cast<size_t>(leaf)].level, chain[static_cast<size_t>(leaf)], own);
         for (const auto& [name, count] : from) std::printf(" %s %zu", name.c_str(), count);
         std::printf("\n");
     }

@@ -185,9 +185,8 @@ void printRow(const char* scenario, const Display& display, const Samples& s) {
     char passes[16];
     std::snprintf(passes, sizeof passes, *lo == *hi ? "%.0f" : "%.0f-%.0f", *lo, *hi);
     std::printf("%-26s %-18s %-17s %-17s %-17s %-17s %6.1f %6s\n", scenario, display.name,
-                cell(s.frame).c_str(),
-                cell(s.update).c_str(), cell(s.upload).c_str(), cell(s.draw).c_str(),
-                1e3 / quantile(s.frame, 0.5), passes);
+                cell(s.frame).c_str(), cell(s.update).c_str(), cell(s.upload).c_str(),
+                cell(s.draw).c_str(), 1e3 / quantile(s.frame, 0.5), passes);
 }
 
 /// The light slider in every display: light 0 from 0.2x its intensity up to 2x and
