@@ -58,7 +58,7 @@ void HierarchicalSolver::boundGather(size_t firstNode, bool balance, const std::
     for (size_t n = firstNode; n < nodes.size(); ++n)
         if (!nodes[n].isCluster() && nodes[n].isLeaf() && nodes[n].seen < 0)
             unmeasured.push_back(static_cast<int>(n));
-    measureSeenByPatch(unmeasured);
+    measureSeenUntilDeadline(unmeasured);
     boundRows(firstNode, Gd, also);
     if (balance && options_.balanceSends) balanceSends(Gd, firstNode, also);
 }
@@ -69,6 +69,7 @@ double HierarchicalSolver::rowScale(double seen, double seenError, double g, dou
     // one it says is wrong is corrected. At most kMaxRenormalisation: where the links miss
     // much of what the leaf sees they are not scaled up without end. What reflecting
     // sources fill: what the leaf sees, less the lamps it sees.
+    if (!(seen >= 0)) return 1.0;  // not measured (a time budget cut it): no bound
     const double target = seen - gd;
     const double lo = std::max(0.0, target - 2 * seenError);
     const double hi = std::max(lo, std::min(1.0 - gd, target + 2 * seenError));

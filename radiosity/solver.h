@@ -505,6 +505,11 @@ class HierarchicalSolver {
     /// The same, but the leaves that are whole polygons of a face cluster of several
     /// (Hierarchy::polygonPatch) take their face cluster's `seen`, measured once for it.
     void measureSeenByPatch(const std::vector<int>& leaves);
+    /// solve(): measures what the leaves that are not lamps see, before refining.
+    void measureSeenBeforeRefining();
+    /// measureSeenByPatch, given up at the refinement's deadline; whether it ended.
+    bool measureSeenUntilDeadline(const std::vector<int>& leaves);
+    static constexpr size_t kSeenReported = 10000;  ///< leaves from which it is reported
     [[noreturn]] void throwNotConverged(int sweeps, double power, double delta) const;
     /// One refinement pass over the active links; returns how many were refined.
     size_t refineAll();
@@ -605,6 +610,8 @@ class HierarchicalSolver {
     Clock::time_point lastClock_{};   ///< the last reading in this refineLinks() ({}: none)
     size_t pops_ = 0, lastPops_ = 0;  ///< pops of the queue, all and at lastClock_
     static constexpr size_t kLinksTimed = 10000;
+    /// Accepted links whose visibility refineLinks evaluates at once (at least kLinksTimed).
+    static constexpr size_t kVisibilityBatch = 65536;
     static constexpr double kProgressSeconds = 10;
     size_t clockCalls_ = 0;
     Clock::time_point lastProgress_{};

@@ -229,9 +229,12 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
     say(o, "reflectance from the photo");
     const LightingBuffer lighting =
         computeLightingBuffer(r.items, *r.solver, directLightOptions(o), r.sampling.stride);
-    const ReflectanceReport rep = estimatePolygonReflectance(
-        *r.solver, r.scene, r.items, lighting, P.photo, o.reflectanceRounds, 16, 1e-3,
-        r.budget.secondsUntil(RelightOptions::kRefineShare + RelightOptions::kReflectanceShare));
+    ReflectanceOptions ro;
+    ro.rounds = o.reflectanceRounds;
+    ro.seconds =
+        r.budget.secondsUntil(RelightOptions::kRefineShare + RelightOptions::kReflectanceShare);
+    const ReflectanceReport rep =
+        estimatePolygonReflectance(*r.solver, r.scene, r.items, lighting, P.photo, ro);
     r.surface = rep.surface;
     r.reflectanceRounds = rep.rounds;
     r.reflectanceBudgetReached = rep.budgetReached;

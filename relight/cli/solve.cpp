@@ -22,6 +22,10 @@ namespace relight::cli {
 
 namespace {
 
+void progressLine(const std::string& m) {
+    std::fprintf(stderr, "  %s\n", m.c_str());
+}
+
 radiosity::SolverOptions solverOptions(const SolveArgs& a, const radiosity::TimeBudget& budget) {
     radiosity::SolverOptions o;
     o.epsilon = a.epsilon;
@@ -31,51 +35,72 @@ radiosity::SolverOptions solverOptions(const SolveArgs& a, const radiosity::Time
     o.refineUntil = budget.until(RelightOptions::kRefineShare);
     o.transfer.minRays = a.minRays;
     o.transfer.maxRays = a.maxRays;
-    o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
+    o.progress = progressLine;
     return o;
 }
 
 /// What the solve reads through the camera, each made the first time it is needed (by the
 /// photo's emittance or reflectance, or by -o): the item buffer, and the per-pixel lighting
-/// of the solution at the time it is first asked for.
+/// of the solution at the time it is first asked for. As in a preparation, a large photo
+/// takes fewer samples per pixel and its estimates a sub-grid of pixels (planSampling), so
+/// that their cost does not grow with the photo's size; the -o image needs every pixel.
 class CameraSamples {
   public:
     CameraSamples(const SolveArgs& a, const SceneFile& sf, radiosity::HierarchicalSolver& solver)
-        : a_(a), sf_(sf), solver_(solver) {}
+        : a_(a),
+          sf_(sf),
+          solver_(solver),
+          plan_(planSampling(sf.camera.width, sf.camera.height, a.spp, kDefaultSampleBudget)) {}
 
     const ItemBuffer& items() {
         if (!haveItems_)
-            items_ = castItemBuffer(sf_.camera, solver_.scene(), solver_.visibility(), a_.spp);
+            items_ = castItemBuffer(sf_.camera, solver_.scene(), solver_.visibility(), plan_.spp);
         haveItems_ = true;
         return items_;
     }
 
+    /// The lighting on the estimates' sub-grid of pixels.
     LightingBuffer& lighting() {
-        if (haveLighting_) return lighting_;
-        const auto t0 = Clock::now();
-        radiosity::DirectLightOptions dlo;
-        dlo.minRays = a_.minRays;
-        dlo.maxRays = a_.maxRays;
-        lighting_ = computeLightingBuffer(items(), solver_, dlo);
-        seconds_ = secondsSince(t0);
+        if (!haveLighting_) lighting_ = measure(plan_.stride);
         haveLighting_ = true;
-        std::fprintf(stderr, "per-pixel lighting: %llu shadow rays, %zu gather points, %.3f s\n",
-                     static_cast<unsigned long long>(lighting_.rays),
-                     lighting_.gatherPolygon.size(), seconds_);
         return lighting_;
+    }
+
+    /// The lighting of every pixel, for the -o image.
+    LightingBuffer& imageLighting() {
+        if (plan_.stride == 1) return lighting();
+        if (!haveImageLighting_) imageLighting_ = measure(1);
+        haveImageLighting_ = true;
+        return imageLighting_;
     }
 
     /// Seconds the per-pixel lighting took (0 when it was not needed).
     double lightingSeconds() const { return seconds_; }
 
   private:
+    LightingBuffer measure(int stride) {
+        const auto t0 = Clock::now();
+        radiosity::DirectLightOptions dlo;
+        dlo.minRays = a_.minRays;
+        dlo.maxRays = a_.maxRays;
+        LightingBuffer b = computeLightingBuffer(items(), solver_, dlo, stride);
+        const double s = secondsSince(t0);
+        seconds_ += s;
+        std::fprintf(stderr,
+                     "per-pixel lighting (pixel stride %d): %llu shadow rays, %zu gather points, "
+                     "%.3f s\n",
+                     stride, static_cast<unsigned long long>(b.rays), b.gatherPolygon.size(), s);
+        return b;
+    }
+
     const SolveArgs& a_;
     const SceneFile& sf_;
     radiosity::HierarchicalSolver& solver_;
+    SamplingPlan plan_;
     ItemBuffer items_;
     bool haveItems_ = false;
-    LightingBuffer lighting_;
-    bool haveLighting_ = false;
+    LightingBuffer lighting_, imageLighting_;
+    bool haveLighting_ = false, haveImageLighting_ = false;
     double seconds_ = 0;
 };
 
@@ -124,13 +149,24 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
     const LightingBuffer& lighting = camera.lighting();
     std::fprintf(stderr, "estimating reflectance from %s (%d rounds)\n", ph.file.c_str(),
                  a.reflectanceRounds);
-    auto rep = estimatePolygonReflectance(
-        solver, sf, items, lighting, photo, a.reflectanceRounds, 16, 1e-3,
-        budget.secondsUntil(RelightOptions::kRefineShare + RelightOptions::kReflectanceShare));
-    std::fprintf(stderr, "  %d reflectance round(s)%s\n", rep.rounds,
-                 rep.budgetReached ? ": their share of --time-budget was spent, stopped after "
-                                     "a complete round"
-                                   : "");
+    const double share = RelightOptions::kRefineShare + RelightOptions::kReflectanceShare;
+    ReflectanceOptions ro;
+    ro.rounds = a.reflectanceRounds;
+    ro.seconds = budget.secondsUntil(share);
+    ro.setUpUntil = budget.until(share);
+    const ReflectanceReport rep =
+        estimatePolygonReflectance(solver, sf, items, lighting, photo, ro);
+    if (rep.skipped)
+        std::fprintf(stderr,
+                     "warning: the reflectance was not estimated: its set-up had not ended when "
+                     "%.0f %% of --time-budget had passed; the scene's reflectances are kept "
+                     "(a larger --time-budget estimates it)\n",
+                     100 * share);
+    else
+        std::fprintf(stderr, "  %d reflectance round(s)%s\n", rep.rounds,
+                     rep.budgetReached ? ": their share of --time-budget was spent, stopped "
+                                         "after a complete round"
+                                       : "");
     ReflectanceEstimate r;
     r.seconds = secondsSince(t0);
     // Per object, the area-weighted mean of its polygons' reflectances (emitting faces left
@@ -145,6 +181,7 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
         if (means.area[o] > 0) objects[scene.objects[o]] = rgbJson(means.rho[o]);
     r.report = {{"rounds", rep.rounds},
                 {"budget_reached", rep.budgetReached},
+                {"skipped", rep.skipped},
                 {"polygons_seen", rep.polygonsSeen},
                 {"polygons_defaulted", rep.polygonsDefaulted},
                 {"objects", objects},
@@ -185,8 +222,11 @@ void printStats(const radiosity::SolverStats& st) {
 void writeRadiosityImage(const SolveArgs& a, const radiosity::HierarchicalSolver& solver,
                          CameraSamples& camera) {
     const ItemBuffer& items = camera.items();
-    LightingBuffer& lighting = camera.lighting();
-    updateIndirect(lighting, solver);
+    LightingBuffer& lighting = camera.imageLighting();
+    const auto t0 = Clock::now();
+    updateIndirect(lighting, solver, progressLine);
+    std::fprintf(stderr, "final gather of the image: %zu points, %.3f s\n",
+                 lighting.gatherPolygon.size(), secondsSince(t0));
     Image img = renderRadiosity(items, lighting, solver.scene());
     writeImage(a.output, img, a.exposure);
     std::printf("wrote %s (%dx%d, %d samples per pixel)\n", a.output.c_str(), img.width, img.height,

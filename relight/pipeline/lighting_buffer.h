@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "radiosity/direct_light.h"
+#include "radiosity/progress.h"
 #include "radiosity/solver.h"
 #include "relight/io/image.h"
 #include "relight/pipeline/item_buffer.h"
@@ -59,8 +60,10 @@ LightingBuffer computeLightingBuffer(const ItemBuffer& items,
                                      const radiosity::HierarchicalSolver& solver,
                                      radiosity::DirectLightOptions options = {}, int stride = 1);
 
-/// Re-gathers the indirect light of every gather point from the solver's current solution.
-void updateIndirect(LightingBuffer& buffer, const radiosity::HierarchicalSolver& solver);
+/// Re-gathers the indirect light of every gather point from the solver's current solution
+/// (the final gather, far links shared per element); `progress` hears how far it is.
+void updateIndirect(LightingBuffer& buffer, const radiosity::HierarchicalSolver& solver,
+                    const radiosity::ProgressFn& progress = {});
 
 /// Irradiance H at sample `idx` (radiosity units): direct light with the solver's
 /// current light emittances, plus the indirect light of the sample's gather point. The

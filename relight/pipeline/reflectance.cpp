@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "radiosity/deadline.h"
 #include "radiosity/final_gather.h"
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/parallel.h"
@@ -261,21 +262,27 @@ void stepReflectances(radiosity::HierarchicalSolver& solver, const SceneFile& sc
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const LightingBuffer& lighting, const Image& photo,
-                                             int rounds, int minSamples, double tolerance,
-                                             double seconds) {
+                                             const ReflectanceOptions& o) {
     const auto start = radiosity::Clock::now();
     ReflectanceReport report;
     const radiosity::Scene& scene = solver.scene();
-    PhotoSums sums = sumPhotoSamples(scene, items, lighting, photo);
-    thinGatherPoints(sums.points);
+    PhotoSums sums;
+    GatherTerms terms;  // the gather points' terms, once: between rounds only B changes
+    const bool setUp = radiosity::runUntil(o.setUpUntil, [&] {
+        sums = sumPhotoSamples(scene, items, lighting, photo);
+        thinGatherPoints(sums.points);
+        terms = gatherTerms(solver, sums, lighting);
+    });
+    if (!setUp) {
+        report.skipped = true;
+        return report;
+    }
     report.surface = surfaceOf(scene);
     const std::vector<int>& surface = report.surface;
-    // The gather points' terms, once: between rounds only the radiosities change.
-    const GatherTerms terms = gatherTerms(solver, sums, lighting);
     double spentBefore = radiosity::secondsSince(start);  // at the start of a round
-    for (int round = 0; round < rounds; ++round) {
-        RoundEstimates e =
-            estimateFromSums(scene, surface, sums, sumIrradiance(solver, sums, terms), minSamples);
+    for (int round = 0; round < o.rounds; ++round) {
+        RoundEstimates e = estimateFromSums(scene, surface, sums,
+                                            sumIrradiance(solver, sums, terms), o.minSamples);
         stepReflectances(solver, sceneFile, e, round, report);
         solver.pullReflectance();
         // Between rounds only the radiosity changes: the links stay (re-refining 700 k
@@ -283,14 +290,14 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
         // links are refined for the final reflectances once the rounds end.
         solver.gatherPushPull();
         report.rounds = round + 1;
-        if (round > 0 && report.lastChange < tolerance) break;
+        if (round > 0 && report.lastChange < o.tolerance) break;
         // The budget is checked between rounds only, so the solution is always that of
         // complete rounds (consistent reflectances and radiosities), never half a round:
         // the next round is begun only when a round as long as this one fits.
         const double spent = radiosity::secondsSince(start);
         const double thisRound = spent - spentBefore;
         spentBefore = spent;
-        if (seconds > 0 && spent + thisRound > seconds && round + 1 < rounds) {
+        if (o.seconds > 0 && spent + thisRound > o.seconds && round + 1 < o.rounds) {
             report.budgetReached = true;
             break;
         }

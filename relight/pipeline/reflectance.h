@@ -28,6 +28,7 @@
 
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
 #include "relight/io/image.h"
 #include "relight/io/scene_file.h"
 #include "relight/pipeline/item_buffer.h"
@@ -67,28 +68,42 @@ struct ReflectanceReport {
     /// The rounds stopped early because their time budget (`seconds`) was spent: the
     /// solution is that of the rounds done, each of them complete.
     bool budgetReached = false;
+    /// The set-up could not end by ReflectanceOptions::setUpUntil: nothing was estimated,
+    /// every polygon keeps its reflectance and the solver its solution (rounds 0).
+    bool skipped = false;
     /// surfaceOf(the solver's scene), which the estimate pooled over: later steps that pool
     /// over surfaces take it from here rather than joining the polygons again.
     std::vector<int> surface;
 };
 
-/// `rounds` estimate/solve rounds from a solved `solver`. H per sample is the direct light
-/// of `lighting` (relight/pipeline/lighting_buffer.h) plus indirect light gathered from the solver
-/// at up to 256 of each polygon's gather points per round. Only pixels whose samples all
-/// see one reflecting polygon, with no emitting face within one pixel and finite values,
-/// are used, on the lighting buffer's sub-grid of pixels (its stride). A polygon needs
-/// `minSamples` photo samples to be estimated; one with fewer takes the estimate pooled
+struct ReflectanceOptions {
+    int rounds = 12;          ///< estimate/solve rounds at most
+    int minSamples = 16;      ///< photo samples a polygon needs to be estimated on its own
+    double tolerance = 1e-3;  ///< rounds stop when no reflectance moves by more
+    /// A time budget for the rounds, from the call (0: none): a round is never cut in the
+    /// middle (it sets every polygon's reflectance, then solves); a round starts only when
+    /// one as long as the last fits in what is left (at least one always runs after the
+    /// set-up), and the report says when one did not.
+    double seconds = 0;
+    /// The set-up (the photo's samples summed per polygon, their gather points' final
+    /// gathers) is given up when it has not ended by then: its cost is set by the links
+    /// above the gather points, which cannot be told in advance. The report then says
+    /// `skipped`. The largest time point: never given up.
+    radiosity::Clock::time_point setUpUntil = radiosity::Clock::time_point::max();
+};
+
+/// `options.rounds` estimate/solve rounds from a solved `solver`. H per sample is the direct
+/// light of `lighting` (relight/pipeline/lighting_buffer.h) plus indirect light gathered from
+/// the solver at up to 256 of each polygon's gather points per round. Only pixels whose
+/// samples all see one reflecting polygon, with no emitting face within one pixel and finite
+/// values, are used, on the lighting buffer's sub-grid of pixels (its stride). A polygon
+/// needs `minSamples` photo samples to be estimated; one with fewer takes the estimate pooled
 /// over its surface (the polygons joined by shared corners within 25 degrees: a wall that
 /// a reconstruction cut into small triangles) when that has enough.
-/// `seconds` > 0 is a time budget for the rounds, from the call: a round is never cut in
-/// the middle (it sets every polygon's reflectance, then solves); a round starts only when
-/// one as long as the last fits in what is left (at least one always runs), and the report
-/// says when one did not.
 ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solver,
                                              const SceneFile& sceneFile, const ItemBuffer& items,
                                              const LightingBuffer& lighting, const Image& photo,
-                                             int rounds = 12, int minSamples = 16,
-                                             double tolerance = 1e-3, double seconds = 0);
+                                             const ReflectanceOptions& options = {});
 
 /// A leaf's reflectance from its texture, rho = pi c / H (Lambertian: the photo shows
 /// L = rho H / pi), with c the mean photo colour of the leaf's samples and H the mean of the

@@ -122,3 +122,31 @@ TEST(TimeBudget, ADeadlineAlreadyPastStopsTheRefinementAsNoTimeDoes) {
     EXPECT_EQ(a.stats().links, b.stats().links);
     EXPECT_EQ(a.stats().leaves, b.stats().leaves);
 }
+
+TEST(TimeBudget, PastTheDeadlineWhatLeavesSeeIsNotMeasuredAndTheyStayUnbounded) {
+    // What the leaves see (the energy bound's measurement) is measured before the
+    // refinement, given up at its deadline: with the deadline already past, no reflecting
+    // leaf is measured and the bound leaves every one of them as it is (gatherScale 1), and
+    // no second round begins. Without a deadline every leaf is measured.
+    const Scene room = test::cutRoom(4, 0.5);
+    SolverOptions o;
+    o.refineUntil = Clock::now() - std::chrono::seconds(1);
+    HierarchicalSolver late(room, o);
+    late.solve();
+    EXPECT_EQ(late.stats().refineRounds, 1);
+    o.refineUntil = Clock::time_point::max();
+    HierarchicalSolver whole(room, o);
+    whole.solve();
+    int leaves = 0;
+    for (const Node& n : late.hierarchy().nodes) {
+        if (n.isCluster() || !n.isLeaf() || n.emitting) continue;
+        ++leaves;
+        EXPECT_LT(n.seen, 0);
+        EXPECT_EQ(n.gatherScale, 1.0);
+    }
+    EXPECT_GT(leaves, 0);
+    for (const Node& n : whole.hierarchy().nodes)
+        if (!n.isCluster() && n.isLeaf()) {
+            EXPECT_GE(n.seen, 0);
+        }
+}

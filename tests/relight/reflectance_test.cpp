@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 
@@ -149,6 +150,50 @@ TEST(Reflectance, EachLeafTakesTheReflectanceOfItsOwnTexture) {
     }
 }
 
+TEST(Reflectance, ASetUpThatCannotEndInTimeIsGivenUpAndChangesNothing) {
+    // The set-up (the photo's sums, the gather points' final gathers) is given up at
+    // ReflectanceOptions::setUpUntil: with a deadline already past, nothing is estimated,
+    // every polygon keeps the scene's reflectance and the solver its radiosities, exactly
+    // (nothing ran), and the report says so. A deadline far off changes nothing either way:
+    // the estimate is the one without a deadline, exactly (the same arithmetic).
+    SceneFile sf = loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    radiosity::SolverOptions o;
+    radiosity::HierarchicalSolver solver(sf.scene, o);
+    solver.solve();
+    const ItemBuffer items = castItemBuffer(sf.camera, solver.scene(), solver.visibility(), 4);
+    const LightingBuffer lighting = computeLightingBuffer(items, solver);
+    const Image photo = loadFirstPhoto(sf);
+    std::vector<Rgb> B0;
+    for (const auto& n : solver.hierarchy().nodes) B0.push_back(n.B);
+    ReflectanceOptions late;
+    late.setUpUntil = radiosity::Clock::now() - std::chrono::milliseconds(1);
+    const ReflectanceReport rep =
+        estimatePolygonReflectance(solver, sf, items, lighting, photo, late);
+    EXPECT_TRUE(rep.skipped);
+    EXPECT_EQ(rep.rounds, 0);
+    for (size_t p = 0; p < sf.scene.polygons.size(); ++p)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(solver.scene().polygons[p].rho[c], sf.scene.polygons[p].rho[c]) << p;
+    for (size_t n = 0; n < B0.size(); ++n)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(solver.hierarchy().nodes[n].B[c], B0[n][c]) << n;
+
+    auto rhoAfter = [&](const ReflectanceOptions& ro) {
+        radiosity::HierarchicalSolver s(sf.scene, o);
+        s.solve();
+        const ReflectanceReport r = estimatePolygonReflectance(s, sf, items, lighting, photo, ro);
+        EXPECT_FALSE(r.skipped);
+        std::vector<Rgb> rho;
+        for (const auto& poly : s.scene().polygons) rho.push_back(poly.rho);
+        return rho;
+    };
+    ReflectanceOptions inTime;
+    inTime.setUpUntil = radiosity::Clock::now() + std::chrono::hours(1);
+    const std::vector<Rgb> a = rhoAfter(inTime), b = rhoAfter({});
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t p = 0; p < a.size(); ++p)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(a[p][c], b[p][c]) << p;
+}
+
 TEST(Reflectance, ATimeBudgetStopsAfterACompleteRound) {
     // The rounds' time budget (estimatePolygonReflectance's `seconds`, a share of
     // --time-budget) is checked between rounds only: a budget spent at once leaves the
@@ -172,8 +217,11 @@ TEST(Reflectance, ATimeBudgetStopsAfterACompleteRound) {
         radiosity::HierarchicalSolver solver(sf.scene, o);
         solver.solve();
         const LightingBuffer lighting = computeLightingBuffer(items, solver);
-        const ReflectanceReport rep = estimatePolygonReflectance(solver, sf, items, lighting, photo,
-                                                                 rounds, 16, 1e-3, seconds);
+        ReflectanceOptions ro;
+        ro.rounds = rounds;
+        ro.seconds = seconds;
+        const ReflectanceReport rep =
+            estimatePolygonReflectance(solver, sf, items, lighting, photo, ro);
         for (const auto& poly : solver.scene().polygons) rho->push_back(poly.rho);
         return rep;
     };
