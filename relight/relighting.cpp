@@ -386,7 +386,9 @@ void lightPixels(Relighting& r, const RelightOptions& o) {
     // A pilot over the first vertices, timed, when a time budget holds: if the rest would
     // overrun the share, every vertex is gathered again with fewer rays (the pilot's are
     // thrown away: the rays' layout per vertex is one side for all).
-    const size_t pilot = r.budget.seconds > 0 ? std::min(nv, std::max<size_t>(1024, nv / 50)) : nv;
+    const size_t pilot = r.budget.seconds > 0 && o.pixelGatherCut
+                             ? std::min(nv, std::max<size_t>(1024, nv / 50))
+                             : nv;
     const auto tPilot = Clock::now();
     gatherVertexIndirect(r, L, 0, pilot);
     const double left = r.budget.secondsUntil(RelightOptions::kPixelGatherEnds);

@@ -74,10 +74,10 @@ struct RelightOptions {
     /// examines no more leaves (kShadowRefinementShare); the vertices' final gather keeps
     /// the PARTIAL links' V instead of casting rays (kVertexGatherShare); the per-pixel
     /// display's indirect gather casts fewer rays per vertex (kPixelGatherShare, at least
-    /// 4 x 4); real-shadow removal is skipped when the time left cannot hold it
-    /// (kShadowRemovalShare: D is then the photo's lighting, the 1997 method).
-    /// The default suits a 2-core laptop: the bundled scenes prepare in a few seconds, far
-    /// inside it; a 10^5-10^6-triangle room ends its refinement within half a minute.
+    /// 4 x 4; only with pixelGatherCut); real-shadow removal is skipped when the time left cannot
+    /// hold it (kShadowRemovalShare: D is then the photo's lighting, the 1997 method). The default
+    /// suits a 2-core laptop: the bundled scenes prepare in a few seconds, far inside it; a
+    /// 10^5-10^6-triangle room ends its refinement within half a minute.
     double timeBudget = 60;
     /// `relight solve`'s default: the solve is the first look at a scene and the radiosity
     /// part of a preparation (its refinement and reflectance rounds, 65 % of the above).
@@ -128,6 +128,11 @@ struct RelightOptions {
     /// vertex, which the display's interpolation and the metric's 4 x 4 blocks average.
     int indirectRays = 256;
     int64_t indirectRayBudget = int64_t{1} << 24;
+    /// Whether the per-pixel gather's share of the time budget (kPixelGatherShare) may cut
+    /// its rays per vertex (down to 4 x 4). Off by default: on the staircase the cut from
+    /// 7 x 7 to 4 x 4 took sconce_only from 0.435 to 0.511 (bench/RESULTS.md, 2026-11-27,
+    /// sixth session); the other phases' fallbacks left its light edits as they were.
+    bool pixelGatherCut = false;
     /// With pixelLight, merge the reflectance of all of the scene's photos per pixel for the
     /// light the first photo did not hold (pipeline/photo_merge.h; Loscos et al. 1999,
     /// Eq. (3)); off: the first photo alone (better on the bundled scenes but for a lamp

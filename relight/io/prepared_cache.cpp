@@ -114,6 +114,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.i64(o.mergePhotos ? 1 : 0);
     h.i64(o.indirectRays);
     h.i64(o.indirectRayBudget);
+    h.i64(o.pixelGatherCut ? 1 : 0);
 }
 
 // ---- the two directions ------------------------------------------------------------------

@@ -15,6 +15,7 @@ using namespace relight;
 TEST(PhaseBudget, ASpentBudgetTakesEveryFallbackAndTheUneditedRoomIsStillThePhoto) {
     RelightOptions o = test::coarseOptions();
     o.pixelLight = true;
+    o.pixelGatherCut = true;
     o.timeBudget = 1e-9;  // every share is spent before its phase begins
     const auto r = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
     const PreparedImage& P = r->prepared;
@@ -46,6 +47,15 @@ TEST(PhaseBudget, ASpentBudgetTakesEveryFallbackAndTheUneditedRoomIsStillThePhot
             }
     EXPECT_LT(worst, 1e-5);
     EXPECT_EQ(phaseBudgetLines(P.budgetReached, o.timeBudget).size(), 4u);
+}
+
+TEST(PhaseBudget, ThePixelGatherKeepsItsRaysUnlessAskedToCutThem) {
+    RelightOptions o = test::coarseOptions();
+    o.pixelLight = true;
+    o.timeBudget = 1e-9;
+    const auto r = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
+    EXPECT_FALSE(r->prepared.budgetReached & PreparedImage::kPixelGatherBudget);
+    EXPECT_EQ(r->gatherSide, indirectRaySide(o, r->prepared.vertexCount()));
 }
 
 TEST(PhaseBudget, TheRoomAtTheDefaultBudgetTakesNoFallback) {

@@ -438,7 +438,8 @@ TEST(PreparedCache, LayoutGuard) {
     // RelightOptions::progress is not.
     EXPECT_EQ(sizeof(ShadowRemovalOptions), 64u)
         << "ShadowRemovalOptions changed: hash the new option in hashOptions()";
-    EXPECT_EQ(sizeof(RelightOptions), 288u)  // its ShadowRefinementOptions' until
+    EXPECT_EQ(sizeof(RelightOptions),
+              288u)  // its ShadowRefinementOptions' until; pixelGatherCut (hashed) in padding
         << "RelightOptions changed: hash the new option in hashOptions()";
 #else
     GTEST_SKIP() << "sizes known for libstdc++ on 64-bit targets only";
