@@ -129,7 +129,7 @@ void flatten(std::vector<std::vector<T>>& lists, std::vector<size_t>& start, std
 
 SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                                std::span<const GatherPoint> points, int partialRays,
-                               const ProgressFn& progress) {
+                               const ProgressFn& progress, Clock::time_point raysUntil) {
     const Hierarchy& h = solver.hierarchy();
     SharedGather out;
     const SampleLayout layout = layOutSamples(solver, points);
@@ -138,6 +138,13 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
     out.sharedLinks = layout.shared;
     out.nearLinks = layout.near;
     std::atomic<uint64_t> rays{0};
+    std::atomic<size_t> withoutRays{0};
+    // Rays per PARTIAL link for an item begun now: none once raysUntil has passed.
+    auto raysNow = [&](size_t items) {
+        if (Clock::now() < raysUntil) return std::clamp(partialRays, 0, 64);
+        withoutRays += items;
+        return 0;
+    };
     auto record = [](std::vector<GatherWeight>& v) {
         return [&v](int s, double w) { v.push_back({s, static_cast<float>(w)}); };
     };
@@ -147,7 +154,7 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
         const int node = layout.nodes[i];
         const Node& r = h.nodes[node];
         const Vec3& n = solver.scene().polygons[r.polygon].normal;
-        const int pr = std::clamp(partialRays, 0, 64);
+        const int pr = raysNow(static_cast<size_t>(r.vertexCount));
         uint64_t cast = 0;
         for (int c = 0; c < r.vertexCount; ++c) {
             const Vec3 x = samplePoint(r, c);
@@ -166,11 +173,11 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
     std::vector<std::vector<SharedGather::SampleRef>> refs(points.size());
     parallelForChunks(points.size(), 64, [&](size_t from, size_t to) {
         uint64_t cast = 0;
+        const int pr = raysNow(to - from);
         for (size_t i = from; i != to; ++i) {
             const GatherPoint& p = points[i];
             if (layout.leafOf[i] < 0) continue;
             const Vec3& n = solver.scene().polygons[p.polygon].normal;
-            const int pr = std::clamp(partialRays, 0, 64);
             Rng rng = detail::gatherRng(p.seed);
             auto acc = record(pointTerms[i]);
             auto gather = [&](const Link& l) {
@@ -198,6 +205,7 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
     flatten(pointTerms, out.pointStart, out.pointTerms);
     flatten(refs, out.refStart, out.refs);
     out.rays = rays.load();
+    out.withoutRays = withoutRays.load();
     return out;
 }
 

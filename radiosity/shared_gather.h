@@ -35,6 +35,7 @@
 #include "radiosity/light_response.h"
 #include "radiosity/progress.h"
 #include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
 
 namespace radiosity {
 
@@ -65,6 +66,9 @@ struct SharedGather {
     uint64_t rays = 0;       ///< visibility rays cast
     size_t sharedLinks = 0;  ///< links gathered per corner (counted once per element)
     size_t nearLinks = 0;    ///< links gathered per point (counted once per element)
+    /// Corners and points gathered after `raysUntil` had passed: their PARTIAL links kept
+    /// their own V (the link's mean over its receiver) instead of rays from the point.
+    size_t withoutRays = 0;
 
     size_t points() const { return pointStart.empty() ? 0 : pointStart.size() - 1; }
     size_t samples() const { return sampleStart.empty() ? 0 : sampleStart.size() - 1; }
@@ -83,9 +87,13 @@ inline constexpr double kSharedGatherFar = 4.0;
 
 /// The terms of every point's final gather, far links shared per element (see above). In
 /// parallel, deterministic (each point's rays from its seed, each corner's from its node).
-/// `progress` hears how far it is every ProgressMeter::kEverySeconds.
+/// `progress` hears how far it is every ProgressMeter::kEverySeconds. A corner or point
+/// begun after `raysUntil` (a time budget's share, radiosity/stopwatch.h) casts no rays:
+/// its PARTIAL links keep their V, as links of F(x) below kPointVisibilityF always do; the
+/// rays are nine tenths of a gather's time (bench/RESULTS.md, 2026-11-27, sixth session).
 SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                                std::span<const GatherPoint> points, int partialRays = 4,
-                               const ProgressFn& progress = {});
+                               const ProgressFn& progress = {},
+                               Clock::time_point raysUntil = Clock::time_point::max());
 
 }  // namespace radiosity

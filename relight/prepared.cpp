@@ -10,6 +10,7 @@
 #include "radiosity/parallel.h"
 #include "relight/display/wen_display.h"
 #include "relight/pipeline/pixel_light.h"
+#include "relight/relighting.h"
 
 namespace relight {
 
@@ -205,6 +206,33 @@ std::string stepTimes(const PrepareTimes& t) {
                   t.itemBuffer, t.solve, t.reflectance, t.refinement, t.responses, t.vertexLighting,
                   t.shadowRemoval, t.displayMap);
     return text;
+}
+
+std::vector<std::string> phaseBudgetLines(int budgetReached, double seconds) {
+    struct Phase {
+        int bit;
+        double ends;
+        const char* fallback;
+    };
+    const Phase phases[] = {
+        {PreparedImage::kShadowRefinementBudget, RelightOptions::kShadowRefinementEnds,
+         "shadow-boundary refinement stopped, leaves left unexamined"},
+        {PreparedImage::kGatherBudget, RelightOptions::kVertexGatherEnds,
+         "the vertices' final gather kept the partly occluded links' mean visibility"},
+        {PreparedImage::kPixelGatherBudget, RelightOptions::kPixelGatherEnds,
+         "fewer indirect rays per vertex for the per-pixel display"},
+        {PreparedImage::kShadowRemovalBudget, RelightOptions::kShadowRemovalEnds,
+         "real-shadow removal skipped (D = the photo's lighting)"},
+    };
+    std::vector<std::string> out;
+    for (const Phase& ph : phases) {
+        if (!(budgetReached & ph.bit)) continue;
+        char line[240];
+        std::snprintf(line, sizeof line, "share spent (ends at %.0f %% of %g s): %s", 100 * ph.ends,
+                      seconds, ph.fallback);
+        out.push_back(line);
+    }
+    return out;
 }
 
 }  // namespace relight

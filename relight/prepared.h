@@ -57,6 +57,10 @@ struct PrepareTimes {
 /// "item buffer 0.019, solve 0.013, ...": the time of each step, in seconds.
 std::string stepTimes(const PrepareTimes& t);
 
+/// One line per later phase whose share of a --time-budget of `seconds` was spent, with its
+/// fallback, from PreparedImage::budgetReached's bits 3-6 (none: empty).
+std::vector<std::string> phaseBudgetLines(int budgetReached, double seconds);
+
 struct PreparedImage {
     Image photo;                                ///< T_orig: the first photo, linear
     DisplayMap display;                         ///< per pixel: vertices and weights, emitting faces
@@ -93,8 +97,18 @@ struct PreparedImage {
     /// The refinement budget (HierarchicalSolver's stats): whether it was reached, the
     /// solver's nodes and links in bytes, and the budget in force.
     /// bit 0: the refinement's budget was reached; bit 1: it was the time budget; bit 2:
-    /// the reflectance rounds stopped at their share of the time budget.
+    /// the reflectance rounds stopped at their share of the time budget; the bits below
+    /// (kPhaseBudget...): a later phase's share was spent, and it took its fallback.
     int budgetReached = 0;
+    /// The shadow-boundary refinement stopped with leaves still to examine.
+    static constexpr int kShadowRefinementBudget = 8;
+    /// The vertices' final gather kept the PARTIAL links' V for the vertices after its share.
+    static constexpr int kGatherBudget = 16;
+    /// The per-pixel display's indirect rays per vertex were cut to fit their share.
+    static constexpr int kPixelGatherBudget = 32;
+    /// Real-shadow removal was skipped (D = B of the photo, the 1997 method): its share
+    /// could not hold it.
+    static constexpr int kShadowRemovalBudget = 64;
     uint64_t solverBytes = 0, maxLinks = 0, maxMemory = 0;
     PrepareTimes times;
 

@@ -131,6 +131,11 @@ void say(const RelightOptions& o, const std::string& message) {
     if (o.progress) o.progress(message);
 }
 
+/// "75 %": a cumulative share of --time-budget, for the terminal.
+std::string percentOfBudget(double share) {
+    return std::to_string(static_cast<int>(std::lround(100 * share))) + " %";
+}
+
 radiosity::DirectLightOptions directLightOptions(const RelightOptions& o) {
     radiosity::DirectLightOptions dlo;
     dlo.minRays = o.minRays;
@@ -260,11 +265,19 @@ void refineAlongPhotoShadows(Relighting& r, const RelightOptions& o) {
         say(o, "texture-based refinement of shadow boundaries");
         ShadowRefinementOptions ro = o.refinement;
         ro.progress = o.progress;
+        ro.until = std::min(ro.until, r.budget.until(RelightOptions::kShadowRefinementEnds));
         r.refinement = refineShadowBoundaries(*r.solver, *r.texture, ro);
         say(o, "  " + std::to_string(r.refinement.splitSameColour) + " + " +
                    std::to_string(r.refinement.splitDifferentColour) + " splits kept, " +
                    std::to_string(r.refinement.undone) + " undone; " +
                    std::to_string(r.refinement.leavesAfter) + " leaves");
+        if (r.refinement.budgetReached) {
+            r.phaseBudgetReached |= PreparedImage::kShadowRefinementBudget;
+            say(o, "  warning: its share of --time-budget (until " +
+                       percentOfBudget(RelightOptions::kShadowRefinementEnds) +
+                       ") was spent: " + std::to_string(r.refinement.waiting) +
+                       " leaves were not examined (fewer shadow boundaries refined)");
+        }
     }
     P.times.refinement = since(t0);
 }
@@ -284,13 +297,22 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     r.mesh = std::make_unique<radiosity::LeafMesh>(
         r.solver->hierarchy(), displaySplits(*r.texture, r.sampling, o.displayPiecePixels));
     say(o, "lighting at " + std::to_string(r.mesh->vertices().size()) + " leaf vertices");
-    P.lighting = measureVertexLighting(*r.solver, *r.mesh, *r.responses, directLightOptions(o),
-                                       r.direct, o.progress);
+    P.lighting =
+        measureVertexLighting(*r.solver, *r.mesh, *r.responses, directLightOptions(o), r.direct,
+                              o.progress, r.budget.until(RelightOptions::kVertexGatherEnds));
     say(o, "  final gather: " + std::to_string(r.direct.gather.sharedLinks) +
                " far links gathered at " + std::to_string(r.direct.gather.samples()) +
                " element corners, " + std::to_string(r.direct.gather.nearLinks) +
                " near links per vertex; " + std::to_string(r.direct.gather.terms()) +
                " terms kept");
+    if (r.direct.gather.withoutRays > 0) {
+        r.phaseBudgetReached |= PreparedImage::kGatherBudget;
+        say(o, "  warning: its share of --time-budget (until " +
+                   percentOfBudget(RelightOptions::kVertexGatherEnds) +
+                   ") was spent: " + std::to_string(r.direct.gather.withoutRays) +
+                   " corners and vertices gathered without visibility rays (their partly "
+                   "occluded links' mean visibility)");
+    }
     P.times.vertexLighting = since(t0);
 
     if (!o.leafReflectance) return;
@@ -303,6 +325,44 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     r.responses = std::make_unique<radiosity::LightResponses>(*r.solver, r.responses.get());
     P.lighting = regatherVertexLighting(*r.solver, *r.mesh, *r.responses, r.direct);
     P.times.reflectance += since(t0);
+}
+
+/// The indirect part of vertices [from, to)'s responses per light by r.gatherSide^2 rays
+/// each (radiosity::rayGatherResponses), into P.vertexIndirect and r.vertexRayHits; at
+/// from == 0 both are laid out afresh for r.gatherSide.
+void gatherVertexIndirect(Relighting& r, size_t L, size_t from, size_t to) {
+    PreparedImage& P = r.prepared;
+    const auto& mesh = *r.mesh;
+    const auto& solver = *r.solver;
+    const size_t nv = mesh.vertices().size();
+    const size_t rays = static_cast<size_t>(r.gatherSide) * static_cast<size_t>(r.gatherSide);
+    if (from == 0) {
+        P.vertexIndirect.assign(nv * L, Rgb{});
+        r.vertexRayHits.clear();
+        if (nv * rays <= kMaxRayHits) r.vertexRayHits.assign(nv * rays, -1);
+    }
+    radiosity::parallelForChunks(to - from, 64, [&](size_t first, size_t last) {
+        for (size_t v = from + first; v != from + last; ++v) {
+            const int p = mesh.vertices()[v].polygon;
+            if (solver.scene().polygons[static_cast<size_t>(p)].light >= 0) continue;
+            int32_t* hits = r.vertexRayHits.empty() ? nullptr : r.vertexRayHits.data() + v * rays;
+            radiosity::rayGatherResponses(
+                solver, *r.responses, p, mesh.insidePoint(static_cast<int>(v)),
+                P.vertexIndirect.data() + v * L, r.gatherSide, v, nullptr, hits);
+        }
+    });
+}
+
+/// The rays' side for all `nv` vertices to fit in `left` seconds when `pilot` of them took
+/// `seconds` at `side`: the time is linear in the rays (each a ray cast and a leaf's
+/// responses read); never below 4 (16 rays, indirectRaySide's floor) nor above `side`.
+int fewerRaysSide(int side, double seconds, size_t pilot, size_t nv, double left) {
+    if (!(seconds > 0) || pilot == 0) return side;
+    const double projected = seconds * static_cast<double>(nv - pilot) / static_cast<double>(pilot);
+    if (projected <= left) return side;
+    const double perRay = seconds / (static_cast<double>(pilot) * side * side);
+    const double rays = left / (perRay * static_cast<double>(nv));
+    return std::clamp(static_cast<int>(std::floor(std::sqrt(std::max(rays, 0.0)))), 4, side);
 }
 
 /// Step 4b, when asked: the direct light per pixel (unless step 3 had it already, with the
@@ -323,26 +383,45 @@ void lightPixels(Relighting& r, const RelightOptions& o) {
     // the links' sources: the per-pixel display divides the photo by it, and where the
     // photo is lit by bounced light only, the links' coarse sources read 10-18 % too
     // much light (bench/RESULTS.md, 2026-11-26).
-    const auto& mesh = *r.mesh;
-    const auto& solver = *r.solver;
-    const size_t nv = mesh.vertices().size();
+    const size_t nv = r.mesh->vertices().size();
     const size_t L = r.responses->lights() > 0 ? static_cast<size_t>(r.responses->lights()) : 0;
     r.gatherSide = indirectRaySide(o, nv);
-    P.vertexIndirect.assign(nv * L, Rgb{});
-    const size_t rays = static_cast<size_t>(r.gatherSide) * static_cast<size_t>(r.gatherSide);
-    r.vertexRayHits.clear();
-    if (nv * rays <= kMaxRayHits) r.vertexRayHits.assign(nv * rays, -1);
-    radiosity::parallelForChunks(nv, 64, [&](size_t first, size_t last) {
-        for (size_t v = first; v != last; ++v) {
-            const int p = mesh.vertices()[v].polygon;
-            if (solver.scene().polygons[static_cast<size_t>(p)].light >= 0) continue;
-            int32_t* hits = r.vertexRayHits.empty() ? nullptr : r.vertexRayHits.data() + v * rays;
-            radiosity::rayGatherResponses(
-                solver, *r.responses, p, mesh.insidePoint(static_cast<int>(v)),
-                P.vertexIndirect.data() + v * L, r.gatherSide, v, nullptr, hits);
-        }
-    });
+    // A pilot over the first vertices, timed, when a time budget holds: if the rest would
+    // overrun the share, every vertex is gathered again with fewer rays (the pilot's are
+    // thrown away: the rays' layout per vertex is one side for all).
+    const size_t pilot = r.budget.seconds > 0 && o.pixelGatherCut
+                             ? std::min(nv, std::max<size_t>(1024, nv / 50))
+                             : nv;
+    const auto tPilot = Clock::now();
+    gatherVertexIndirect(r, L, 0, pilot);
+    const double left = r.budget.secondsUntil(RelightOptions::kPixelGatherEnds);
+    const int side =
+        pilot < nv ? fewerRaysSide(r.gatherSide, since(tPilot), pilot, nv, left) : r.gatherSide;
+    if (side < r.gatherSide) {
+        r.phaseBudgetReached |= PreparedImage::kPixelGatherBudget;
+        say(o, "  warning: the indirect rays per vertex at " + std::to_string(r.gatherSide) +
+                   " x " + std::to_string(r.gatherSide) +
+                   " would overrun their share of "
+                   "--time-budget (until " +
+                   percentOfBudget(RelightOptions::kPixelGatherEnds) +
+                   "): " + std::to_string(side) + " x " + std::to_string(side) + " instead");
+        r.gatherSide = side;
+        gatherVertexIndirect(r, L, 0, nv);
+    } else {
+        gatherVertexIndirect(r, L, pilot, nv);
+    }
     P.times.vertexLighting += since(t0);
+}
+
+/// Whether real-shadow removal fits in the time its share leaves: it solves the light's
+/// responses three times (relight/pipeline/shadow_removal.h: after k_inter, C_link and
+/// C_umbra), each as long as step 4's (PrepareTimes::responses), and gathers them from the
+/// kept terms (no ray). Always without a time budget; never once the budget is spent.
+bool removalFits(const Relighting& r) {
+    if (!(r.budget.seconds > 0)) return true;
+    const auto end = r.budget.until(RelightOptions::kShadowRemovalEnds);
+    return Clock::now() < end && r.budget.secondsUntil(RelightOptions::kShadowRemovalEnds) >
+                                     3 * r.prepared.times.responses;
 }
 
 /// Step 5: real-shadow removal (§4.3-4.4) gives D and the texture factor; without it, the
@@ -350,7 +429,14 @@ void lightPixels(Relighting& r, const RelightOptions& o) {
 void removeShadowsForDisplay(Relighting& r, const RelightOptions& o) {
     PreparedImage& P = r.prepared;
     auto t0 = Clock::now();
-    if (o.shadowRemoval) {
+    if (o.shadowRemoval && !removalFits(r)) {
+        r.phaseBudgetReached |= PreparedImage::kShadowRemovalBudget;
+        say(o, "warning: real-shadow removal skipped: its share of --time-budget (until " +
+                   percentOfBudget(RelightOptions::kShadowRemovalEnds) +
+                   ") cannot hold its three radiosity steps; D is the photo's lighting (the "
+                   "1997 method)");
+    }
+    if (o.shadowRemoval && !(r.phaseBudgetReached & PreparedImage::kShadowRemovalBudget)) {
         say(o, "real-shadow removal");
         ShadowRemovalOptions ro = o.removal;
         ro.progress = o.progress;
@@ -438,7 +524,7 @@ void mapDisplay(Relighting& r, const RelightOptions& o) {
     P.leaves = st.leaves;
     P.links = st.links;
     P.budgetReached = (st.budgetReached ? 1 : 0) | (st.timeBudgetReached ? 2 : 0) |
-                      (r.reflectanceBudgetReached ? 4 : 0);
+                      (r.reflectanceBudgetReached ? 4 : 0) | r.phaseBudgetReached;
     P.solverBytes = st.memoryBytes;
     P.maxLinks = st.maxLinks;
     P.maxMemory = st.maxMemory;

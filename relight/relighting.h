@@ -67,16 +67,35 @@ struct RelightOptions {
     /// (radiosity::TimeBudget) and split over its phases: the solver's refinement ends when
     /// kRefineShare of it has passed (SolverOptions::refineUntil), having refined the links
     /// of largest error first; the reflectance rounds when kRefineShare + kReflectanceShare
-    /// has (estimatePolygonReflectance: fewer complete rounds). The phases after them are
-    /// linear in the leaves and the display's vertices and run to their end.
-    /// The default suits a 2-core laptop: the bundled scenes prepare in a few seconds, far
-    /// inside it; a 10^5-10^6-triangle room ends its refinement within half a minute.
+    /// has (estimatePolygonReflectance: fewer complete rounds). Each phase after them has
+    /// a share too, ending at the cumulative sum of the shares up to its own, and a
+    /// degraded but correct fallback once it is spent, announced on the terminal and
+    /// flagged in PreparedImage::budgetReached (--report): the shadow-boundary refinement
+    /// examines no more leaves (kShadowRefinementShare); the vertices' final gather keeps
+    /// the PARTIAL links' V instead of casting rays (kVertexGatherShare); the per-pixel
+    /// display's indirect gather casts fewer rays per vertex (kPixelGatherShare, at least
+    /// 4 x 4; only with pixelGatherCut); real-shadow removal is skipped when the time left cannot
+    /// hold it (kShadowRemovalShare: D is then the photo's lighting, the 1997 method). The default
+    /// suits a 2-core laptop: the bundled scenes prepare in a few seconds, far inside it; a
+    /// 10^5-10^6-triangle room ends its refinement within half a minute.
     double timeBudget = 60;
     /// `relight solve`'s default: the solve is the first look at a scene and the radiosity
     /// part of a preparation (its refinement and reflectance rounds, 65 % of the above).
     static constexpr double kSolveTimeBudget = 30;
     static constexpr double kRefineShare = 0.5;
     static constexpr double kReflectanceShare = 0.15;
+    static constexpr double kShadowRefinementShare = 0.10;
+    static constexpr double kVertexGatherShare = 0.08;
+    static constexpr double kPixelGatherShare = 0.07;
+    static constexpr double kShadowRemovalShare = 0.10;
+    /// The cumulative share at which the shadow-boundary refinement, the vertices' gather,
+    /// the per-pixel gather and real-shadow removal end (the last: the whole budget).
+    static constexpr double kShadowRefinementEnds =
+        kRefineShare + kReflectanceShare + kShadowRefinementShare;
+    static constexpr double kVertexGatherEnds = kShadowRefinementEnds + kVertexGatherShare;
+    static constexpr double kPixelGatherEnds = kVertexGatherEnds + kPixelGatherShare;
+    static constexpr double kShadowRemovalEnds = kPixelGatherEnds + kShadowRemovalShare;
+    static_assert(kShadowRemovalEnds > 1 - 1e-12 && kShadowRemovalEnds < 1 + 1e-12);
     int spp = 16;  ///< item-buffer samples per pixel, at most (sampleBudget)
     /// Samples over the whole image: fewer samples per pixel, and the estimates from the
     /// photo on a sub-grid of pixels, on large photos (SamplingPlan,
@@ -109,6 +128,11 @@ struct RelightOptions {
     /// vertex, which the display's interpolation and the metric's 4 x 4 blocks average.
     int indirectRays = 256;
     int64_t indirectRayBudget = int64_t{1} << 24;
+    /// Whether the per-pixel gather's share of the time budget (kPixelGatherShare) may cut
+    /// its rays per vertex (down to 4 x 4). Off by default: on the staircase the cut from
+    /// 7 x 7 to 4 x 4 took sconce_only from 0.435 to 0.511 (bench/RESULTS.md, 2026-11-27,
+    /// sixth session); the other phases' fallbacks left its light edits as they were.
+    bool pixelGatherCut = false;
     /// With pixelLight, merge the reflectance of all of the scene's photos per pixel for the
     /// light the first photo did not hold (pipeline/photo_merge.h; Loscos et al. 1999,
     /// Eq. (3)); off: the first photo alone (better on the bundled scenes but for a lamp
@@ -151,6 +175,8 @@ struct Relighting {
     /// The reflectance rounds done, and whether their share of the time budget stopped them.
     int reflectanceRounds = 0;
     bool reflectanceBudgetReached = false;
+    /// The later phases whose share of the time budget was spent (PreparedImage's bits 3-6).
+    int phaseBudgetReached = 0;
     /// RelightOptions::timeBudget, from prepareRelighting's start.
     radiosity::TimeBudget budget;
     ShadowRefinementReport refinement;

@@ -119,6 +119,8 @@ int runPrepare(const PrepareArgs& a) {
             "time budget: the reflectance rounds stopped before %.0f %% of --time-budget "
             "%g s had passed, after a complete round\n",
             100 * (RelightOptions::kRefineShare + RelightOptions::kReflectanceShare), o.timeBudget);
+    for (const std::string& line : phaseBudgetLines(p.budgetReached, o.timeBudget))
+        std::printf("time budget: %s\n", line.c_str());
     if (s.written)
         std::printf("time: prepare %.3f s (%s)\n", s.seconds, stepTimes(p.times).c_str());
     else

@@ -114,6 +114,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.i64(o.mergePhotos ? 1 : 0);
     h.i64(o.indirectRays);
     h.i64(o.indirectRayBudget);
+    h.i64(o.pixelGatherCut ? 1 : 0);
 }
 
 // ---- the two directions ------------------------------------------------------------------
@@ -428,9 +429,9 @@ std::string checkPrepared(const PreparedImage& p) {
                n(vertices);
     if (p.leaves < 0 || p.links < 0) return "negative counts";
     // Bits 0-1: the refinement's budget (bit 1, the time budget, only with bit 0); bit 2:
-    // the reflectance rounds' share.
-    if (p.budgetReached < 0 || p.budgetReached > 7 || (p.budgetReached & 3) == 2)
-        return "budget flag not one of 0, 1, 3, 4, 5, 7";
+    // the reflectance rounds' share; bits 3-6: the later phases' shares (prepared.h).
+    if (p.budgetReached < 0 || p.budgetReached > 127 || (p.budgetReached & 3) == 2)
+        return "budget flag not in 0-127 or bit 1 without bit 0";
     return {};
 }
 

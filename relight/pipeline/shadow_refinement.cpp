@@ -64,6 +64,11 @@ ShadowRefinementReport refineShadowBoundaries(radiosity::HierarchicalSolver& sol
     std::vector<std::vector<radiosity::HierarchicalSolver::LightExchange>> children;
     int splits = 0;
     while (!work.empty() && splits < o.maxSplits) {
+        if (radiosity::Clock::now() >= o.until) {
+            rep.budgetReached = true;
+            rep.waiting = static_cast<int>(work.size());
+            break;
+        }
         const int i = work.front();
         work.pop_front();
         if (!h.nodes[i].isLeaf() || !hasColour(i)) continue;

@@ -28,6 +28,7 @@
 #include <string>
 
 #include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
 #include "relight/pipeline/leaf_texture.h"
 
 namespace relight {
@@ -38,6 +39,10 @@ struct ShadowRefinementOptions {
     double minShare = 0.02;
     int minSamples = 32;    ///< photo samples a leaf needs to have a colour
     int maxSplits = 20000;  ///< a safety bound on the work
+    /// The time at which its share of a time budget is spent (radiosity/stopwatch.h): no
+    /// leaf is examined after it. The splits made so far are kept, each complete; the
+    /// leaves not examined keep the solver's subdivision (fewer shadow boundaries refined).
+    radiosity::Clock::time_point until = radiosity::Clock::time_point::max();
     std::function<void(const std::string&)> progress;
 };
 
@@ -47,6 +52,8 @@ struct ShadowRefinementReport {
     int splitDifferentColour = 0;  ///< case 2 splits kept
     int undone = 0;                ///< splits merged back (children saw the lights alike)
     int leavesBefore = 0, leavesAfter = 0;
+    int waiting = 0;             ///< leaves left unexamined when `until` passed
+    bool budgetReached = false;  ///< stopped at `until` with leaves still to examine
 };
 
 /// Refines `solver`'s leaves (solved, light links at the leaves) against the photo texture

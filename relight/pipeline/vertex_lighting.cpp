@@ -35,7 +35,8 @@ VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver
                                      const radiosity::LeafMesh& mesh,
                                      const radiosity::LightResponses& responses,
                                      radiosity::DirectLightOptions options, VertexDirect& direct,
-                                     const radiosity::ProgressFn& progress) {
+                                     const radiosity::ProgressFn& progress,
+                                     radiosity::Clock::time_point gatherRaysUntil) {
     const radiosity::DirectLight light(solver, options);
     VertexLighting out = emptyLighting(mesh, responses);
     const int L = out.lights;
@@ -52,7 +53,7 @@ VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver
         if (solver.scene().polygons[p].light >= 0) continue;
         points[v] = {p, mesh.insidePoint(v), static_cast<uint64_t>(v)};
     }
-    direct.gather = radiosity::sharedFinalGather(solver, points, 4, progress);
+    direct.gather = radiosity::sharedFinalGather(solver, points, 4, progress, gatherRaysUntil);
     direct.gather.addResponses(responses, out.response.data());
     radiosity::ProgressMeter meter(progress, "direct light at the vertices",
                                    static_cast<size_t>(n));

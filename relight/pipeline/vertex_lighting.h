@@ -57,12 +57,14 @@ struct VertexDirect {
 /// a final gather of `responses`. `direct` receives the direct light alone, with and
 /// without blockers, and the gather's terms, so that the lightings that follow on the same
 /// mesh and links (regatherVertexLighting) cast no ray. In parallel, deterministically
-/// (each vertex draws its rays from its own index).
-VertexLighting measureVertexLighting(const radiosity::HierarchicalSolver& solver,
-                                     const radiosity::LeafMesh& mesh,
-                                     const radiosity::LightResponses& responses,
-                                     radiosity::DirectLightOptions options, VertexDirect& direct,
-                                     const radiosity::ProgressFn& progress = {});
+/// (each vertex draws its rays from its own index) unless `gatherRaysUntil` passes during
+/// the gather: the vertices gathered after it keep their PARTIAL links' V
+/// (radiosity::sharedFinalGather), a coarser indirect light within a time budget.
+VertexLighting measureVertexLighting(
+    const radiosity::HierarchicalSolver& solver, const radiosity::LeafMesh& mesh,
+    const radiosity::LightResponses& responses, radiosity::DirectLightOptions options,
+    VertexDirect& direct, const radiosity::ProgressFn& progress = {},
+    radiosity::Clock::time_point gatherRaysUntil = radiosity::Clock::time_point::max());
 
 /// The lighting again after the radiosities changed but not the geometry (new reflectances,
 /// scaled light links): the direct light is `direct`'s, as measureVertexLighting measured

@@ -94,3 +94,39 @@ TEST(SharedGather, ResponsesSumToTheIndirectGather) {
     EXPECT_EQ(byB.back().r, 0.0);
     EXPECT_EQ(byR.back().r, 0.0);
 }
+
+TEST(SharedGather, PastItsTimeItKeepsThePartialLinksMeanVisibility) {
+    // The hall with a two-sided panel under the lamp: the floor's links to the lamp and to
+    // the ceiling above the panel are PARTIAL, so the gather casts rays.
+    Scene s = hall();
+    const std::vector<Vec3> up = {{0.5, 0.5, 1.5}, {3, 0.5, 1.5}, {3, 2.5, 1.5}, {0.5, 2.5, 1.5}};
+    s.polygons.push_back(makePolygon(up, 0, Rgb::gray(0.5)));
+    s.polygons.push_back(makePolygon({up[3], up[2], up[1], up[0]}, 0, Rgb::gray(0.5)));
+    SolverOptions o;
+    o.epsilon = 1e-3;
+    HierarchicalSolver solver(s, o);
+    solver.solve();
+    std::vector<GatherPoint> points;
+    for (int i = 0; i < 12; ++i)
+        for (int j = 0; j < 6; ++j)
+            points.push_back({0, Vec3{0.25 + 0.5 * i, 0.25 + 0.5 * j, 0}, uint64_t(i * 6 + j)});
+    const SharedGather full = sharedFinalGather(solver, points, 4);
+    EXPECT_GT(full.rays, 0u);  // the fallback below changes something
+    EXPECT_EQ(full.withoutRays, 0u);
+    // A deadline already passed: no ray at any corner or point, every one counted, and the
+    // terms exactly those of a gather that never casts rays (partialRays 0).
+    const SharedGather late = sharedFinalGather(solver, points, 4, {}, Clock::time_point::min());
+    const SharedGather none = sharedFinalGather(solver, points, 0);
+    EXPECT_EQ(late.rays, 0u);
+    EXPECT_EQ(late.withoutRays, late.samples() + late.points());
+    ASSERT_EQ(late.pointTerms.size(), none.pointTerms.size());
+    ASSERT_EQ(late.sampleTerms.size(), none.sampleTerms.size());
+    for (size_t t = 0; t < late.pointTerms.size(); ++t) {
+        EXPECT_EQ(late.pointTerms[t].node, none.pointTerms[t].node);
+        EXPECT_EQ(late.pointTerms[t].w, none.pointTerms[t].w);
+    }
+    for (size_t t = 0; t < late.sampleTerms.size(); ++t) {
+        EXPECT_EQ(late.sampleTerms[t].node, none.sampleTerms[t].node);
+        EXPECT_EQ(late.sampleTerms[t].w, none.sampleTerms[t].w);
+    }
+}
