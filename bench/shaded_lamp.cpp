@@ -6,61 +6,53 @@
 // way in every direction, Sillion's isotropic cluster, so the bright inner faces' light
 // leaves through the outer ones), or an element.
 //
-//   ./build/bench/shaded_lamp
-// prints, with no time budget and with none at all (the coarsest links), the lamp's
+// The shaded lamp is the weak one: the room's ceiling lamp gives 18 times its radiance x
+// area (1.78 m^2 at 10 against 0.01 m^2 at 100), as the stair hall's ceiling lamp gives 21
+// times its shaded table lamp's. Each case runs with the BF criterion on the total light and
+// with the per-light oracle (SolverOptions::perLightOracle, issue 30 "light round corners").
+//
+//   ./build/bench/shaded_lamp [PER_LIGHT_GAIN]     (default 100)
+// prints, with no budget, a budget of links, and none at all (the coarsest links), the lamp's
 // reflected radiosity inside and outside the shade (area means per unit radiance), the
 // light the links out of the shade carry, and the largest indirect irradiance a ray gather
 // finds on the shade's outer faces. All of the outside figures should be 0.
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 
 #include "radiosity/final_gather.h"
 #include "radiosity/light_response.h"
 #include "radiosity/solver.h"
-#include "tests/support/cut_room.h"
+#include "tests/support/shaded_lamp_room.h"
 
 using namespace radiosity;
+using radiosity::test::shadedLampRoom;
 
-namespace {
-
-/// The cut room with a second lamp, a 10 cm quad facing down, inside a closed 40 x 40 x
-/// 30 cm shade standing 0.8 m above the floor; each face of the shade cut 2 x 2, as a
-/// sheet: a face outward (object "shade_out") and its twin inward ("shade_in").
-Scene shadedLampRoom(int cut) {
-    Scene s = test::cutRoom(cut, 0.5, /*box=*/false);
-    s.objects.push_back("shade_out");   // 3
-    s.objects.push_back("shade_in");    // 4
-    s.objects.push_back("table_lamp");  // 5
-    const Vec3 o{1.8, 1.3, 0.8};
-    for (auto f : test::boxFacesInward(0.4, 0.4, 0.3)) {
-        for (Vec3& p : f) p += o;
-        test::addCutQuad(s, f, 2, 4, Rgb::gray(0.5));  // inward: the lamp's side
-        std::reverse(f.begin(), f.end());
-        test::addCutQuad(s, f, 2, 3, Rgb::gray(0.5));  // outward: the room's side
-    }
-    Polygon lamp = makePolygon({{o.x + 0.15, o.y + 0.15, o.z + 0.25},
-                                {o.x + 0.15, o.y + 0.25, o.z + 0.25},
-                                {o.x + 0.25, o.y + 0.25, o.z + 0.25},
-                                {o.x + 0.25, o.y + 0.15, o.z + 0.25}},
-                               5, Rgb{});
-    lamp.light = 1;
-    s.lights.push_back({"table_lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(100.0)});
-    s.polygons.push_back(lamp);
-    return s;
-}
-
-}  // namespace
-
-int main() {
-    std::printf("command: ./build/bench/shaded_lamp\n");
+int main(int argc, char** argv) {
+    const double gain = argc > 1 ? std::atof(argv[1]) : 100.0;
+    std::printf("command: ./build/bench/shaded_lamp %g\n", gain);
     const Scene scene = shadedLampRoom(8);
-    for (const double seconds : {0.0, 1e-9}) {
+    struct Case {
+        double seconds;
+        size_t maxLinks;
+        double perLight;
+    };
+    for (const Case c : {Case{0, 0, 0}, Case{0, 0, gain}, Case{0, 30000, 0}, Case{0, 30000, gain},
+                         Case{1e-9, 0, 0}, Case{1e-9, 0, gain}}) {
         SolverOptions o;
         o.epsilon = 1e-4;
-        o.refineSeconds = seconds;
+        o.refineSeconds = c.seconds;
+        o.maxLinks = c.maxLinks;
+        o.perLightOracle = c.perLight;
+        const auto t0 = std::chrono::steady_clock::now();
         HierarchicalSolver solver(scene, o);
         solver.solve();
+        const double solveSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::printf("refineSeconds %g, maxLinks %zu, perLightOracle %g: solve %.3f s\n", c.seconds,
+                    c.maxLinks, c.perLight, solveSeconds);
         const LightResponses R(solver);
         const auto& nodes = solver.hierarchy().nodes;
         double inside = 0, outside = 0, areaIn = 0, areaOut = 0;
@@ -121,11 +113,11 @@ int main() {
         // The light the outside's surfaces receive from the lamp, all bounces: what they
         // reflect over their reflectance (0.5 everywhere).
         std::printf(
-            "refineSeconds %g: links %d; the lamp's reflected radiosity inside %.4g, "
+            "  links %d; the lamp's reflected radiosity inside %.4g, "
             "outside %.4g (area means); the outside receives %.2f %% of the lamp's power; "
             "outward gather max %.4g\n",
-            seconds, solver.stats().links, inside / areaIn, outside / areaOut,
-            100 * outside / 0.5 / emitted, gathered);
+            solver.stats().links, inside / areaIn, outside / areaOut, 100 * outside / 0.5 / emitted,
+            gathered);
     }
     return 0;
 }

@@ -2,6 +2,7 @@
 
 #include "radiosity/deadline.h"
 #include "radiosity/detail/rng.h"
+#include "radiosity/light_response.h"
 #include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
 #include "radiosity/tree_walks.h"
@@ -121,7 +122,12 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     // facing away from the floor's centre still sees half the floor): all of it counts.
     const double Ar = F > kFarField ? R.area : transfer_->receiverArea(r, s);
     // Weighed by what the camera sees of the receiver (Smits, Arvo & Salesin 1992).
-    const double value = R.rho.maxComponent() * S.B.maxComponent() * F * Ar * importanceOf(r);
+    // With perLightOracle, B_s is the largest of the source's per-light radiosities,
+    // each scaled to the power of all lights together (updateLightShares).
+    // Off, B_s as it is (a sky's coefficient may light with either sign).
+    const double Bs =
+        lightShareB_.empty() ? S.B.maxComponent() : std::max(S.B.maxComponent(), lightShareB(s));
+    const double value = R.rho.maxComponent() * Bs * F * Ar * importanceOf(r);
 
     // A link with a cluster end stands for its contents by one direction and one disc
     // (transfer.h): good only in the far field. Where the source may subtend a wide
@@ -151,6 +157,61 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
 double HierarchicalSolver::receiverScale(const Node& R) const {
     if (!(options_.darkFloor < 1) || !(meanB_ > 0)) return 1.0;
     return std::clamp(R.B.maxComponent() / meanB_, options_.darkFloor, 1.0);
+}
+
+double HierarchicalSolver::lightShareB(int s) const {
+    if (lightShareB_.empty()) return 0;
+    // A node made since the shares were measured: its nearest ancestor's (a child's
+    // radiosity starts as its parent's too).
+    while (s >= 0 && static_cast<size_t>(s) >= lightShareB_.size()) s = h_.nodes[s].parent;
+    return s >= 0 ? static_cast<double>(lightShareB_[static_cast<size_t>(s)]) : 0.0;
+}
+
+void HierarchicalSolver::updateLightShares() {
+    lightShareB_.clear();
+    const size_t K = scene_.lights.size();
+    if (!(options_.perLightOracle > 0) || K < 2) return;
+    // The lights' responses on the links of the last round: the refinement that follows
+    // sees where each light's own light goes (a shaded lamp's light leaves its shade by a
+    // bounce inside; links refined for the sum of a strong and a weak lamp's light stay
+    // coarse where only the weak one's passes, and a light edit exposes them).
+    const auto t0 = Clock::now();
+    const LightResponses R(*this);
+    const auto& nodes = h_.nodes;
+    const auto lightB = [&](size_t n, size_t l) {
+        const Rgb b = scene_.lights[l].radiance * R.reflected(static_cast<int>(n))[l];
+        // A sky's coefficient lights with either sign: its magnitude is what is carried.
+        return std::max({std::abs(b.r), std::abs(b.g), std::abs(b.b)});
+    };
+    std::vector<double> own(K, 0.0);
+    double all = 0;
+    for (size_t n = 0; n < nodes.size() && R.covers(static_cast<int>(n)); ++n) {
+        const Node& e = nodes[n];
+        if (e.isCluster() || !e.isLeaf() || !(e.rho.maxComponent() > 0)) continue;
+        for (size_t l = 0; l < K; ++l) {
+            const double p = lightB(n, l) * e.area;
+            own[l] += p;
+            all += p;
+        }
+    }
+    if (!(all > 0)) return;
+    // k_l: a light with a hundredth of the power has its links weighed as if it had all of
+    // it, up to perLightOracle (a light that hardly reaches anything is not refined to the
+    // accuracy of the lamps that light the room: the cost stays bounded).
+    std::vector<double> scale(K, 0.0);
+    for (size_t l = 0; l < K; ++l)
+        scale[l] = own[l] > 0 ? std::min(all / own[l], options_.perLightOracle) : 0.0;
+    lightShareB_.assign(nodes.size(), 0.0f);
+    parallelFor(nodes.size(), 4096, [&](size_t n) {
+        if (!R.covers(static_cast<int>(n))) return;
+        double b = 0;
+        for (size_t l = 0; l < K; ++l) b = std::max(b, scale[l] * lightB(n, l));
+        lightShareB_[n] = static_cast<float>(b);
+    });
+    char msg[96];
+    std::snprintf(msg, sizeof msg, "  per-light oracle: %zu lights' responses, %.1f s", K,
+                  secondsSince(t0));
+    report(msg);
 }
 
 size_t HierarchicalSolver::memoryUsed(size_t queued) const {
@@ -534,6 +595,10 @@ void HierarchicalSolver::solve() {
     measureSeenBeforeRefining();
     for (int round = 0; round < options_.maxRefineRounds; ++round) {
         auto t0 = Clock::now();
+        // Each light's own light on the last round's links (none before the first gather;
+        // nothing to refine once the time is out).
+        if (options_.perLightOracle > 0 && timing_.refineRounds > 0 && !timeBudgetReached_)
+            updateLightShares();
         const size_t refined = refineAll();
         const double tRefined = secondsSince(t0);
         // Settled: the round refined (almost) nothing. A round that refines fewer than
@@ -577,6 +642,7 @@ void HierarchicalSolver::solve() {
         if (settled) break;
     }
     refineDeadline_ = Clock::time_point::max();  // dynamic updates refine without it
+    lightShareB_.clear();  // and on the total light (an object's links; the shares are stale)
 }
 
 void HierarchicalSolver::measureSeenBeforeRefining() {

@@ -119,6 +119,13 @@ struct SolverOptions {
     /// the reflecting leaves has its threshold lowered in proportion, down to this fraction
     /// of epsilon (1: the plain BF criterion). See oracle().
     double darkFloor = 1.0;
+    /// Per-light refinement (issue 30, "light round corners"): from the second round on, a
+    /// link is weighed by the largest of its source's radiosities from each light alone,
+    /// each scaled by (all lights' reflected power / that light's), at most by this factor,
+    /// as well as by the source's total radiosity; so a weak lamp's light is refined to the
+    /// relative accuracy of the strong one's. 0: off (the BF criterion on the total light).
+    /// See updateLightShares().
+    double perLightOracle = 0;
     size_t maxLinks = 0;   ///< refinement budget in links (0: what fits in maxMemory)
     size_t maxMemory = 0;  ///< refinement budget in bytes (0: defaultMemoryBudget())
     /// Time budget of solve()'s refinement, seconds from solve()'s start (0: none). When it
@@ -446,6 +453,13 @@ class HierarchicalSolver {
     /// The factor on the power threshold for links to R: clamp(B_R / meanB_, darkFloor, 1)
     /// (max channel), 1 before there is a solution.
     double receiverScale(const Node& R) const;
+    /// The source radiosity the oracle weighs for s: the largest of its lights' scaled
+    /// radiosities (lightShareB_, of its nearest ancestor that has one for a node made
+    /// since), 0 without them.
+    double lightShareB(int s) const;
+    /// lightShareB_ from each light's response on the current links
+    /// (SolverOptions::perLightOracle).
+    void updateLightShares();
     Link makeLink(int r, int s) const;
     /// The visibility of `l` evaluated again, with its receiver's link correction when it
     /// carries one (Link::corrected).
@@ -589,6 +603,9 @@ class HierarchicalSolver {
     /// Sets polygonImportance_ and clusterImportance_ from seenImportance_, plus one
     /// bounce through the active links when `bounce`.
     void updateImportance(bool bounce);
+    /// Per node: max over lights l of k_l |L_l R_l(node)| (max channel), k_l = (sum over
+    /// lights of their reflected power) / (light l's), at most perLightOracle; empty: off.
+    std::vector<float> lightShareB_;
     double meanB_ = 0;  ///< area-weighted mean radiosity of the reflecting leaves (max channel)
     size_t maxLinks_ = 0, maxMemory_ = 0;  ///< the budget in force
     bool budgetReached_ = false;

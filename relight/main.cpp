@@ -61,6 +61,12 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
                     "mean radiosity (1: the plain BF criterion)")
         ->capture_default_str()
         ->check(CLI::Range(1e-3, 1.0));
+    app->add_option("--per-light-oracle", p.perLightOracle,
+                    "refine each light's own light to comparable relative accuracy: a link is "
+                    "weighed by its source's light from each lamp alone, a lamp's weight raised "
+                    "to all lamps' power, by at most this factor (0: off, the total light only)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e6));
     addBudgetOptions(app, p.maxLinks, p.maxMemoryMB, p.timeBudget);
     app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     app->add_flag("!--no-refinement", p.shadowRefinement,

@@ -150,6 +150,7 @@ void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     radiosity::SolverOptions so;
     so.epsilon = o.epsilon;
     so.darkFloor = o.darkFloor;
+    so.perLightOracle = o.perLightOracle;
     so.maxLinks = o.maxLinks;
     so.maxMemory = o.maxMemory;
     so.refineUntil = r.budget.until(RelightOptions::kRefineShare);

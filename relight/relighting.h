@@ -61,6 +61,9 @@ struct RelightOptions {
     /// The solver's darkFloor (radiosity/solver.h): the threshold of a receiver darker than
     /// the mean is lowered with its radiosity, down to this fraction.
     double darkFloor = 0.1;
+    /// The solver's perLightOracle (radiosity/solver.h): each light's own light refined to
+    /// comparable relative accuracy, a light's weight raised at most by this factor; 0: off.
+    double perLightOracle = 0;
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
     /// Time budget of the preparation, seconds (0: none), counted from its start

@@ -62,6 +62,7 @@ struct CacheArgs {
 struct PrepareOptionArgs {
     double epsilon = RelightOptions{}.epsilon;
     double darkFloor = RelightOptions{}.darkFloor;
+    double perLightOracle = RelightOptions{}.perLightOracle;
     size_t maxLinks = 0;
     double maxMemoryMB = 0;
     double timeBudget = RelightOptions{}.timeBudget;  ///< seconds (0: none)

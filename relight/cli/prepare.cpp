@@ -33,6 +33,7 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     RelightOptions o;
     o.epsilon = epsilon;
     o.darkFloor = darkFloor;
+    o.perLightOracle = perLightOracle;
     o.maxLinks = maxLinks;
     o.maxMemory = static_cast<size_t>(maxMemoryMB * 1048576.0);
     o.timeBudget = timeBudget;

@@ -152,6 +152,7 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
         {"output", a.output},
         {"epsilon", a.prep.epsilon},
         {"dark_floor", a.prep.darkFloor},
+        {"per_light_oracle", a.prep.perLightOracle},
         {"shadow_refinement", a.prep.shadowRefinement},
         {"shadow_removal", a.prep.shadowRemoval},
         {"display", a.display},
