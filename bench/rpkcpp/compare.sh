@@ -47,7 +47,7 @@ relight_row() {  # label, scene dir, args...
   printf '%-16s %-44s %9.3f %9.3f %9.2f %9s %8s\n' "$label" "$*" "$solve" "$image" \
     "$(awk "BEGIN {print $t1 - $t0}")" "$leaves" "$(score "$tmp/r.exr")"
 }
-if [ "$quick" = quick ]; then eps="1e-3 1e-4"; else eps="3e-3 1e-3 3e-4 1e-4 3e-5 1e-5"; fi
+if [ "$quick" = quick ]; then eps="1e-3 1e-4"; else eps="3e-3 1e-3 3e-4 1e-4 3e-5 1e-5 3e-6"; fi
 for e in $eps; do relight_row "relight photo" $scene --epsilon $e; done
 if [ "$quick" != quick ]; then
   for tb in 1 2 4; do relight_row "relight photo" $scene --epsilon 1e-6 --time-budget $tb; done
