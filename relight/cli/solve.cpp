@@ -57,7 +57,7 @@ class CameraSamples {
         // Every shadow ray of a sample where the links' shafts are not clear, not a first
         // round of minRays that stops when they agree: a sample whose rays all agree by
         // chance in a penumbra would read 0 or 1, and the pixel's mean of such samples is
-        // biased towards a sharper shadow (Cornell box 0.0273 -> 0.0239 at epsilon 1e-4,
+        // biased towards a sharper shadow (Cornell box 0.0273 -> 0.0244 at epsilon 1e-4,
         // bench/RESULTS.md 2026-11-27 (sixth session)).
         dlo.minRays = a_.maxRays;
         dlo.maxRays = a_.maxRays;
