@@ -14,9 +14,13 @@
 //   - light slider: the first light's intensity moving smoothly from 0.2x to 2x of the
 //     photo's and back; without virtual parts a frame is the superposition of the lights'
 //     responses per vertex (relight/prepared.h) and the draw;
-//   - light slider with a box: the same with a box on the floor; with virtual parts a
-//     radiance change inserts them again from the prepared solver (viewer/session.h), the
-//     slow path of the viewer;
+//   - light slider with a box: the same with a box on the floor; with virtual objects a
+//     radiance change is the session's quick path (Session::update: the solver gathers
+//     again on the box's links, the direct light recombined from its geometry terms, no
+//     shadow ray); after each display's frames the slider rests: the frame that inserts the
+//     box again at the radiance reached (Session::settle, `relight render`'s image, its
+//     shadow rays from the session's GeometryCache), and how far the last quick image was
+//     from it;
 //   - box drag: the box dragged over the floor, the pointer moving in equal steps along a
 //     straight line of 60 K pixels (about a pixel of the photo per frame at N = 60, as a
 //     mouse reports it); the solver moves the last part incrementally (moveLastObject).
@@ -201,9 +205,28 @@ void lightSlider(const char* scenario, Session& session, FrameRenderer& frame, i
             session.update();
         });
         printRow(scenario, display, s);
+        // With virtual objects the slider's frames are quick images (Session::update); the
+        // slider at rest, the exact one (Session::settle): its frame, and how far the last
+        // quick image was from it.
+        if (session.exactPending()) {
+            const Image quick = session.relitPerPixel();
+            const auto t0 = Clock::now();
+            session.settle();
+            frame.render();
+            const double ms = 1e3 * secondsSince(t0);
+            const Image exact = session.relitPerPixel();
+            double worst = 0;
+            for (size_t i = 0; i < exact.rgb.size(); ++i)
+                worst = std::max(worst, static_cast<double>(std::abs(exact.rgb[i] - quick.rgb[i])));
+            std::printf(
+                "  the slider at rest: the exact image in %.1f ms (one frame); the last "
+                "quick one differed from it by at most %.2e (per-pixel display)\n",
+                ms, worst);
+        }
     }
     light.intensity = initial;
     session.update();
+    session.settle();
     frame.render();
 }
 

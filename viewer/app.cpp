@@ -77,6 +77,10 @@ class App {
     std::string status_;
     FrameStats stats_;
     double frameSeconds_ = 0, lastUpdate_ = 0;
+    double lastChange_ = 0;  ///< glfwGetTime() when the image last changed
+    /// How long a slider rests before its quick image is made exact (Session::settle):
+    /// longer than between two mouse reports while it moves, short enough not to be waited for.
+    static constexpr double kSettleSeconds = 0.25;
     bool wasDown_ = false;
     double lastMx_ = -1, lastMy_ = -1;
     std::string windowShot_;
@@ -493,6 +497,8 @@ void App::statsOverlay(const PhotoRect& r) {
     if (const FrameTimes* t = session_.dynamicTimes())
         ImGui::Text("last part: shafts %.1f, rays %.1f, links %.1f, radiosity %.1f ms",
                     1e3 * t->shafts, 1e3 * t->visibility, 1e3 * t->links, 1e3 * t->radiosity);
+    // What is shown: a slider's quick image, or what `relight render` draws of the edit.
+    if (session_.exactPending()) ImGui::Text("quick image: exact when the slider rests");
     ImGui::End();
 }
 
@@ -604,7 +610,11 @@ void App::run() {
         if (session_.generation() != lastGeneration) {
             lastUpdate_ = session_.updateSeconds();
             lastGeneration = session_.generation();
+            lastChange_ = glfwGetTime();
         }
+        // A slider's quick image (Session::update) made exact once the hand rests on it.
+        if (session_.exactPending() && glfwGetTime() - lastChange_ > kSettleSeconds)
+            act("settling", [&] { session_.settle(); });
         act("drawing", [&] { stats_ = frame_.render(); });
         ImGui::Render();
         glBindFramebuffer(GL_FRAMEBUFFER, 0);

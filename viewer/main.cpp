@@ -18,7 +18,8 @@
 //   sun:NAME:AZ,EL     the sun NAME at azimuth AZ, elevation EL degrees (the sliders)
 //   sundrag:NAME:U0,V0:U1,V1  the sun turned by a drag on the image (Session::dragSun)
 //   rotate:NAME:X,Y,Z:DEG     the sky NAME turned by DEG degrees about the axis (X, Y, Z)
-//   scale:NAME:S       the light NAME's strengths times S (a sky: every coefficient)
+//   scale:NAME:S       the light NAME's strengths times S (a sky: every coefficient; a
+//                      quad lamp: its intensity slider)
 //   sh9:NAME:K:R,G,B   the sky NAME's coefficient K (0..8) set to (R, G, B)
 //   point:U,V          a virtual point lamp above the surface under (U, V)
 //   movepoint:NAME:U,V the point lamp NAME moved above the surface under (U, V) (a drag's end)
@@ -240,6 +241,13 @@ bool runLightAction(Session& s, const Action& a) {
                 Vec3(a.numbers[0], a.numbers[1], a.numbers[2]), a.numbers[3]};
             break;
         case Action::Kind::scale:
+            // A quad lamp: what its intensity slider does (a sun, lamp or sky: an edit field).
+            for (LightControl& l : s.lights())
+                if (l.name == a.name && !l.emitter) {
+                    l.intensity *= a.numbers[0];
+                    s.update();
+                    return true;
+                }
             e.scale = a.numbers[0];
             break;
         case Action::Kind::sh9: {
@@ -374,6 +382,8 @@ int run(const Args& a) {
                                    static_cast<size_t>(session.realLights())))
         std::fprintf(stderr, "warning: %s\n", w.c_str());
     for (const Action& act : actions) runAction(session, act);
+    // The image as `relight render` draws the edit, not a slider's quick one.
+    if (!interactive) session.settle();
     GpuRatioDisplay display(session.prepared());
     FrameRenderer frame(session, display);
     frame.view = view;

@@ -276,12 +276,20 @@ void Session::sunAngles(const Vec3& direction, double& azimuth, double& elevatio
     elevation = std::asin(std::clamp(d.z, -1.0, 1.0)) * kDeg;
 }
 
+bool Session::settle() {
+    if (!exactPending_ || dragging_ >= 0) return false;
+    stale_ = true;
+    update();
+    return true;
+}
+
 void Session::rebuild() {
+    exactPending_ = false;
     dyn_.reset();
     objectPolygons_.clear();
     const std::vector<Rgb> real = realRadiance();
     if (hasVirtualParts()) {
-        dyn_ = std::make_unique<DynamicRelighting>(*r_, real);
+        dyn_ = std::make_unique<DynamicRelighting>(*r_, real, &geometry_);
         for (const std::string& name : removed_) dyn_->removeObject(name);
         // In render's order (relight/cli/render.cpp): the moved lights, then the virtual ones.
         for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
@@ -308,10 +316,16 @@ void Session::update() {
         radianceChanged = !(now[i] == applied_[i]);
     if (!stale_ && !radianceChanged) return;
     const std::vector<Rgb> before = std::exchange(applied_, now);
+    const bool shapesKept = state == appliedState_;
     appliedState_ = std::move(state);
     // Without virtual parts (nor a moved light, nor any before) a radiance change is the
-    // superposition path: nothing to solve.
-    if (stale_ || (radianceChanged && (hasVirtualParts() || dyn_))) rebuild();
+    // superposition path: nothing to solve. With virtual objects, the quick path while a
+    // slider moves (settle() makes it exact).
+    if (!stale_ && radianceChanged && shapesKept && dyn_ && before.size() == now.size() &&
+        dyn_->setRealRadiances(realRadiance()))
+        exactPending_ = true;
+    else if (stale_ || (radianceChanged && (hasVirtualParts() || dyn_)))
+        rebuild();
     // The first update (the edit the session starts from) is checked on its first frame,
     // which names the edit's key (viewer/main.cpp); a change made in the panel here.
     if (!before.empty() && before.size() == now.size() && !displayFinite()) undo(before);

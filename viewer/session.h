@@ -101,7 +101,18 @@ class Session {
     /// changed). Changes the generation when the display values change. A radiance that
     /// would make the display not finite (typed into a slider: 1e38) is undone, and an
     /// InputError names the light.
+    /// With virtual objects, a change of the real lights' radiances alone (a colour or
+    /// strength slider) is quick: DynamicRelighting::setRealRadiances, the parts' links as
+    /// they are, no shadow ray; the image is then near `relight render`'s of the edit, not
+    /// equal to it (exactPending()), until settle() inserts the parts again.
     void update();
+    /// Whether the image is a quick one (update()) that settle() makes exact.
+    bool exactPending() const { return exactPending_; }
+    /// Inserts the virtual parts again at the radiances as they stand, as `relight render`
+    /// inserts the saved edit, when the image is a quick one (the viewer calls it when the
+    /// slider rests; a screenshot before it is taken); the shadow rays come from the
+    /// GeometryCache. Returns whether it did anything (not during a drag).
+    bool settle();
     /// Sets object i's reflectance (inserted again).
     void setReflectance(int i, const Rgb& reflectance);
     /// Sets object i's specular term (none: Lambertian; relight/dynamic/specular.h). It
@@ -201,6 +212,7 @@ class Session {
     /// Seconds of the last update (solver and vertex values) and its parts.
     double updateSeconds() const { return updateSeconds_; }
     const FrameTimes* dynamicTimes() const { return dyn_ ? &dyn_->times() : nullptr; }
+    const GeometryCache& geometryCache() const { return geometry_; }
     size_t links() const { return r_->solver->links().size(); }
 
   private:
@@ -223,6 +235,10 @@ class Session {
     double offsetOrDefault(double offset) const { return offset > 0 ? offset : 0.02 * diagonal_; }
 
     Relighting* r_;
+    /// The geometry terms the solver's sessions measured (dynamic_relighting.h): a radiance
+    /// change inserts the parts again, in a new DynamicRelighting, and measures no shadow
+    /// ray twice. Declared before dyn_, which points at it.
+    GeometryCache geometry_;
     std::unique_ptr<DynamicRelighting> dyn_;
     std::vector<LightControl> lights_;
     std::vector<ObjectControl> objects_;
@@ -233,7 +249,8 @@ class Session {
     std::vector<double> appliedState_;  ///< emitterState() the solution was computed for
     /// Per light, a copy of its emitter as last applied (null for quads), for undo().
     std::vector<std::shared_ptr<radiosity::Emitter>> appliedEmitters_;
-    bool stale_ = false;  ///< the parts changed in a way only rebuild() follows
+    bool stale_ = false;         ///< the parts changed in a way only rebuild() follows
+    bool exactPending_ = false;  ///< the solution is setRealRadiances' quick one
     int realLights_ = 0;
     size_t realPolygons_ = 0;
     double diagonal_ = 1;  ///< of the scene's bounding box (metres)

@@ -2,6 +2,7 @@
 #include "relight/dynamic/overlay_samples.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <iterator>
@@ -40,8 +41,9 @@ Rgb reflectedBy(const Node& e) {
 }
 }  // namespace
 
-DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radiance)
-    : r_(r), solver_(*r.solver) {
+DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radiance,
+                                     GeometryCache* cache)
+    : r_(r), solver_(*r.solver), cache_(cache) {
     if (!r.solver || !r.mesh)
         throw std::invalid_argument("DynamicRelighting: the relighting is not prepared");
     if (solver_.insertedObjects() > 0)
@@ -66,6 +68,7 @@ DynamicRelighting::DynamicRelighting(Relighting& r, std::span<const Rgb> radianc
     reflected0_.resize(realNodes_);
     for (size_t n = 0; n < realNodes_; ++n)
         reflected0_[n] = reflectedBy(solver_.hierarchy().nodes[n]);
+    if (cache_ && r_.responses) makeUnitSources();
     // The leaves under a new shadow are split down to the display's pieces (Loscos et al.
     // 2000, Fig. 24(a)): finer than the pieces no vertex would show it.
     const radiosity::LeafMesh* mesh = r_.mesh.get();
@@ -97,6 +100,86 @@ DynamicRelighting::~DynamicRelighting() {
     } catch (...) {
         // A destructor must not throw; the solver is left as the failed step left it.
     }
+}
+
+void DynamicRelighting::makeUnitSources() {
+    // With links and subdivision fixed, radiosity is linear in the lights' emittances
+    // (Loscos et al. 2000, §5.4; radiosity/light_response.h): per unit radiance of light l a
+    // node reflects R_l, and a cluster's B holds its lamps' emission too, pulled as the
+    // solver pulls B (area-weighted), pi per unit radiance (Light::emittance).
+    const radiosity::LightResponses& R = *r_.responses;
+    const auto& nodes = solver_.hierarchy().nodes;
+    const auto& polygons = solver_.scene().polygons;
+    const size_t L = static_cast<size_t>(realLights_), N = realNodes_;
+    if (R.lights() != realLights_ || N == 0 || L == 0 || !R.covers(static_cast<int>(N) - 1)) return;
+    std::vector<Rgb> emission(N * L);
+    for (size_t n = N; n-- > 0;) {  // the children come after their parent
+        const Node& e = nodes[n];
+        if (!e.isCluster()) {
+            const int l = polygons[static_cast<size_t>(e.polygon)].light;
+            if (l >= 0 && l < realLights_)
+                emission[n * L + static_cast<size_t>(l)] = Rgb::gray(kPi);
+            continue;
+        }
+        double area = 0;
+        for (int k = 0; k < e.childCount; ++k)
+            area += nodes[static_cast<size_t>(e.firstChild + k)].area;
+        if (!(area > 0)) continue;  // guard: a cluster of nothing
+        for (int k = 0; k < e.childCount; ++k) {
+            const size_t c = static_cast<size_t>(e.firstChild + k);
+            for (size_t l = 0; l < L; ++l)
+                emission[n * L + l] += (nodes[c].area / area) * emission[c * L + l];
+        }
+    }
+    unitReflected_.assign(N * L, Rgb{});
+    for (size_t n = 0; n < N; ++n) {
+        const std::span<const Rgb> r = R.reflected(static_cast<int>(n));
+        for (size_t l = 0; l < L; ++l)
+            unitReflected_[n * L + l] = nodes[n].isCluster() ? r[l] + emission[n * L + l] : r[l];
+    }
+    // H_ind per unit radiance: indirectPerNode()'s gather of these sources.
+    unitIndirect_.assign(N * L, Rgb{});
+    for (size_t l = 0; l < L; ++l) {
+        const std::vector<Rgb> H = solver_.gatherDown(
+            [&](int s) {
+                const Node& S = nodes[static_cast<size_t>(s)];
+                if (static_cast<size_t>(s) >= N || (!S.isCluster() && S.emitting)) return Rgb{};
+                return unitReflected_[static_cast<size_t>(s) * L + l];
+            },
+            /*bounded=*/true);
+        for (size_t n = 0; n < N; ++n) unitIndirect_[n * L + l] = H[n];
+    }
+}
+
+bool DynamicRelighting::setRealRadiances(std::span<const Rgb> radiance) {
+    const auto& scene = solver_.scene();
+    if (!cache_ || unitIndirect_.empty() || radiance.size() != static_cast<size_t>(realLights_) ||
+        scene.lights.size() != radiance.size() || !solver_.removedObjects().empty() ||
+        !gatherDelta_.empty() || !gatherDeltaRays_.empty())
+        return false;
+    for (const auto& light : scene.lights)
+        if (light.emitter) return false;
+    const auto t0 = Clock::now();
+    const size_t L = static_cast<size_t>(realLights_);
+    std::vector<Rgb> change(L);
+    for (size_t l = 0; l < L; ++l) change[l] = radiance[l] - radiance_[l];
+    radiance_.assign(radiance.begin(), radiance.end());
+    solver_.setLightRadiances(radiance_);  // gather/push-pull on the links as they are
+    times_ = FrameTimes{};
+    times_.radiosity = secondsSince(t0);
+    const auto t1 = Clock::now();
+    for (size_t v = 0; v < base_.size(); ++v)
+        base_[v] = r_.prepared.lighting.irradiance(static_cast<int>(v), radiance_);
+    // The "before" of every indirect change, at the new radiances.
+    for (size_t n = 0; n < realNodes_; ++n)
+        for (size_t l = 0; l < L; ++l) {
+            indirect0_[n] += change[l] * unitIndirect_[n * L + l];
+            reflected0_[n] += change[l] * unitReflected_[n * L + l];
+        }
+    refreshDirect(directVertices_, /*virtualOnly=*/false);  // the cache's G: no ray
+    refreshIndirect(false);
+    times_.vertices = secondsSince(t1);
+    return true;
 }
 
 std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
@@ -301,6 +384,8 @@ std::span<const float> DynamicRelighting::pixelDirect() {
         throw std::invalid_argument(
             "DynamicRelighting: the per-pixel display needs a preparation with per-pixel light");
     if (leafPending_.empty()) markChangedLeaves({});
+    if (sampleLeaf_.empty() && cache_ && cache_->sampleLeaf.size() == items.polygon.size())
+        sampleLeaf_ = cache_->sampleLeaf;  // the prepared scene's leaves: any edit's
     if (sampleLeaf_.empty()) {
         sampleLeaf_.assign(items.polygon.size(), -1);
         parallelFor(sampleLeaf_.size(), 4096, [&](size_t i) {
@@ -309,6 +394,12 @@ std::span<const float> DynamicRelighting::pixelDirect() {
                 leaf = h.nodes[leaf].parent;
             sampleLeaf_[i] = leaf;
         });
+        if (cache_) cache_->sampleLeaf = sampleLeaf_;
+    }
+    GeometryCache* const cache = geometryCache();
+    if (cache && cache->pixelFrom.size() != pixels) {
+        cache->pixelDirect.assign(pixels * L, 0.0f);
+        cache->pixelFrom.assign(pixels, 0);
     }
     // A light added or removed: start again from the photo's light, every virtual light at
     // every pixel, the real lights where any part ever changed them.
@@ -323,6 +414,7 @@ std::span<const float> DynamicRelighting::pixelDirect() {
     }
     const radiosity::DirectLight direct(solver_, r_.directOptions);
     const int spp = items.spp;
+    std::atomic<uint64_t> hits{0};
     radiosity::parallelForChunks(pixels, 64, [&](size_t first, size_t last) {
         std::vector<double> G(L), sum(L);
         for (size_t px = first; px != last; ++px) {
@@ -336,6 +428,15 @@ std::span<const float> DynamicRelighting::pixelDirect() {
             // Only the virtual lights where nothing blocks anew.
             const size_t firstLight = dirty ? 0 : Lr;
             if (firstLight == L || (!dirty && !full)) continue;
+            const auto at = static_cast<std::ptrdiff_t>(px * L + firstLight);
+            const auto count = static_cast<std::ptrdiff_t>(L - firstLight);
+            if (cache && cache->pixelFrom[px] > 0 &&
+                static_cast<size_t>(cache->pixelFrom[px] - 1) <= firstLight) {
+                // Measured in this geometry before: the same rays would give the same values.
+                std::copy_n(cache->pixelDirect.begin() + at, count, pixelDirect_.begin() + at);
+                hits.fetch_add(1, std::memory_order_relaxed);
+                continue;
+            }
             std::fill(sum.begin(), sum.end(), 0.0);
             int n = 0;
             for (int s = 0; s < spp; ++s) {
@@ -358,8 +459,13 @@ std::span<const float> DynamicRelighting::pixelDirect() {
             }
             for (size_t l = firstLight; l < L; ++l)
                 pixelDirect_[px * L + l] = n > 0 ? static_cast<float>(kPi * sum[l] / n) : 0.0f;
+            if (cache) {
+                std::copy_n(pixelDirect_.begin() + at, count, cache->pixelDirect.begin() + at);
+                cache->pixelFrom[px] = static_cast<int>(firstLight) + 1;
+            }
         }
     });
+    if (cache) cache->pixelHits += hits.load();
     std::fill(leafPending_.begin(), leafPending_.end(), 0);
     return pixelDirect_;
 }
@@ -389,6 +495,13 @@ void DynamicRelighting::afterUpdate(const radiosity::DynamicUpdate& u, bool allV
                 }
         }
     }
+    if (directSeen_.size() != mesh.vertices().size()) directSeen_.assign(mesh.vertices().size(), 0);
+    if (!allVertices)
+        for (const int v : vertices)
+            if (!directSeen_[static_cast<size_t>(v)]) {
+                directSeen_[static_cast<size_t>(v)] = 1;
+                directVertices_.push_back(v);
+            }
     refreshDirect(vertices, /*virtualOnly=*/allVertices);
     refreshIndirect(allVertices);
     times_.vertices = secondsSince(t0);
@@ -401,6 +514,13 @@ void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool vir
     const auto& scene = solver_.scene();
     const int lights = static_cast<int>(scene.lights.size());
     const VertexDirect& before = r_.direct;
+    GeometryCache* const cache = geometryCache();
+    const size_t L = static_cast<size_t>(lights);
+    if (cache && cache->vertexFrom.size() != mesh.vertices().size()) {
+        cache->vertexG.assign(mesh.vertices().size() * L, 0.0);
+        cache->vertexFrom.assign(mesh.vertices().size(), 0);
+    }
+    std::atomic<uint64_t> hits{0};
     const auto& correction = r_.removal.linkCorrection;
     radiosity::parallelForChunks(vertices.size(), 16, [&](size_t first, size_t last) {
         std::vector<double> G(static_cast<size_t>(lights));
@@ -410,8 +530,22 @@ void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool vir
             if (scene.polygons[p].light >= 0) continue;  // shown, not lit
             // A virtual light added or removed changes the virtual lights' direct
             // light only; a moved object may change every light's.
-            direct.geometry(p, mesh.insidePoint(v), static_cast<uint64_t>(v), G.data(), nullptr,
-                            virtualOnly ? realLights_ : 0);
+            const int from = virtualOnly ? realLights_ : 0;
+            const size_t at = static_cast<size_t>(v) * L;
+            int* const known = cache ? &cache->vertexFrom[static_cast<size_t>(v)] : nullptr;
+            if (known && *known > 0 && *known - 1 <= from) {
+                // Measured in this geometry before (the same rays: the same G).
+                std::copy_n(cache->vertexG.begin() + static_cast<std::ptrdiff_t>(at), L, G.begin());
+                hits.fetch_add(1, std::memory_order_relaxed);
+            } else {
+                direct.geometry(p, mesh.insidePoint(v), static_cast<uint64_t>(v), G.data(), nullptr,
+                                from);
+                if (known) {
+                    std::copy_n(G.begin(), L,
+                                cache->vertexG.begin() + static_cast<std::ptrdiff_t>(at));
+                    *known = from + 1;
+                }
+            }
             if (!virtualOnly) {
                 const Rgb c = correction.empty() ? Rgb::gray(1.0) : correction[v];
                 Rgb d;
@@ -426,6 +560,46 @@ void DynamicRelighting::refreshDirect(const std::vector<int>& vertices, bool vir
             virtualDirect_[v] = d;
         }
     });
+    if (cache) cache->vertexHits += hits.load();
+}
+
+std::vector<double> DynamicRelighting::geometryKey() const {
+    // What the direct light's geometry terms depend on beyond the prepared scene: the faces
+    // put in (virtual objects' and lamps'), the objects taken out, the emitters' shapes
+    // (their fields, strengths among them: a key that changes more often than it must is
+    // safe). Radiances are left out: that is the point.
+    const auto& scene = solver_.scene();
+    std::vector<double> key{static_cast<double>(scene.polygons.size()),
+                            static_cast<double>(scene.lights.size())};
+    for (size_t p = realPolygons_; p < scene.polygons.size(); ++p) {
+        const auto& poly = scene.polygons[p];
+        key.push_back(poly.vertexCount);
+        key.push_back(poly.light);
+        for (int i = 0; i < poly.vertexCount; ++i)
+            for (int c = 0; c < 3; ++c) key.push_back(poly.v[static_cast<size_t>(i)][c]);
+    }
+    for (const int o : solver_.removedObjects()) key.push_back(o);
+    key.push_back(-1);
+    for (const auto& light : scene.lights) {
+        if (!light.emitter || light.component != 0) continue;
+        for (const radiosity::EmitterField& f : light.emitter->fields())
+            key.insert(key.end(), f.values.begin(), f.values.end());
+    }
+    return key;
+}
+
+GeometryCache* DynamicRelighting::geometryCache() {
+    if (!cache_) return nullptr;
+    std::vector<double> key = geometryKey();
+    if (key != cache_->key || cache_->lights != solver_.scene().lights.size()) {
+        cache_->key = std::move(key);
+        cache_->lights = solver_.scene().lights.size();
+        cache_->pixelDirect.clear();
+        cache_->pixelFrom.clear();
+        cache_->vertexG.clear();
+        cache_->vertexFrom.clear();
+    }
+    return cache_;
 }
 
 std::vector<Rgb> DynamicRelighting::reflectedChange() const {

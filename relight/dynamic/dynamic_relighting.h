@@ -74,13 +74,42 @@ struct VirtualOverlay {
 /// Applies an overlay to a ratio-display image (same size as the photo).
 void applyOverlay(Image& img, const VirtualOverlay& overlay);
 
+/// What successive DynamicRelighting instances over one Relighting share (a viewer session:
+/// a radiance change with virtual parts inserts them again, in a new instance, so that the
+/// image equals `relight render`'s of the edit; viewer/session.h): the values that depend on
+/// the scene's geometry only, never on a radiance. A shadow ray's stream is seeded by the
+/// point and the lamp's face, not by the solver's links (radiosity/direct_light.cpp), so the
+/// direct light's geometry term G of a point is the same in every solver state with the same
+/// geometry: taken from here it is what the instance would measure again. Each entry is
+/// kept for the geometry `key` it was measured in (the virtual parts' faces, the objects
+/// taken out, the emitters' shapes) and dropped when the geometry changes.
+struct GeometryCache {
+    /// Per item-buffer sample: its leaf of the prepared scene (-1: none); the prepared
+    /// hierarchy's, the same for every edit.
+    std::vector<int> sampleLeaf;
+    std::vector<double> key;  ///< the geometry the entries below hold for (empty: none)
+    size_t lights = 0;        ///< lights of that geometry (the stride of the entries)
+    /// Per pixel and light: the per-pixel display's pi Gbar (pixelDirect()); per pixel the
+    /// first light measured, plus one (0: not measured).
+    std::vector<float> pixelDirect;
+    std::vector<int> pixelFrom;
+    /// Per leaf vertex of the scene and light: G at its inside point (the vertices' direct
+    /// light); per vertex the first light measured, plus one (0: not measured).
+    std::vector<double> vertexG;
+    std::vector<int> vertexFrom;
+    uint64_t pixelHits = 0, vertexHits = 0;  ///< entries taken from here (for tests, benches)
+};
+
 class DynamicRelighting {
   public:
     /// `r` must come from prepareRelighting() and outlive this object, which changes its
     /// solver (virtual parts are inserted into it) until it is destroyed: the destructor
     /// removes them and restores the solver's radiances, so sessions can follow each other.
     /// `radiance`: the real lights' radiance for the edit (editRadiance()), one per scene light.
-    DynamicRelighting(Relighting& r, std::span<const Rgb> radiance);
+    /// `cache` (optional, outliving this object): the geometry terms measured by earlier
+    /// instances over `r`, taken where the geometry is the same and filled with what this
+    /// one measures.
+    DynamicRelighting(Relighting& r, std::span<const Rgb> radiance, GeometryCache* cache = nullptr);
     ~DynamicRelighting();
 
     /// Inserts a virtual light; returns its index among the solver's lights.
@@ -104,6 +133,18 @@ class DynamicRelighting {
     /// How the next removal synthesises the hidden surfaces' texture (rectified_fill.h):
     /// non-parametric sampling by default, OpenCV's inpainting for comparison (bench/).
     void setSurfaceSynthesis(SurfaceSynthesis s) { synthesis_ = s; }
+    /// A quick change of the real lights' radiances (one per real light; a colour or
+    /// strength slider), for the frames while it moves: the links and subdivision as they
+    /// are (refined at the radiances the parts were inserted at), gather/push-pull again,
+    /// the direct light recombined from its geometry terms (the GeometryCache's: no shadow
+    /// ray), the indirect light's "before" by linearity (the prepared light responses,
+    /// relight/relighting.h). Not `relight render`'s image of the edit: the refinement oracle
+    /// weighs B, so inserting the parts at the new radiances may link and split otherwise;
+    /// insert them again (a new instance) for that. Needs a cache (constructor) and only
+    /// virtual objects (no virtual lamp, object taken out, sun, point lamp or sky: their
+    /// light is gathered or measured again per change); returns false, changing nothing,
+    /// otherwise.
+    bool setRealRadiances(std::span<const Rgb> radiance);
     /// Undoes the last change: removes the virtual part added last (object or light), or
     /// brings back the real object taken out last.
     void removeLast();
@@ -169,20 +210,35 @@ class DynamicRelighting {
         return indirectPixel_.empty() ? indirect_ : indirectPixel_;
     }
     void markChangedLeaves(const std::vector<int>& leaves);
+    /// unitSource_ (see there), from the prepared light responses.
+    void makeUnitSources();
+    /// The shared cache, emptied first when the geometry changed since it was filled (null:
+    /// none). Called before each measurement of the direct light.
+    GeometryCache* geometryCache();
+    std::vector<double> geometryKey() const;
     std::vector<Rgb> indirectPerNode() const;
 
     Relighting& r_;
     radiosity::HierarchicalSolver& solver_;
+    GeometryCache* cache_ = nullptr;
     int realLights_ = 0;
     size_t realPolygons_ = 0;    ///< polygons below this index are the scene's
     size_t realNodes_ = 0;       ///< nodes below this id are the scene's
     std::vector<Rgb> radiance_;  ///< real lights, then virtual lights (solver order)
     /// The solver's light and radiances before the session (restored at its end).
     radiosity::HierarchicalSolver::LightState prepared_;
-    std::vector<Rgb> base_;              ///< per vertex: sum_l L_l h_l(v)
-    std::vector<Rgb> realDirect_;        ///< per vertex: the real lights' direct light change
-    std::vector<Rgb> virtualDirect_;     ///< per vertex: the virtual lights' direct light
-    std::vector<Rgb> indirect0_;         ///< per node: H_ind before any virtual part
+    std::vector<Rgb> base_;           ///< per vertex: sum_l L_l h_l(v)
+    std::vector<Rgb> realDirect_;     ///< per vertex: the real lights' direct light change
+    std::vector<Rgb> virtualDirect_;  ///< per vertex: the virtual lights' direct light
+    std::vector<Rgb> indirect0_;      ///< per node: H_ind before any virtual part
+    /// For setRealRadiances, per scene node and real light, before any virtual part and per
+    /// unit radiance of the light: what the node reflects (reflectedBy) and H_ind
+    /// (indirectPerNode), so that both follow a radiance change by linearity. Made with a
+    /// cache only (a viewer session); empty otherwise.
+    std::vector<Rgb> unitReflected_, unitIndirect_;
+    /// The scene's vertices whose direct light an object changed (refreshDirect), each once.
+    std::vector<int> directVertices_;
+    std::vector<char> directSeen_;
     mutable std::vector<Rgb> indirect_;  ///< per vertex: H_ind(now) - H_ind(before)
     std::vector<Rgb> reflected0_;        ///< per scene node: what it reflected (B - E) before
     // Per vertex: the final gather (radiosity/final_gather.h) of the indirect light's change

@@ -397,3 +397,94 @@ TEST(DynamicRelighting, ASessionLeavesTheNextOneThePreparedSolutionBitForBit) {
     for (size_t i = 0; i < first.rgb.size(); ++i) differ += first.rgb[i] != second.rgb[i];
     EXPECT_EQ(differ, 0u);
 }
+
+// The viewer's sessions share a GeometryCache (viewer/session.h): inserting the same box
+// again at other radiances takes the direct light's geometry terms from it. The image must
+// be, bit for bit, the one a session without the cache draws (`relight render`'s): a
+// shadow ray's stream depends on the point and the lamp's face only (direct_light.cpp).
+TEST(DynamicRelighting, TheGeometryCacheGivesTheImageOfASessionWithoutIt) {
+    const EditFile e = edit("virtual_box");
+    std::vector<Rgb> other = radianceOf(e);
+    other.at(0) = other[0] * 0.4;  // light 0 at 0.4 of the edit's: another refinement
+    GeometryCache cache;
+    Image cached;
+    {
+        DynamicRelighting first(room(), radianceOf(e), &cache);  // fills the cache
+        for (const auto& o : e.addObjects) first.addObject(o);
+        first.render(DisplayMode::pixel);
+    }
+    ASSERT_GT(cache.vertexFrom.size(), 0u);
+    {
+        DynamicRelighting again(room(), other, &cache);
+        for (const auto& o : e.addObjects) again.addObject(o);
+        cached = again.render(DisplayMode::pixel);
+    }
+    EXPECT_GT(cache.pixelHits, 0u);  // it did take them from the cache
+    EXPECT_GT(cache.vertexHits, 0u);
+    DynamicRelighting fresh(room(), other);
+    for (const auto& o : e.addObjects) fresh.addObject(o);
+    const Image img = fresh.render(DisplayMode::pixel);
+    EXPECT_EQ(maxAbsDiff(cached, img), 0.0);
+}
+
+// A light's slider moved with a box in the room: setRealRadiances keeps the box's links
+// (refined at the radiances it was inserted at) and recombines the direct light from its
+// geometry terms.
+TEST(DynamicRelighting, ASlidersQuickImageIsNearTheExactOneAndComesBackToIt) {
+    const EditFile e = edit("virtual_box");
+    const std::vector<Rgb> start = radianceOf(e);
+    std::vector<Rgb> other = start;
+    other.at(0) = other[0] * 0.4;
+    GeometryCache cache;
+    Image atStart, quick, back;
+    {
+        DynamicRelighting dyn(room(), start, &cache);
+        for (const auto& o : e.addObjects) dyn.addObject(o);
+        atStart = dyn.render(DisplayMode::pixel);
+        ASSERT_TRUE(dyn.setRealRadiances(other));
+        quick = dyn.render(DisplayMode::pixel);
+        ASSERT_TRUE(dyn.setRealRadiances(start));
+        back = dyn.render(DisplayMode::pixel);
+    }
+    DynamicRelighting exact(room(), other, &cache);
+    for (const auto& o : e.addObjects) exact.addObject(o);
+    const Image img = exact.render(DisplayMode::pixel);
+    // Near the insertion at those radiances: what differs is the links the refinement makes
+    // at other radiances (its oracle weighs B; Loscos et al. 2000, §5.4), on the box and in
+    // its shadow, and the gathers' tolerance. Bound: issue 32's 1/255 between the viewer and
+    // render, at all but 0.1 % of the values (seen: 16 of 230 400, all by the box), and
+    // 5/255 anywhere (seen: 0.0134, on the box's face). The change itself is far larger:
+    // the quick image did follow the light.
+    size_t over = 0;
+    for (size_t i = 0; i < img.rgb.size(); ++i)
+        over += std::abs(static_cast<double>(quick.rgb[i]) - static_cast<double>(img.rgb[i])) >
+                        1.0 / 255
+                    ? 1
+                    : 0;
+    EXPECT_LE(over, img.rgb.size() / 1000);
+    EXPECT_LE(maxAbsDiff(quick, img), 5.0 / 255);
+    EXPECT_GT(maxAbsDiff(quick, atStart), 20.0 / 255);
+    // Back to the radiances it was inserted at, on its own links: the same image within the
+    // gathers' tolerance. A gather stops when the total power changes by less than 1e-4
+    // (SolverOptions::tolerance); a value converges more slowly than the total, to within
+    // about 1e-3 of itself (seen: 6e-4 at a value of 1.6; ~DynamicRelighting says 7e-4 for
+    // a solution gathered again). The "before" by linearity adds nothing beyond that.
+    for (size_t i = 0; i < back.rgb.size(); ++i)
+        ASSERT_NEAR(static_cast<double>(back.rgb[i]), static_cast<double>(atStart.rgb[i]),
+                    1e-3 * std::max(std::abs(static_cast<double>(atStart.rgb[i])), 0.01))
+            << "value " << i;
+}
+
+// What the quick path does not do (its light is not linear at a frame's cost): a virtual
+// lamp's indirect light is a gather at every vertex.
+TEST(DynamicRelighting, ASliderWithAVirtualLampIsNotQuick) {
+    const EditFile e = edit("virtual_light_and_box");
+    GeometryCache cache;
+    DynamicRelighting dyn(room(), radianceOf(e), &cache);
+    for (const auto& l : e.addLights) dyn.addLight(l);
+    for (const auto& o : e.addObjects) dyn.addObject(o);
+    std::vector<Rgb> other = radianceOf(e);
+    other.at(0) = other[0] * 0.4;
+    EXPECT_FALSE(dyn.setRealRadiances(other));
+    EXPECT_EQ(dyn.radiance()[0], radianceOf(e)[0]);  // unchanged
+}
