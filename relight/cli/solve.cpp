@@ -224,12 +224,19 @@ void printStats(const radiosity::SolverStats& st) {
 }
 
 /// -o: the radiosity seen from the camera.
+/// The -o image's final gather casts visibility rays until this share of --time-budget has
+/// passed; the points after it keep their links' mean visibility (a coarser but whole
+/// image). Not a bound: on the stair hall the gather took 14 s with rays and 13.6 s
+/// without, its time being in the near links of large elements that hold thousands of
+/// links each, gathered per point (bench/RESULTS.md, 2026-11-27, sixth session).
+constexpr double kImageRaysShare = 0.75;
+
 void writeRadiosityImage(const SolveArgs& a, const radiosity::HierarchicalSolver& solver,
-                         CameraSamples& camera) {
+                         CameraSamples& camera, const radiosity::TimeBudget& budget) {
     const ItemBuffer& items = camera.items();
     LightingBuffer& lighting = camera.imageLighting();
     const auto t0 = Clock::now();
-    updateIndirect(lighting, solver, progressLine);
+    updateIndirect(lighting, solver, progressLine, budget.until(kImageRaysShare));
     std::fprintf(stderr, "final gather of the image: %zu points, %.3f s\n",
                  lighting.gatherPolygon.size(), secondsSince(t0));
     Image img = renderRadiosity(items, lighting, solver.scene());
@@ -309,7 +316,7 @@ int runSolve(const SolveArgs& a) {
     const ReflectanceEstimate reflectance = solveScene(a, sf, solver, camera, budget);
     const radiosity::SolverStats st = solver.stats();
     printStats(st);
-    if (!a.output.empty()) writeRadiosityImage(a, solver, camera);
+    if (!a.output.empty()) writeRadiosityImage(a, solver, camera, budget);
     if (!a.report.empty()) {
         writeJsonAtomic(a.report,
                         solveReport(a, solver, st, reflectance, camera.lightingSeconds(), tAll));

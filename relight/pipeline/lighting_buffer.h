@@ -22,6 +22,7 @@
 #include "radiosity/direct_light.h"
 #include "radiosity/progress.h"
 #include "radiosity/solver.h"
+#include "radiosity/stopwatch.h"
 #include "relight/io/image.h"
 #include "relight/pipeline/item_buffer.h"
 
@@ -61,9 +62,15 @@ LightingBuffer computeLightingBuffer(const ItemBuffer& items,
                                      radiosity::DirectLightOptions options = {}, int stride = 1);
 
 /// Re-gathers the indirect light of every gather point from the solver's current solution
-/// (the final gather, far links shared per element); `progress` hears how far it is.
+/// (the final gather, far links shared per element); `progress` hears how far it is. Points
+/// begun after `raysUntil` (a time budget's share) cast no visibility rays: their partly
+/// occluded links keep their mean visibility (radiosity::sharedFinalGather).
 void updateIndirect(LightingBuffer& buffer, const radiosity::HierarchicalSolver& solver,
-                    const radiosity::ProgressFn& progress = {});
+                    const radiosity::ProgressFn& progress = {},
+                    radiosity::Clock::time_point raysUntil = radiosity::Clock::time_point::max());
+
+/// Gather points whose terms updateIndirect() holds at once.
+inline constexpr size_t kIndirectChunk = 8192;
 
 /// Irradiance H at sample `idx` (radiosity units): direct light with the solver's
 /// current light emittances, plus the indirect light of the sample's gather point. The
