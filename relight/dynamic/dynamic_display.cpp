@@ -1,0 +1,245 @@
+// What a DynamicRelighting session shows (relight/dynamic/dynamic_relighting.h): the
+// irradiance and ratios at the display's vertices, the relit image in each display mode,
+// and the virtual objects' overlay. The edits, and the updates of light they make, stay in
+// dynamic_relighting.cpp.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "radiosity/parallel.h"
+#include "radiosity/stopwatch.h"
+#include "relight/display/wen_display.h"
+#include "relight/dynamic/dynamic_relighting.h"
+#include "relight/dynamic/overlay_samples.h"
+#include "relight/pipeline/pixel_light.h"
+
+namespace relight {
+
+using radiosity::Clock;
+using radiosity::parallelFor;
+using radiosity::secondsSince;
+
+const std::vector<int>& DynamicRelighting::ratioPixelVertices() {
+    if (ratioPixelVerticesMade_) return ratioPixelVertices_;
+    const DisplayMap& map = r_.prepared.display;
+    std::vector<char> seen(base_.size(), 0);
+    const size_t pixels = map.start.empty() ? 0 : map.start.size() - 1;
+    for (size_t px = 0; px < pixels; ++px) {
+        if (shownPerPixel(map, px)) continue;
+        for (int k = map.start[px]; k < map.start[px + 1]; ++k) {
+            const int v = map.vertex[static_cast<size_t>(k)];
+            if (!seen[static_cast<size_t>(v)]) ratioPixelVertices_.push_back(v);
+            seen[static_cast<size_t>(v)] = 1;
+        }
+    }
+    ratioPixelVerticesMade_ = true;
+    return ratioPixelVertices_;
+}
+
+std::vector<Rgb> DynamicRelighting::vertexIrradiance() const {
+    completeVertexGather();
+    return irradianceAsItStands();
+}
+
+std::vector<Rgb> DynamicRelighting::irradianceAsItStands() const {
+    const size_t nv = base_.size();
+    std::vector<Rgb> H(nv);
+    for (size_t v = 0; v < nv; ++v)
+        H[v] = base_[v] + realDirect_[v] + virtualDirect_[v] + indirect_[v];
+    return H;
+}
+
+std::vector<Rgb> DynamicRelighting::vertexRatios() const {
+    return vertexRatio(r_.prepared, vertexIrradiance());
+}
+
+VertexDisplay DynamicRelighting::vertexDisplay(DisplayMode mode) const {
+    const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
+    // Fresh light: lamps off in the photo, and all that the virtual parts change (their
+    // lamps' light, the light objects block or reflect).
+    completeVertexGather();
+    SplitIrradiance H = splitIrradiance(r_.prepared, real);
+    for (size_t v = 0; v < H.fresh.size(); ++v)
+        H.fresh[v] += realDirect_[v] + virtualDirect_[v] + indirect_[v];
+    return relight::vertexDisplay(r_.prepared, H, mode);
+}
+
+Image DynamicRelighting::render(DisplayMode mode) {
+    const auto t0 = Clock::now();
+    const PreparedImage& P = r_.prepared;
+    const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
+    Image img;
+    if (drawsPerPixel(mode)) {
+        // The ratio display stays where the per-pixel display does not draw (a lamp's face,
+        // nothing, an edge): only those pixels' vertices need the vertices' gather, and the
+        // leaf runs, all drawn per pixel, are left out (renderRatio's leafRuns). The same for
+        // every per-pixel display.
+        completeVertexGather(&ratioPixelVertices());
+        renderRatio(P.display, P.photo, vertexRatio(P, irradianceAsItStands()), real,
+                    P.photoRadiance, img, {}, /*leafRuns=*/false);
+    }
+    const Rgb delta = ratioFloor(P.D);
+    if (mode == DisplayMode::pixel) {
+        renderPixelLight(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
+                         P.photoRadiance, delta, img,
+                         PixelLightChange{pixelDirect(), pixelIndirect()}, P.pixelReflectance,
+                         &P.photoPixels);
+    } else if (mode == DisplayMode::ratioMap) {
+        // ../shared/seeds/000, Eq. (3): the direct irradiance alone, now and in the photo.
+        const std::vector<Rgb> noIndirect(P.vertexIndirect.size());
+        renderPixelLight(P.display, P.photo, P.pixelDirect, noIndirect, radiance_, P.photoRadiance,
+                         delta, img, PixelLightChange{pixelDirect(), {}});
+    } else if (mode == DisplayMode::wen) {
+        // Wen et al. 2003 (relight/display/wen_display.h): the sky unoccluded and not
+        // reflected, in the photo and now (a virtual object does not shade it either); the
+        // other lights' light and the virtual parts' bounces as in the per-pixel display.
+        const size_t L = P.photoRadiance.size();
+        const std::vector<float> photoDirect = unoccludedSkyDirect(P, P.pixelDirect, L);
+        const std::span<const float> now = pixelDirect();  // real lights, then virtual ones
+        const std::vector<float> nowDirect = unoccludedSkyDirect(P, now, radiance_.size());
+        const std::vector<Rgb> indirect = indirectWithoutSky(P);
+        const PhotoPixels pool =
+            photoPixels(P.display, P.photo, photoDirect, indirect, P.photoRadiance, delta);
+        renderPixelLight(P.display, P.photo, photoDirect, indirect, radiance_, P.photoRadiance,
+                         delta, img, PixelLightChange{nowDirect, pixelIndirect()},
+                         P.pixelReflectance, &pool);
+    } else if (mode == DisplayMode::ratio) {
+        img = renderRatio(P.display, P.photo, vertexRatios(), real, P.photoRadiance);
+    } else {
+        const VertexDisplay d = vertexDisplay(mode);
+        renderRatio(P.display, P.photo, d.ratio, real, P.photoRadiance, img, d.added);
+    }
+    const double tRatio = secondsSince(t0);
+    applyOverlay(img, overlay());
+    times_.display += tRatio;
+    return img;
+}
+
+void applyOverlay(Image& img, const VirtualOverlay& o) {
+    for (int y = 0; y < o.height; ++y)
+        for (int x = 0; x < o.width; ++x) {
+            const float* a = &o.rgba[(static_cast<size_t>(y) * o.width + x) * 4];
+            float* px = img.at(o.x0 + x, o.y0 + y);
+            for (int c = 0; c < 3; ++c) px[c] = a[3] * px[c] + a[c];
+        }
+}
+
+VirtualOverlay DynamicRelighting::overlay() {
+    const auto t0 = Clock::now();
+    // The item buffer again, in the projected box of the virtual parts only (the pixels of
+    // an old position outside it are the ratio display's).
+    const Camera& camera = r_.scene.camera;
+    const auto& scene = solver_.scene();
+    int x0 = camera.width, y0 = camera.height, x1 = -1, y1 = -1;
+    for (size_t p = realPolygons_; p < scene.polygons.size(); ++p) {
+        const auto& poly = scene.polygons[p];
+        for (int i = 0; i < poly.vertexCount; ++i) {
+            double u = 0, v = 0, depth = 0;
+            if (!camera.project(poly.v[i], u, v, depth) || !(depth > 0)) {
+                x0 = y0 = 0;  // behind the camera: the whole image
+                x1 = camera.width - 1;
+                y1 = camera.height - 1;
+                continue;
+            }
+            x0 = std::min(x0, static_cast<int>(std::floor(u)));
+            y0 = std::min(y0, static_cast<int>(std::floor(v)));
+            x1 = std::max(x1, static_cast<int>(std::ceil(u)));
+            y1 = std::max(y1, static_cast<int>(std::ceil(v)));
+        }
+    }
+    // The pixels of the real objects taken out.
+    const RemovedRegion& gone = removed_;
+    if (!gone.empty()) {
+        x0 = std::min(x0, gone.x0);
+        y0 = std::min(y0, gone.y0);
+        x1 = std::max(x1, gone.x0 + gone.width - 1);
+        y1 = std::max(y1, gone.y0 + gone.height - 1);
+    }
+    VirtualOverlay o;
+    o.x0 = std::max(x0, 0);
+    o.y0 = std::max(y0, 0);
+    o.width = std::min(x1, camera.width - 1) - o.x0 + 1;
+    o.height = std::min(y1, camera.height - 1) - o.y0 + 1;
+    if (o.empty()) {
+        o.width = o.height = 0;
+        times_.display = secondsSince(t0);
+        return o;
+    }
+    o.rgba.assign(static_cast<size_t>(o.width) * o.height * 4, 0.0f);
+    const OverlaySamples samples(r_.items.spp);
+    const int k = samples.k;
+    const Vec3 eye = camera.position();
+    const auto& h = solver_.hierarchy();
+    const auto& vis = solver_.visibility();
+    // The lights of the specular pass, when a virtual object in the scene has a term.
+    std::unique_ptr<SpecularLights> specular;
+    for (size_t i = 0; i < objectSpecular_.size() && i < scene.objects.size() && !specular; ++i)
+        if (objectSpecular_[i]) specular = std::make_unique<SpecularLights>(scene, radiance_);
+    parallelFor(static_cast<size_t>(o.height), 1, [&](size_t row) {
+        const int by = static_cast<int>(row);
+        for (int bx = 0; bx < o.width; ++bx) {
+            const int x = o.x0 + bx, y = o.y0 + by;
+            double realShare = 0;
+            Rgb added;
+            // A pixel of a removed object: replaced whole, its real samples by the fill.
+            const bool filled = !gone.empty() && gone.inMask(x, y);
+            const size_t g =
+                filled ? static_cast<size_t>((y - gone.y0) * gone.width + x - gone.x0) : 0;
+            for (int s = 0; s < k * k; ++s) {
+                const auto [u, v] = samples.at(x, y, s);
+                const Vec3 dir = camera.rayDirection(u, v);
+                const auto hit = vis.intersect(eye, dir);
+                if (hit.polygon < static_cast<int>(realPolygons_) && filled) {
+                    const size_t i = g * static_cast<size_t>(k * k) + static_cast<size_t>(s);
+                    const int p = gone.polygon[i];
+                    if (p < 0) continue;
+                    const int light = scene.polygons[static_cast<size_t>(p)].light;
+                    if (light >= 0) {
+                        added += radiance_[static_cast<size_t>(light)];
+                        continue;
+                    }
+                    if (gone.leaf[i] < 0) continue;
+                    const Rgb Hs = gone.direct[i] + removedIndirect(gone, g, i);
+                    for (int c = 0; c < 3; ++c)
+                        added[c] +=
+                            static_cast<double>(gone.reflectance[3 * g + static_cast<size_t>(c)]) *
+                            Hs[c];
+                    continue;
+                }
+                if (hit.polygon < static_cast<int>(realPolygons_)) {
+                    realShare += 1;  // the photo's sample, as the ratio display shows
+                    continue;
+                }
+                const auto& poly = scene.polygons[hit.polygon];
+                if (glm::dot(poly.normal, dir) >= 0) continue;  // back: black
+                if (poly.light >= 0) {
+                    added += radiance_[poly.light];
+                    continue;
+                }
+                const Vec3 point = eye + hit.t * dir;
+                // ../shared/seeds/000, §6: the specular radiance on top of the diffuse.
+                const uint64_t sample =
+                    (static_cast<uint64_t>(y) * static_cast<uint64_t>(camera.width) +
+                     static_cast<uint64_t>(x)) *
+                        static_cast<uint64_t>(k * k) +
+                    static_cast<uint64_t>(s);
+                added += specularAt(specular.get(), hit.polygon, point, dir, sample);
+                if (!objectMesh_) continue;
+                const int leaf = h.locateLeaf(hit.polygon, point);
+                const auto w = objectMesh_->weights(leaf, point);
+                const auto& corners = objectMesh_->corners(leaf);
+                for (int i = 0; i < h.nodes[leaf].vertexCount; ++i)
+                    added += objectRadiance_[corners[i]] * w[i];
+            }
+            const double n = static_cast<double>(k * k);
+            float* a = &o.rgba[(static_cast<size_t>(by) * o.width + bx) * 4];
+            for (int c = 0; c < 3; ++c) a[c] = static_cast<float>(added[c] / n);
+            a[3] = static_cast<float>(realShare / n);
+        }
+    });
+    times_.display = secondsSince(t0);
+    return o;
+}
+
+}  // namespace relight
