@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <stdexcept>
 
@@ -74,6 +75,13 @@ void aggregateChildren(std::vector<Node>& nodes, int node) {
 }
 
 }  // namespace
+
+double selfTransferBound(double coneAngle) {
+    if (!(coneAngle < std::numbers::pi / 2)) return 1.0;  // no useful bound (nor for NaN)
+    const double c =
+        std::sin(std::max(coneAngle, 0.0)) + 2 * std::sin(std::max(coneAngle, 0.0) / 2);
+    return std::min(1.0, c * c);
+}
 
 double projectedArea(const Node& node, const Vec3& v) {
     if (!node.isCluster()) return node.area * std::max(0.0, glm::dot(node.normal, v));

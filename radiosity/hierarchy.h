@@ -224,6 +224,11 @@ class Hierarchy {
 /// surfaces inside it can exceed as seen from outside (Smits, Arvo & Greenberg 1994).
 double projectedArea(const Node& node, const Vec3& v);
 
+/// The largest share of a surface's emitted light that can land on the surface itself,
+/// given the normal cone (half-angle t, radians) of its faces: min(1, (sin t + 2 sin(t/2))^2),
+/// 0 for a plane (HierarchicalSolver's "self-interaction" says why; any t >= pi/2: 1).
+double selfTransferBound(double coneAngle);
+
 /// Whether a link's source reflects light: a cluster (the oracle splits any cluster that
 /// holds an emitter off a link, so a cluster stands for reflecting surfaces), or an
 /// element of non-zero reflectance. A lamp's face does not: its links carry direct light.

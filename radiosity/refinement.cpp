@@ -69,6 +69,10 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
         queue.pop_back();
         const Verdict v = oracle(link);
         if (v.decision == Decision::drop) continue;
+        if (v.decision == Decision::defer) {
+            deferredSelf_.push_back(link.receiver);
+            continue;
+        }
         const bool forced = v.value == kForced;
         if (v.decision == Decision::accept) {
             accept(link);
@@ -76,9 +80,12 @@ void HierarchicalSolver::refineLinks(std::vector<Link> seeds) {
         }
         if (!forced && (!withinBudget(queue.size()) || outOfTime(queue.size(), pending.size()))) {
             // Out of budget: keep the link as it is; what is still queued has a smaller
-            // oracle value.
+            // oracle value. A cluster's self-interaction cannot be a link: it waits.
             budgetReached_ = true;
-            accept(link);
+            if (link.receiver == link.source)
+                deferredSelf_.push_back(link.receiver);
+            else
+                accept(link);
             continue;
         }
         const Node& R0 = h_.nodes[link.receiver];
@@ -214,6 +221,13 @@ size_t HierarchicalSolver::refineAll() {
         }
     }
     old = {};
+    // The self-interactions deferred so far, judged again with this round's radiosities.
+    for (const int node : deferredSelf_) {
+        Link self;
+        self.receiver = self.source = node;
+        seeds.push_back(self);
+    }
+    deferredSelf_.clear();
     evaluateVisibility(pending);
     const size_t refined = passive_.size();
     if (!seeds.empty()) refineLinks(std::move(seeds));

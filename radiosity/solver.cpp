@@ -100,8 +100,8 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     // value is 0), but they say what it absorbs, so that the energy balance is whole.
     if (!S.isCluster() && S.rho.maxComponent() <= 0 && !S.emitting) return {Decision::drop, 0};
     // A cluster is never linked to itself: its self-interaction is refined into the pairs
-    // of its children (an element does not light itself: planar).
-    if (r == s) return {R.isCluster() ? Decision::splitReceiver : Decision::drop, kForced};
+    // of its children, or deferred (an element does not light itself: planar).
+    if (r == s) return selfVerdict(r);
     // Links from lights go to elements, never to clusters (Loscos et al. 2000, §2.3 and
     // §5.2): shadow boundaries need per-element visibility of each source.
     if (S.isCluster() && S.emitting) return {Decision::splitSource, kForced};
@@ -151,6 +151,29 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     // Of two elements, split the larger: it subtends the larger angle from the other
     // (F_rs > F_sr <=> A_s > A_r by reciprocity).
     return {R.area >= S.area ? Decision::splitReceiver : Decision::splitSource, value};
+}
+
+double HierarchicalSolver::ambientIrradiance(double emitted) const {
+    // Cohen, Chen, Wallace & Greenberg 1988, the ambient term: the mean irradiance of a
+    // closed room of total area A and mean reflectance rho, Phi / (A (1 - rho)).
+    const Node& root = h_.nodes[Hierarchy::kRoot];
+    const double absorbed = 1.0 - std::min(root.rho.maxComponent(), kMaxAmbientReflectance);
+    return root.area > 0 ? emitted / (root.area * absorbed) : 0.0;
+}
+
+HierarchicalSolver::Verdict HierarchicalSolver::selfVerdict(int node) const {
+    const Node& R = h_.nodes[node];
+    if (!R.isCluster()) return {Decision::drop, kForced};
+    // A lamp inside: its links must reach elements (below), and only the split finds them.
+    // Outside solve() (dynamic updates) every self-interaction is split, as they need.
+    if (R.emitting || !deferSelf_) return {Decision::splitReceiver, kForced};
+    double B = R.B.maxComponent();
+    if (timing_.refineRounds == 0)
+        B = std::max(B, R.rho.maxComponent() * ambientIrradiance_);  // nothing gathered yet
+    const double value =
+        R.rho.maxComponent() * B * R.area * selfTransferBound(R.coneAngle) * importanceOf(node);
+    if (!(value > powerThreshold_ * receiverScale(R))) return {Decision::defer, value};
+    return {Decision::splitReceiver, value};
 }
 
 double HierarchicalSolver::receiverScale(const Node& R) const {
@@ -387,6 +410,8 @@ void HierarchicalSolver::solve() {
     if (deadline != Clock::time_point::max())
         refineDeadline_ = timeBudgetReached_ ? start : deadline;
     measureSeenBeforeRefining();
+    ambientIrradiance_ = ambientIrradiance(emitted);
+    deferSelf_ = true;
     for (int round = 0; round < options_.maxRefineRounds; ++round) {
         auto t0 = Clock::now();
         // Each light's own light on the last round's links (none before the first gather;
@@ -435,6 +460,7 @@ void HierarchicalSolver::solve() {
         report(msg);
         if (settled) break;
     }
+    deferSelf_ = false;
     refineDeadline_ = Clock::time_point::max();  // dynamic updates refine without it
     lightShareB_.clear();  // and on the total light (an object's links; the shares are stale)
 }
@@ -575,6 +601,7 @@ SolverStats HierarchicalSolver::stats() const {
     s.memoryBytes = memoryUsed(0);
     s.maxLinks = maxLinks_;
     s.maxMemory = maxMemory_;
+    s.selfLinksDeferred = static_cast<int>(deferredSelf_.size());
     return s;
 }
 

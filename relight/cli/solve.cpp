@@ -203,8 +203,11 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
 void printStats(const radiosity::SolverStats& st) {
     std::printf("input polygons %d in %d face clusters; elements %d (leaves %d), clusters %d\n",
                 st.polygons, st.faceClusters, st.elements, st.leaves, st.clusters);
-    std::printf("links %d: visible %d, partial %d, invisible %d; passive %d\n", st.links,
-                st.linksVisible, st.linksPartial, st.linksInvisible, st.passiveLinks);
+    std::printf(
+        "links %d: visible %d, partial %d, invisible %d; passive %d; %d clusters' "
+        "self-interaction below the threshold, not refined\n",
+        st.links, st.linksVisible, st.linksPartial, st.linksInvisible, st.passiveLinks,
+        st.selfLinksDeferred);
     std::printf("rays %llu, form factors %llu, shafts %llu (empty %llu)\n",
                 static_cast<unsigned long long>(st.rays),
                 static_cast<unsigned long long>(st.formFactors),
@@ -267,7 +270,8 @@ nlohmann::json solveReport(const SolveArgs& a, const radiosity::HierarchicalSolv
               {"visible", st.linksVisible},
               {"partial", st.linksPartial},
               {"invisible", st.linksInvisible},
-              {"passive", st.passiveLinks}}},
+              {"passive", st.passiveLinks},
+              {"self_deferred", st.selfLinksDeferred}}},
             {"rays", st.rays},
             {"form_factors", st.formFactors},
             {"shafts", {{"tests", st.shaftTests}, {"empty", st.shaftEmpty}}},

@@ -122,3 +122,25 @@ TEST(NormalCone, NoBoundForSurfacesThatFaceEachOther) {
     const int a = h.polygonRoot[0], b = h.polygonRoot[1];
     EXPECT_EQ(transfer.coneBound(a, b), 1.0);
 }
+
+TEST(SelfTransfer, BoundsTheAnalyticSelfExchangeOfAGrooveAndATrough) {
+    // Two closed forms in 2D (infinitely long surfaces; Hottel's crossed strings):
+    // - a V-groove of two equal strips at opening angle a: each sends 1 - sin(a/2) of its
+    //   light to the other; its normals lie within t = (pi - a)/2 of the bisector;
+    // - a concave circular arc of half-angle t: it sends 1 - sin(t)/t of its light to
+    //   itself (its chord takes the rest); its normals lie within t of the axis.
+    // The bound must hold for every t, be 0 for a plane and not be vacuous for a nearly
+    // flat surface (the solver defers self-interactions on it): below 0.04 at 5 degrees.
+    const double pi = std::numbers::pi;
+    for (double deg = 0.5; deg < 90; deg += 0.5) {
+        const double t = deg * pi / 180;
+        const double bound = selfTransferBound(t);
+        EXPECT_GE(bound, 1 - std::sin((pi - 2 * t) / 2)) << deg;  // the groove
+        EXPECT_GE(bound, 1 - std::sin(t) / t) << deg;             // the trough
+        EXPECT_LE(bound, 1.0);
+    }
+    EXPECT_EQ(selfTransferBound(0), 0.0);
+    EXPECT_LT(selfTransferBound(5 * pi / 180), 0.04);
+    EXPECT_EQ(selfTransferBound(pi), 1.0);  // a cluster without a cone
+    EXPECT_EQ(selfTransferBound(std::nan("")), 1.0);
+}
