@@ -543,8 +543,12 @@ void App::mouse(const PhotoRect& r) {
     // a click is a drag of no length).
     if (tool_ == Tool::movePoint) {
         if (pressed && !overUi && r.contains(mx, my)) pointDrag_ = true;
-        if (!down && pointDrag_) {
-            pointDrag_ = false;
+        // In the per-pixel displays the lamp follows the pointer (quick frames, as the sun's);
+        // else it goes where the button is let go.
+        const bool follow =
+            session_.quickMoves() && down && pointDrag_ && (mx != lastMx_ || my != lastMy_);
+        if (follow || (!down && pointDrag_)) {
+            pointDrag_ = down;
             const Pick pick = session_.pick(u, v);
             if (pick.hit)
                 act("moving the point lamp", [&] { session_.movePointLampTo(point_, pick); });

@@ -39,6 +39,16 @@ relight(o 0 render "${SCENE}" --edit "${WORK}/sundrag_pixel.json"
         -o "${WORK}/sundrag_pixel_render.exr" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/sundrag_pixel_viewer.exr" "${WORK}/sundrag_pixel_render.exr"
                      "sun dragged, per pixel")
+# A point lamp moved in the per-pixel display: the same quick path (the light model's
+# Emitter::unitIrradiance at its new position), settled as render draws the saved edit.
+viewer(o 0 "${SCENE}" --display pixel --do scale:sun:0 --do point:160,200
+       --do movepoint:P1:120,190 --save-edit "${WORK}/point_pixel.json"
+       --screenshot "${WORK}/point_pixel_viewer.exr")
+expect("${o}" "quick image made exact" "a point lamp moved per pixel: a quick frame")
+relight(o 0 render "${SCENE}" --edit "${WORK}/point_pixel.json"
+        -o "${WORK}/point_pixel_render.exr" --cache "${WORK}/pixel.bin")
+same_within_one_step("${WORK}/point_pixel_viewer.exr" "${WORK}/point_pixel_render.exr"
+                     "point lamp moved, per pixel")
 
 # render's other per-pixel displays (ratio-map: 000 Eq. 3, the direct light alone; wen: the
 # sky unoccluded, Wen et al. 2003) from the viewer's --display: the sun turned (a virtual sun,
