@@ -166,17 +166,30 @@ class Sun final : public SingleEmitter {
                     Weight weight) const {
         const int k = tanHalf_ > 0 ? strataSide(std::max(rays, 1)) : 1;
         const HemisphereFrame f(d_);
+        // The directions above the point's horizon first, then their shadow rays as one
+        // packet (coherent: one origin, a narrow cone), summed in the cells' order.
+        constexpr int kMax = 256;  // DirectLightOptions' most rays: one batch
+        Vec3 w[kMax];
+        double c[kMax];
+        bool blocked[kMax];
         double sum = 0;
-        for (int cell = 0; cell < k * k; ++cell) {
-            Vec3 w = d_;
-            if (tanHalf_ > 0) {
-                double x = 0, y = 0;
-                discPoint(cell, k, rng, x, y);
-                w = glm::normalize(d_ + tanHalf_ * (x * f.t + y * f.b));
+        for (int first = 0; first < k * k; first += kMax) {
+            int n = 0;
+            for (int cell = first; cell < std::min(k * k, first + kMax); ++cell) {
+                Vec3 dir = d_;
+                if (tanHalf_ > 0) {
+                    double x = 0, y = 0;
+                    discPoint(cell, k, rng, x, y);
+                    dir = glm::normalize(d_ + tanHalf_ * (x * f.t + y * f.b));
+                }
+                const double cosine = glm::dot(p.n, dir);
+                if (cosine <= 0) continue;
+                w[n] = dir;
+                c[n++] = cosine;
             }
-            const double c = glm::dot(p.n, w);
-            if (c <= 0) continue;
-            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon < 0) sum += c * weight(w);
+            vis.occludedBatch(p.x, w, n, p.polygon, blocked);
+            for (int i = 0; i < n; ++i)
+                if (!blocked[i]) sum += c[i] * weight(w[i]);
         }
         return sum / (k * k);
     }
@@ -336,7 +349,7 @@ class Environment final : public Emitter {
         Sh9 sum{};
         for (int cell = 0; cell < k * k; ++cell) {
             const Vec3 w = cosineDirection(f, cell, k, rng);
-            if (vis.intersect(p.x, w, 0, 1e30, p.polygon).polygon >= 0) continue;
+            if (vis.occluded(p.x, w, 0, 1e30, p.polygon)) continue;
             const double wt = weight(w);
             const Sh9 Y = sh9Basis(w);
             for (size_t c = 0; c < Y.size(); ++c) sum[c] += wt * Y[c];

@@ -439,6 +439,64 @@ Visibility::Hit Visibility::intersect(const Vec3& org, const Vec3& dir, double t
     return result;
 }
 
+bool Visibility::occluded(const Vec3& org, const Vec3& dir, double tMin, double tMax,
+                          int ignore) const {
+    // The ray exactly as intersect() builds it, so that both agree on whether it hits.
+    RTCRay ray;
+    const Vec3 localOrg = org - impl_->origin;
+    ray.org_x = f(localOrg.x);
+    ray.org_y = f(localOrg.y);
+    ray.org_z = f(localOrg.z);
+    ray.dir_x = f(dir.x);
+    ray.dir_y = f(dir.y);
+    ray.dir_z = f(dir.z);
+    ray.tnear = f(std::max(tMin, 0.0));
+    ray.tfar = tMax >= static_cast<double>(std::numeric_limits<float>::max())
+                   ? std::numeric_limits<float>::infinity()
+                   : f(tMax);
+    ray.time = 0;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    if (!(ray.tnear < ray.tfar)) return false;
+    EndContext context(ignore, -1, impl_->geomFirst);
+    rtcOccluded1(impl_->scene, &context.context, &ray);
+    impl_->check("rtcOccluded1");
+    return ray.tfar < 0;  // -inf when occluded
+}
+
+void Visibility::occludedBatch(const Vec3& org, const Vec3* dirs, int n, int ignore,
+                               bool* out) const {
+    constexpr int kWidth = 16;
+    EndContext context(ignore, -1, impl_->geomFirst);
+    const Vec3 localOrg = org - impl_->origin;
+    for (int start = 0; start < n; start += kWidth) {
+        const int count = std::min(kWidth, n - start);
+        RTCRay16 packet;  // RTC_ALIGN(64) in the type, so the stack slot is aligned
+        int valid[kWidth];
+        for (int k = 0; k < kWidth; ++k) {
+            // Every lane filled (Embree's SIMD loads), each traced one as occluded() builds it.
+            const Vec3 dir = k < count ? dirs[start + k] : Vec3(0, 0, 1);
+            packet.org_x[k] = f(localOrg.x);
+            packet.org_y[k] = f(localOrg.y);
+            packet.org_z[k] = f(localOrg.z);
+            packet.dir_x[k] = f(dir.x);
+            packet.dir_y[k] = f(dir.y);
+            packet.dir_z[k] = f(dir.z);
+            packet.tnear[k] = 0;
+            packet.tfar[k] = std::numeric_limits<float>::infinity();
+            packet.time[k] = 0;
+            packet.mask[k] = 0xFFFFFFFFu;
+            packet.id[k] = static_cast<unsigned>(k);
+            packet.flags[k] = 0;
+            valid[k] = k < count ? -1 : 0;
+        }
+        rtcOccluded16(valid, impl_->scene, &context.context, &packet);
+        impl_->check("rtcOccluded16");
+        for (int k = 0; k < count; ++k) out[start + k] = packet.tfar[k] < 0;
+    }
+}
+
 uint64_t Visibility::raysCast() const {
     return impl_->rays.load(std::memory_order_relaxed);
 }

@@ -91,6 +91,16 @@ class Visibility {
     /// Hits on polygon `ignore` (>= 0) are passed through.
     Hit intersect(const Vec3& org, const Vec3& dir, double tMin = 0, double tMax = 1e30,
                   int ignore = -1) const;
+    /// Whether intersect(org, dir, tMin, tMax, ignore) would hit anything: the same ray and
+    /// filter, traced as an occlusion query (rtcOccluded1, which stops at the first hit
+    /// found, not the closest). For the shadow rays of lights at infinity (a sun's disc, a
+    /// sky's directions), where only "any hit" matters. Not counted in raysCast().
+    bool occluded(const Vec3& org, const Vec3& dir, double tMin = 0, double tMax = 1e30,
+                  int ignore = -1) const;
+    /// The same for n rays from one origin to infinity (tMin 0): out[i] = occluded(org,
+    /// dirs[i], 0, 1e30, ignore), traced as rtcOccluded16 packets (a sun's disc from one
+    /// point: coherent rays). Not counted in raysCast().
+    void occludedBatch(const Vec3& org, const Vec3* dirs, int n, int ignore, bool* out) const;
 
     /// Dynamic geometry (virtual objects and lights, Loscos et al. 2000, §5.1-5.2): adds
     /// `polygons` as one group whose Scene::polygons indices are firstIndex, firstIndex + 1,

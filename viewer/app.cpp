@@ -177,11 +177,14 @@ void App::emitterControls(LightControl& l) {
             sliders_[0] = static_cast<float>(az);
             sliders_[1] = static_cast<float>(el);
         }
-        ImGui::SliderFloat("azimuth", &sliders_[0], -180.0f, 180.0f, "%.1f deg");
+        // In the per-pixel displays the sun follows the slider (quick frames,
+        // Session::setQuickMoves); in the ratio display it turns when the slider is let go.
+        const bool follow = session_.quickMoves();
+        bool turn = ImGui::SliderFloat("azimuth", &sliders_[0], -180.0f, 180.0f, "%.1f deg");
         bool release = ImGui::IsItemDeactivatedAfterEdit();
-        ImGui::SliderFloat("elevation", &sliders_[1], -10.0f, 90.0f, "%.1f deg");
+        turn = ImGui::SliderFloat("elevation", &sliders_[1], -10.0f, 90.0f, "%.1f deg") || turn;
         release = release || ImGui::IsItemDeactivatedAfterEdit();
-        if (release)
+        if (release || (follow && turn))
             act("turning the sun", [&] {
                 radiosity::EmitterEdit e;
                 e.direction = Session::sunDirection(sliders_[0], sliders_[1]);
@@ -512,8 +515,10 @@ void App::mouse(const PhotoRect& r) {
     r.toPixel(mx, my, p.photo.width, p.photo.height, u, v);
     const bool pressed = down && !wasDown_;
     const bool overUi = ImGui::GetIO().WantCaptureMouse;
-    // The sun tool: the drag is applied when the button is let go (each turn is solved again,
-    // as a saved "direction" is: a second or more on a large scene).
+    // The sun tool. In the per-pixel displays the sun follows the drag, a quick frame each
+    // time the pointer moves (Session::setQuickMoves), exact once it rests; in the ratio
+    // display the drag is applied when the button is let go (each turn is solved again, as
+    // a saved "direction" is: a second or more on a large scene).
     if (tool_ == Tool::sun) {
         if (pressed && !overUi && r.contains(mx, my)) {
             sunDrag_ = true;
@@ -523,9 +528,11 @@ void App::mouse(const PhotoRect& r) {
             dragU_ += (mx - lastMx_) / r.w * p.photo.width;
             dragV_ += (my - lastMy_) / r.h * p.photo.height;
         }
-        if (!down && sunDrag_) {
-            sunDrag_ = false;
+        const bool follow = session_.quickMoves() && down && sunDrag_;
+        if ((follow && (dragU_ != 0 || dragV_ != 0)) || (!down && sunDrag_)) {
+            sunDrag_ = down;
             act("turning the sun", [&] { session_.dragSun(sun_, dragU_, dragV_); });
+            dragU_ = dragV_ = 0;
         }
         wasDown_ = down;
         lastMx_ = mx;
@@ -536,8 +543,12 @@ void App::mouse(const PhotoRect& r) {
     // a click is a drag of no length).
     if (tool_ == Tool::movePoint) {
         if (pressed && !overUi && r.contains(mx, my)) pointDrag_ = true;
-        if (!down && pointDrag_) {
-            pointDrag_ = false;
+        // In the per-pixel displays the lamp follows the pointer (quick frames, as the sun's);
+        // else it goes where the button is let go.
+        const bool follow =
+            session_.quickMoves() && down && pointDrag_ && (mx != lastMx_ || my != lastMy_);
+        if (follow || (!down && pointDrag_)) {
+            pointDrag_ = down;
             const Pick pick = session_.pick(u, v);
             if (pick.hit)
                 act("moving the point lamp", [&] { session_.movePointLampTo(point_, pick); });
@@ -603,6 +614,9 @@ void App::run() {
         glfwGetWindowSize(window_.handle(), &winW, &winH);
         glfwGetFramebufferSize(window_.handle(), &fbW, &fbH);
         const PhotoRect r = photoRect(winW, winH, p.photo.width, p.photo.height);
+        // Quick frames of a moved sun or lamp in the per-pixel displays only (their direct
+        // light per pixel; the ratio display's vertices are solved at each move).
+        session_.setQuickMoves(frame_.view == ViewKind::relit && frame_.perPixel);
         panel();
         mouse(r);
         statsOverlay(r);

@@ -231,7 +231,15 @@ bool runLightAction(Session& s, const Action& a) {
             break;
         case Action::Kind::sundrag:
             try {
-                s.dragSun(a.name, a.u1 - a.u, a.v1 - a.v);
+                // With quick moves (the per-pixel displays, Session::setQuickMoves), the
+                // pointer's path in steps of about a pixel, as a mouse reports it, each a
+                // quick frame; else one turn, solved once.
+                const int steps =
+                    s.quickMoves()
+                        ? std::max(1, static_cast<int>(std::hypot(a.u1 - a.u, a.v1 - a.v)))
+                        : 1;
+                for (int k = 0; k < steps; ++k)
+                    s.dragSun(a.name, (a.u1 - a.u) / steps, (a.v1 - a.v) / steps);
             } catch (const std::invalid_argument& ex) {
                 throw InputError("--do " + a.text + ": " + ex.what());
             }
@@ -381,9 +389,14 @@ int run(const Args& a) {
          virtualLightReachWarnings(edit, prepared->solver->scene(), prepared->solver->visibility(),
                                    static_cast<size_t>(session.realLights())))
         std::fprintf(stderr, "warning: %s\n", w.c_str());
+    // A sun or lamp moved shows quick frames in the per-pixel displays, as the window's.
+    session.setQuickMoves(drawsPerPixel(mode));
     for (const Action& act : actions) runAction(session, act);
     // The image as `relight render` draws the edit, not a slider's quick one.
-    if (!interactive) session.settle();
+    if (!interactive && session.exactPending()) {
+        std::printf("the quick image made exact (Session::settle)\n");
+        session.settle();
+    }
     GpuRatioDisplay display(session.prepared());
     FrameRenderer frame(session, display);
     frame.view = view;

@@ -288,15 +288,19 @@ void Session::rebuild() {
     dyn_.reset();
     objectPolygons_.clear();
     const std::vector<Rgb> real = realRadiance();
+    solverLight_.assign(lights_.size(), -1);
+    for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
+        solverLight_[l] = static_cast<int>(l);
     if (hasVirtualParts()) {
         dyn_ = std::make_unique<DynamicRelighting>(*r_, real, &geometry_);
         for (const std::string& name : removed_) dyn_->removeObject(name);
         // In render's order (relight/cli/render.cpp): the moved lights, then the virtual ones.
         for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
             if (lights_[l].component == 0 && moved(l))
-                dyn_->addLight({lights_[l].name, {}, Rgb{}, lights_[l].emitter->clone()});
+                solverLight_[l] =
+                    dyn_->addLight({lights_[l].name, {}, Rgb{}, lights_[l].emitter->clone()});
         for (size_t l = static_cast<size_t>(realLights_); l < lights_.size(); ++l)
-            dyn_->addLight(virtualLight(lights_[l]));
+            solverLight_[l] = dyn_->addLight(virtualLight(lights_[l]));
         for (const ObjectControl& o : objects_) {
             const size_t first = r_->solver->scene().polygons.size();
             dyn_->addObject(o.object);
@@ -311,30 +315,71 @@ void Session::update() {
     std::vector<Rgb> now;
     for (const LightControl& l : lights_) now.push_back(l.radiance());
     std::vector<double> state = emitterState();
-    bool radianceChanged = now.size() != applied_.size() || state != appliedState_;
-    for (size_t i = 0; !radianceChanged && i < now.size(); ++i)
-        radianceChanged = !(now[i] == applied_[i]);
+    bool strengthsKept = now.size() == applied_.size();
+    for (size_t i = 0; strengthsKept && i < now.size(); ++i) strengthsKept = now[i] == applied_[i];
+    const bool radianceChanged = !strengthsKept || state != appliedState_;
     if (!stale_ && !radianceChanged) return;
     const std::vector<Rgb> before = std::exchange(applied_, now);
     const bool shapesKept = state == appliedState_;
     appliedState_ = std::move(state);
     // Without virtual parts (nor a moved light, nor any before) a radiance change is the
     // superposition path: nothing to solve. With virtual objects, the quick path while a
-    // slider moves (settle() makes it exact).
-    if (!stale_ && radianceChanged && shapesKept && dyn_ && before.size() == now.size() &&
-        dyn_->setRealRadiances(realRadiance()))
+    // slider moves (settle() makes it exact); a sun or lamp moved, its quick path too.
+    bool quickMove = false;
+    if (!stale_ && strengthsKept && !shapesKept && quickMoves_ && previewMoves())
+        quickMove = exactPending_ = true;
+    else if (!stale_ && radianceChanged && shapesKept && dyn_ && before.size() == now.size() &&
+             dyn_->setRealRadiances(realRadiance()))
         exactPending_ = true;
     else if (stale_ || (radianceChanged && (hasVirtualParts() || dyn_)))
         rebuild();
     // The first update (the edit the session starts from) is checked on its first frame,
-    // which names the edit's key (viewer/main.cpp); a change made in the panel here.
-    if (!before.empty() && before.size() == now.size() && !displayFinite()) undo(before);
+    // which names the edit's key (viewer/main.cpp); a change made in the panel here. A move
+    // shown quickly keeps the vertices' values, and the strengths: nothing to check.
+    if (!quickMove && !before.empty() && before.size() == now.size() && !displayFinite())
+        undo(before);
     appliedEmitters_.clear();
     for (const LightControl& l : lights_)
         appliedEmitters_.push_back(
             l.emitter ? std::shared_ptr<radiosity::Emitter>(l.emitter->clone()) : nullptr);
     updateSeconds_ = secondsSince(t0);
     changed();
+}
+
+bool Session::previewMoves() {
+    // The lights whose place changed since the last update, nothing else: a sun turned, a
+    // point lamp moved (the strengths are the same: update() checked them).
+    std::vector<size_t> movedNow;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        const LightControl& c = lights_[i];
+        if (!c.emitter || c.component != 0) continue;
+        if (i >= appliedEmitters_.size() || !appliedEmitters_[i]) return false;
+        const std::vector<radiosity::EmitterField> was = appliedEmitters_[i]->fields();
+        const std::vector<radiosity::EmitterField> is = c.emitter->fields();
+        bool same = was.size() == is.size();
+        for (size_t f = 0; same && f < was.size(); ++f) same = was[f].values == is[f].values;
+        if (same) continue;
+        LightEdit e;
+        e.emitter = c.emitter->editFrom(*appliedEmitters_[i]);
+        if (!e.moves() || !c.on) return false;
+        movedNow.push_back(i);
+    }
+    if (movedNow.empty()) return false;
+    if (!dyn_) {
+        // Nothing solved beyond the preparation (no light moved yet, no virtual part): the
+        // photo's lights in place, at the lights' radiances, each at its scene index.
+        std::vector<Rgb> real;
+        for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
+            real.push_back(lights_[l].radiance());
+        dyn_ = std::make_unique<DynamicRelighting>(*r_, real);
+        solverLight_.assign(lights_.size(), -1);
+        for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
+            solverLight_[l] = static_cast<int>(l);
+    }
+    for (const size_t i : movedNow)
+        if (i >= solverLight_.size() || solverLight_[i] < 0) return false;
+    for (const size_t i : movedNow) dyn_->previewEmitter(solverLight_[i], *lights_[i].emitter);
+    return true;
 }
 
 bool Session::displayFinite() const {

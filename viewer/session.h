@@ -108,6 +108,15 @@ class Session {
     void update();
     /// Whether the image is a quick one (update()) that settle() makes exact.
     bool exactPending() const { return exactPending_; }
+    /// Whether a sun turned or a point lamp moved (editLight's "direction" or "position",
+    /// the strengths kept) is shown quickly while it moves: the light's direct light per
+    /// pixel at its new place from one shadow ray per pixel, the rest (its indirect light,
+    /// the other lights, the virtual parts) as last solved
+    /// (DynamicRelighting::previewEmitter); exactPending() until settle(). For the per-pixel
+    /// displays only (relitPerPixel), which the viewer says (viewer/app.cpp); off, each move
+    /// is solved as `relight render` solves the saved edit (a second a turn on the courtyard).
+    void setQuickMoves(bool on) { quickMoves_ = on; }
+    bool quickMoves() const { return quickMoves_; }
     /// Inserts the virtual parts again at the radiances as they stand, as `relight render`
     /// inserts the saved edit, when the image is a quick one (the viewer calls it when the
     /// slider rests; a screenshot before it is taken); the shadow rays come from the
@@ -232,6 +241,9 @@ class Session {
     /// The emitters' shapes (their fields and whether they are on), to tell a change.
     std::vector<double> emitterState() const;
     LightControl* findControl(const std::string& name);
+    /// update()'s quick path for lights moved (setQuickMoves); false, showing nothing,
+    /// where a change is not a move of a sun or point lamp that the solution holds.
+    bool previewMoves();
     double offsetOrDefault(double offset) const { return offset > 0 ? offset : 0.02 * diagonal_; }
 
     Relighting* r_;
@@ -250,7 +262,11 @@ class Session {
     /// Per light, a copy of its emitter as last applied (null for quads), for undo().
     std::vector<std::shared_ptr<radiosity::Emitter>> appliedEmitters_;
     bool stale_ = false;         ///< the parts changed in a way only rebuild() follows
-    bool exactPending_ = false;  ///< the solution is setRealRadiances' quick one
+    bool exactPending_ = false;  ///< the solution is setRealRadiances' or previewMoves' quick one
+    bool quickMoves_ = false;    ///< setQuickMoves
+    /// Per light control: the solver's first light that rebuild() gave its light (the scene's
+    /// index for a real light in place, addLight's for a moved or virtual one); -1: none.
+    std::vector<int> solverLight_;
     int realLights_ = 0;
     size_t realPolygons_ = 0;
     double diagonal_ = 1;  ///< of the scene's bounding box (metres)

@@ -16,6 +16,7 @@
 #include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
 #include "relight/display/wen_display.h"
+#include "relight/dynamic/quick_light.h"
 #include "relight/pipeline/pixel_light.h"
 
 namespace relight {
@@ -467,7 +468,38 @@ std::span<const float> DynamicRelighting::pixelDirect() {
     });
     if (cache) cache->pixelHits += hits.load();
     std::fill(leafPending_.begin(), leafPending_.end(), 0);
-    return pixelDirect_;
+    if (previews_.empty()) return pixelDirect_;
+    // The lights shown moved (previewEmitter): their columns from the quick measurement.
+    pixelShown_ = pixelDirect_;
+    for (const Preview& q : previews_)
+        for (size_t px = 0; px < pixels; ++px)
+            for (int c = 0; c < q.count; ++c)
+                pixelShown_[px * L + static_cast<size_t>(q.light + c)] =
+                    q.direct[px * static_cast<size_t>(q.count) + static_cast<size_t>(c)];
+    return pixelShown_;
+}
+
+void DynamicRelighting::previewEmitter(int light, const radiosity::Emitter& moved) {
+    const auto& lights = solver_.scene().lights;
+    if (light < 0 || static_cast<size_t>(light) >= lights.size() ||
+        !lights[static_cast<size_t>(light)].emitter)
+        throw std::invalid_argument("previewEmitter: no sun, point lamp or sky at that light");
+    const int count = moved.components();
+    if (count != lights[static_cast<size_t>(light)].emitter->components() ||
+        static_cast<size_t>(light + count) > lights.size())
+        throw std::invalid_argument("previewEmitter: \"" + moved.name() +
+                                    "\" has another number of components");
+    const auto t0 = Clock::now();
+    std::vector<float> direct =
+        quickPixelLight(r_.items, solver_.scene(), solver_.visibility(), moved);
+    const auto it = std::find_if(previews_.begin(), previews_.end(),
+                                 [&](const Preview& q) { return q.light == light; });
+    if (it != previews_.end())
+        it->direct = std::move(direct);
+    else
+        previews_.push_back({light, count, std::move(direct)});
+    times_ = FrameTimes{};
+    times_.display = secondsSince(t0);
 }
 
 void DynamicRelighting::afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices) {

@@ -145,6 +145,22 @@ class DynamicRelighting {
     /// light is gathered or measured again per change); returns false, changing nothing,
     /// otherwise.
     bool setRealRadiances(std::span<const Rgb> radiance);
+    /// A quick look at a sun or point lamp moved (a drag, a slider), for the frames while it
+    /// moves: light `light` (the solver's first light of a sun, point lamp or sky, real or
+    /// virtual, as this instance holds it) shown as `moved` has it in the per-pixel
+    /// displays' direct light, measured at every pixel through the light model
+    /// (radiosity::Emitter::unitIrradiance) with one shadow ray from one camera sample per
+    /// pixel (quickPixelLight(), relight/dynamic/quick_light.h). The solver, its links, the
+    /// vertices and the indirect light stay as they are (the light's indirect share is the
+    /// last exact solution's), as do the pixels the per-pixel display leaves to the ratio
+    /// display and the virtual parts' overlay. Not `relight render`'s image of the edit: a
+    /// new instance with the light moved is (the viewer's Session::settle). `moved` must
+    /// have the light's components; its strengths are not read (the light's radiance
+    /// stays). Throws std::invalid_argument for a light that is not a sun, point lamp or
+    /// sky, or a component count that differs.
+    void previewEmitter(int light, const radiosity::Emitter& moved);
+    /// Whether a light is shown by previewEmitter() (the image is a quick one).
+    bool previewing() const { return !previews_.empty(); }
     /// Undoes the last change: removes the virtual part added last (object or light), or
     /// brings back the real object taken out last.
     void removeLast();
@@ -272,6 +288,15 @@ class DynamicRelighting {
     std::vector<int> sampleLeaf_;
     std::vector<char> leafPending_, leafEver_;
     std::vector<float> pixelDirect_;
+    /// The lights previewEmitter() shows moved: the first solver light, its components and
+    /// their quick direct light per pixel ([pixel * count + c]); pixelShown_ is pixelDirect_
+    /// with those columns replaced (what pixelDirect() returns while there are any).
+    struct Preview {
+        int light = 0, count = 0;
+        std::vector<float> direct;
+    };
+    std::vector<Preview> previews_;
+    std::vector<float> pixelShown_;
     size_t pixelLights_ = 0;
     /// The real objects taken out: their pixels (object_removal.h), and the mask's growth.
     RemovedRegion removed_;

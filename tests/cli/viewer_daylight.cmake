@@ -28,6 +28,28 @@ same_within_one_step("${WORK}/sun_viewer.exr" "${WORK}/sun_render.exr" "sun turn
 scores_within("${WORK}/sun_viewer.exr" sun_moved 0.03 "sun turned, viewer")
 scores_within("${WORK}/sun_render.exr" sun_moved 0.03 "sun turned, saved and rendered")
 
+# The sun turned by a drag on the image in the per-pixel display: each pointer step (about a
+# pixel) a quick frame (Session::setQuickMoves: the sun's direct light per pixel from one
+# ray), the drag at rest the exact image (Session::settle), which the saved session renders
+# to within one 8-bit step.
+viewer(o 0 "${SCENE}" --display pixel --do sundrag:sun:100,120:60,100
+       --save-edit "${WORK}/sundrag_pixel.json" --screenshot "${WORK}/sundrag_pixel_viewer.exr")
+expect("${o}" "quick image made exact" "the sun dragged per pixel: quick frames")
+relight(o 0 render "${SCENE}" --edit "${WORK}/sundrag_pixel.json"
+        -o "${WORK}/sundrag_pixel_render.exr" --cache "${WORK}/pixel.bin")
+same_within_one_step("${WORK}/sundrag_pixel_viewer.exr" "${WORK}/sundrag_pixel_render.exr"
+                     "sun dragged, per pixel")
+# A point lamp moved in the per-pixel display: the same quick path (the light model's
+# Emitter::unitIrradiance at its new position), settled as render draws the saved edit.
+viewer(o 0 "${SCENE}" --display pixel --do scale:sun:0 --do point:160,200
+       --do movepoint:P1:120,190 --save-edit "${WORK}/point_pixel.json"
+       --screenshot "${WORK}/point_pixel_viewer.exr")
+expect("${o}" "quick image made exact" "a point lamp moved per pixel: a quick frame")
+relight(o 0 render "${SCENE}" --edit "${WORK}/point_pixel.json"
+        -o "${WORK}/point_pixel_render.exr" --cache "${WORK}/pixel.bin")
+same_within_one_step("${WORK}/point_pixel_viewer.exr" "${WORK}/point_pixel_render.exr"
+                     "point lamp moved, per pixel")
+
 # render's other per-pixel displays (ratio-map: 000 Eq. 3, the direct light alone; wen: the
 # sky unoccluded, Wen et al. 2003) from the viewer's --display: the sun turned (a virtual sun,
 # DynamicRelighting) and the sky turned, saved, rendered in the same display: one 8-bit step.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <span>
 #include <sstream>
 #include <string>
 
@@ -92,6 +93,67 @@ TEST(Courtyard, TheSunMovedMatchesTheTruth) {
     std::printf("sun_moved, pixel display: rel_rmse %.4f, changed %.4f\n", s.relRmse,
                 s.changedRelRmse);
     EXPECT_LE(s.relRmse, kLightEditBound);
+}
+
+TEST(Courtyard, AMovedSunsQuickDirectLightIsTheExactOneAwayFromItsShadowEdges) {
+    // The quick frames of a sun drag (DynamicRelighting::previewEmitter,
+    // relight/dynamic/quick_light.h): one camera sample and one shadow ray per pixel, against
+    // the exact per-pixel light of the same moved sun (16 samples x 16 disc rays), both
+    // from one instance (the same solver and virtual sun).
+    Relighting& r = courtyard();
+    const EditFile e = loadEdit(kCourtyard + "/edits/sun_moved.json", r.scene);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
+    const std::vector<VirtualLight> moved = movedLights(r.scene, e);
+    ASSERT_EQ(moved.size(), 1u);
+    const auto d = radiosity::findField(*moved[0].emitter, "direction");
+    ASSERT_TRUE(d.has_value());
+    const radiosity::Vec3 sun =
+        glm::normalize(radiosity::Vec3(d->values[0], d->values[1], d->values[2]));
+    DynamicRelighting dyn(r, radiance);
+    const int light = dyn.addLight(moved[0]);
+    const size_t L = dyn.radiance().size(), pixels = r.prepared.pixelNormal.size() / 3;
+    std::vector<double> exact(pixels), quick(pixels);
+    std::span<const float> all = dyn.pixelDirect();
+    for (size_t px = 0; px < pixels; ++px) exact[px] = all[px * L + static_cast<size_t>(light)];
+    EXPECT_FALSE(dyn.previewing());
+    dyn.previewEmitter(light, *moved[0].emitter);
+    EXPECT_TRUE(dyn.previewing());
+    all = dyn.pixelDirect();
+    for (size_t px = 0; px < pixels; ++px) quick[px] = all[px * L + static_cast<size_t>(light)];
+    // Where the exact light is whole (every ray of every sample reaches the disc: cos of the
+    // pixel's normal) or none (every ray blocked), one ray tells the same. The tolerance is
+    // the disc's spread: its radius, 0.27 degrees (the format's default sun), moves cos by
+    // at most sin(0.0047) = 0.0047 per unit irradiance; 0.01 leaves room for a pixel's
+    // samples on slightly different normals.
+    size_t whole = 0, none = 0, wrong = 0, edge = 0;
+    double sumExact = 0, sumQuick = 0;
+    for (size_t px = 0; px < pixels; ++px) {
+        const std::vector<float>& normal = r.prepared.pixelNormal;
+        const radiosity::Vec3 n(normal[3 * px], normal[3 * px + 1], normal[3 * px + 2]);
+        const double cosine = std::max(0.0, glm::dot(n, sun));
+        sumExact += exact[px];
+        sumQuick += quick[px];
+        const bool isWhole = cosine > 0.05 && std::abs(exact[px] - cosine) <= 1e-3;
+        const bool isNone = exact[px] == 0.0;
+        if (!isWhole && !isNone) {
+            ++edge;
+            continue;
+        }
+        (isWhole ? whole : none) += 1;
+        if (std::abs(quick[px] - exact[px]) > 0.01) ++wrong;
+    }
+    std::printf(
+        "moved sun, %zu pixels: %zu lit whole, %zu in shadow, %zu between; quick != exact "
+        "at %zu of the whole or none; mean %.4f quick, %.4f exact\n",
+        pixels, whole, none, edge, wrong, sumQuick / static_cast<double>(pixels),
+        sumExact / static_cast<double>(pixels));
+    EXPECT_GT(whole, pixels / 4) << "the moved sun lights a good part of the courtyard";
+    EXPECT_GT(none, pixels / 20) << "and casts shadows";
+    // A disc direction of the quick ray that the 256 exact rays missed: a blocker's sliver.
+    EXPECT_LE(wrong, (whole + none) / 500);
+    // Over the image, the edges' 0-or-1 values average out (the quick ray's direction is
+    // uniform over the disc, its sample one of the pixel's): the mean within 1 %.
+    EXPECT_NEAR(sumQuick, sumExact, 0.01 * sumExact);
 }
 
 TEST(Courtyard, WensDisplayOfASessionWithoutPartsIsTheLightEdit) {
