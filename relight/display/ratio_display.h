@@ -51,6 +51,11 @@ struct DisplayMap {
 struct PhotoPixels {
     std::vector<float> rho;    ///< 3 per pixel: T / (H_photo + delta)
     std::vector<float> light;  ///< per pixel: luminance of H_photo + delta; 0: not drawn
+    /// 3 per pixel: the per-channel median of rho over the drawn pixels of its 3 x 3
+    /// neighbourhood: the pixel's reference in the pool's "same reflectance" test
+    /// (pixel_light.h, pooledReflectance), steadier than a dim pixel's own noisy rho;
+    /// empty: rho is used.
+    std::vector<float> guide;
     /// Per pixel drawn per pixel and light of the photo: the indirect part of h_l(p), the
     /// vertices' interpolated (RGB, [(pixel * lights + l) * 3 + c]), so that a light edit
     /// reads one value a light instead of interpolating it over the pixel's vertices. Empty

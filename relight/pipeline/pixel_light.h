@@ -116,7 +116,9 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
 /// shows R H_now with
 ///   R = w T / H_photo + (1 - w) R_pooled,   w = kPoolAbove H_photo / H_now,
 /// R_pooled the mean of T / H_photo over the pixels around it whose reflectance is within
-/// kPoolTolerance of its own in every channel (its surface, its texture's colour), weighed by
+/// kPoolTolerance of its own in every channel (its surface, its texture's colour; its own
+/// read as the median of its 3 x 3 neighbourhood, PhotoPixels::guide, so that the pixel's
+/// noise does not pick the neighbours that share its error), weighed by
 /// their photo light (the ratio of sums for grey light). The pool's half-width is
 /// kPoolRadius sqrt(1 / w), at most kMaxPoolRadius: the more the photo's noise is brightened,
 /// the wider the mean (2 pixels at 1.5 times the photo's light, 4 at 6 times, 6 from 13.5
@@ -161,6 +163,10 @@ bool pooledPixel(const DisplayMap& map, const PhotoPixels& pool, size_t px,
                  float* o, std::span<const float> pooledByRadius = {});
 /// That table (above) for every pixel the pool draws (pool.light > 0; 0 elsewhere).
 std::vector<float> pooledByRadius(const DisplayMap& map, const PhotoPixels& pool);
+/// PhotoPixels::guide of `pool` (W x H pixels): the per-channel median of rho over the
+/// drawn pixels of each drawn pixel's 3 x 3 neighbourhood; rho itself where the sizes do
+/// not match. photoPixels() sets it.
+std::vector<float> poolGuide(int W, int H, const PhotoPixels& pool);
 /// R_pooled at pixel px (above).
 radiosity::Rgb pooledReflectance(const DisplayMap& map, const PhotoPixels& pool, size_t px,
                                  int radius = kPoolRadius);

@@ -7,9 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "relight/display/debug_views.h"
@@ -181,6 +183,67 @@ TEST(PixelLight, ABrightenedDimPhotoShowsItsReflectancePooledNotItsNoise) {
         const Image a = render(radiance, nullptr), b = render(radiance, &pool);
         EXPECT_EQ(a.rgb, b.rgb) << radiance;
     }
+}
+
+TEST(PixelLight, APooledDimPixelLosesItsNoiseEvenWhenTheNoiseReachesTheTolerance) {
+    // One surface of reflectance 0.3 under a photo light of 0.1, each pixel and channel off
+    // by a uniform error in [-30 %, 30 %] (standard deviation 17 %: a path-traced photo's
+    // dim floor, 17-25 % per pixel in data/window_room), then lit 30 times as much (where a
+    // moved sun falls). The pool (w = 1.5 / 30 = 0.05, radius 6 on a grid of step 3: 25
+    // pixels) shows, if it keeps every neighbour, 0.05 x 17 % of the pixel's own error and
+    // 0.95 x 17 % / 5 of the pool's: 3.4 % per pixel, and no bias. Its test of "the same
+    // reflectance" takes the pixel's 3 x 3 median of rho (PhotoPixels::guide, about 7 %
+    // off) as the pixel's value, so that nearly every neighbour lies within the 30 %
+    // tolerance of it; against the pixel's own rho, the pool kept the neighbours that share
+    // the pixel's error. Bounds: 0.05 per pixel (the 3.4 % above, with the neighbours the
+    // test still drops where the guide is off), two thirds of the spread with the pixel's
+    // own rho as the reference, and the mean within 1.5 % of 0.3 x 3 (the tolerance's
+    // window, [0.7, 1/0.7] of the guide, holds the whole +-30 % when the guide is right).
+    const int W = 42, H = 42;
+    const DisplayMap map = test::surfaceGrid(W, H);
+    Image photo(W, H);
+    const auto noise = [](int x, int y, int c) {
+        uint64_t z = static_cast<uint64_t>((y * W + x) * 3 + c) * 0x9e3779b97f4a7c15ull + 1;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        z ^= z >> 31;
+        return 0.6 * (static_cast<double>(z >> 11) / 9007199254740992.0 - 0.5);  // [-0.3, 0.3)
+    };
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            for (int c = 0; c < 3; ++c)
+                photo.at(x, y)[c] = static_cast<float>(0.3 * 0.1 * (1 + noise(x, y, c)));
+    const std::vector<float> direct(static_cast<size_t>(W * H), 0.1f);
+    const std::vector<Rgb> indirect(static_cast<size_t>(W * H), Rgb{});
+    const std::vector<Rgb> inPhoto{Rgb::gray(1.0)};
+    const Rgb delta = Rgb::gray(1e-9);
+    PhotoPixels pool = photoPixels(map, photo, direct, indirect, inPhoto, delta);
+    ASSERT_EQ(pool.guide.size(), pool.rho.size());
+    const auto spreadAndMean = [&](const PhotoPixels& p) {
+        Image out(W, H);
+        const std::vector<Rgb> now{Rgb::gray(30.0)};
+        renderPixelLight(map, photo, direct, indirect, now, inPhoto, delta, out, {}, {}, &p);
+        const double want = 0.3 * 3.0;
+        double sum = 0, mean = 0;
+        int n = 0;
+        for (int y = 6; y < H - 6; ++y)
+            for (int x = 6; x < W - 6; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const double v = static_cast<double>(out.at(x, y)[c]) / want;
+                    sum += (v - 1) * (v - 1);
+                    mean += v;
+                    ++n;
+                }
+        return std::pair{std::sqrt(sum / n), mean / n};
+    };
+    const auto [guided, guidedMean] = spreadAndMean(pool);
+    pool.guide.clear();  // the pixel's own rho as the reference, as before
+    const auto [own, ownMean] = spreadAndMean(pool);
+    std::printf("pooled spread per pixel: guided %.4f (mean %.4f), own rho %.4f (mean %.4f)\n",
+                guided, guidedMean, own, ownMean);
+    EXPECT_LT(guided, 0.05);
+    EXPECT_NEAR(guidedMean, 1.0, 0.015);
+    EXPECT_LT(guided, 2.0 / 3.0 * own);
 }
 
 TEST(PixelLight, ThePhotosIrradianceViewMatchesThePathTracersLight) {

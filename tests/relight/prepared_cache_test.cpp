@@ -426,9 +426,9 @@ TEST(PreparedCache, LayoutGuard) {
     EXPECT_EQ(sizeof(VertexLighting), 40u)
         << "VertexLighting changed: update serialize(VertexLighting)";
     EXPECT_EQ(sizeof(PrepareTimes), 64u) << "PrepareTimes changed: update serialize(PrepareTimes)";
-    // PreparedImage::photoPixels (its per-pixel indirect parts included) and pixelTable are
-    // derived: derivePhotoPixels() after reading, not written.
-    EXPECT_EQ(sizeof(PreparedImage), 920u)
+    // PreparedImage::photoPixels (its per-pixel indirect parts and the pool's guide
+    // included) and pixelTable are derived: derivePhotoPixels() after reading, not written.
+    EXPECT_EQ(sizeof(PreparedImage), 944u)
         << "PreparedImage changed: update serialize(PreparedImage)";
     // ShadowRefinementOptions::until is the deadline prepareRelighting sets from
     // RelightOptions::timeBudget (hashed): not hashed itself, as it is a time point.
