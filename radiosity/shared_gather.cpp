@@ -76,9 +76,72 @@ struct SampleLayout {
     std::vector<size_t> nearStart{0};
     std::vector<int> nearIndex;
     std::vector<int> leafOf;  ///< per point: its leaf (-1: no gather)
+    /// Per node: a leaf whose corners also gather its element ancestors' links that are
+    /// near them but far from it (sharedAtLeaf).
+    std::vector<char> leafShares;
     int samples = 0;
-    size_t shared = 0, near = 0;
+    size_t shared = 0, near = 0, leafShared = 0;
 };
+
+/// Whether link l of element ancestor `a` of leaf `leaf` is gathered at the leaf's corners:
+/// near the ancestor (a large wall's link to a source beside it), but far from the leaf.
+bool sharedAtLeaf(const Hierarchy& h, const SampleLayout& s, int leaf, int a, const Link& l) {
+    if (leaf < 0 || !s.leafShares[leaf] || a == leaf || h.nodes[a].isCluster()) return false;
+    return !sharedLink(h, h.nodes[a], l) && sharedLink(h, h.nodes[leaf], l);
+}
+
+/// The links of node `node` that a point gathers itself (not at node's corners): its near
+/// links' indices where it has samples, all of them otherwise; f(j) for each index j.
+template <class F>
+void forNearLinks(const SampleLayout& s, int node, size_t count, const F& f) {
+    const int k = s.ordinal[node];
+    if (k < 0) {
+        for (size_t j = 0; j < count; ++j) f(j);
+        return;
+    }
+    for (size_t j = s.nearStart[k]; j != s.nearStart[k + 1]; ++j)
+        f(static_cast<size_t>(s.nearIndex[j]));
+}
+
+/// Gives a leaf corners of its own for its element ancestors' links that are near them but
+/// far from it (sharedAtLeaf), where that is cheaper than gathering them at each point: when
+/// more than twice as many points lie in the leaf as it has corners. A wall that cannot be
+/// split further can hold tens of thousands of links to the small parts of a piece of
+/// furniture beside it, all near the whole wall; each of the wall's points gathered them all
+/// (a real stair hall: 79 k links, 160 M terms, 2 minutes). From a leaf of the wall most are
+/// far, and the affine fit over the leaf holds as over any element (shared_gather.h).
+void shareAtLeaves(const HierarchicalSolver& solver, std::span<const GatherPoint> points,
+                   SampleLayout& s) {
+    const Hierarchy& h = solver.hierarchy();
+    s.leafShares.assign(h.nodes.size(), 0);
+    std::vector<int> count(h.nodes.size(), 0);
+    std::vector<int> leaves;
+    for (size_t i = 0; i < points.size(); ++i)
+        if (s.leafOf[i] >= 0 && count[static_cast<size_t>(s.leafOf[i])]++ == 0)
+            leaves.push_back(s.leafOf[i]);
+    for (const int leaf : leaves) {
+        const Node& L = h.nodes[leaf];
+        if (L.isCluster() || L.vertexCount < 3 || count[leaf] <= 2 * L.vertexCount) continue;
+        s.leafShares[leaf] = 1;  // for sharedAtLeaf's count below
+        size_t mid = 0;
+        for (int a = L.parent; a >= 0; a = h.nodes[a].parent) {
+            const auto links = solver.linksOf(a);
+            forNearLinks(s, a, links.size(),
+                         [&](size_t j) { mid += sharedAtLeaf(h, s, leaf, a, links[j]) ? 1 : 0; });
+        }
+        s.leafShares[leaf] = mid > 0;
+        s.leafShared += mid;
+        if (mid == 0 || s.first[leaf] >= 0) continue;
+        // Corners of its own (it had no far links of its own): all its links stay near.
+        s.first[leaf] = s.samples;
+        s.ordinal[leaf] = static_cast<int>(s.nodes.size());
+        s.nodes.push_back(leaf);
+        s.samples += L.vertexCount;
+        const size_t own = solver.linksOf(leaf).size();
+        for (size_t j = 0; j < own; ++j) s.nearIndex.push_back(static_cast<int>(j));
+        s.nearStart.push_back(s.nearIndex.size());
+    }
+}
 
 SampleLayout layOutSamples(const HierarchicalSolver& solver, std::span<const GatherPoint> points) {
     const Hierarchy& h = solver.hierarchy();
@@ -109,6 +172,7 @@ SampleLayout layOutSamples(const HierarchicalSolver& solver, std::span<const Gat
             s.nearStart.push_back(s.nearIndex.size());
         }
     }
+    shareAtLeaves(solver, points, s);
     return s;
 }
 
@@ -137,6 +201,7 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                         layout.nodes.size() + points.size());
     out.sharedLinks = layout.shared;
     out.nearLinks = layout.near;
+    out.leafSharedLinks = layout.leafShared;
     std::atomic<uint64_t> rays{0};
     std::atomic<size_t> withoutRays{0};
     // Rays per PARTIAL link for an item begun now: none once raysUntil has passed.
@@ -163,6 +228,15 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
             for (const Link& l : solver.linksOf(node))
                 if (detail::mayCarry(l) && sharedLink(h, r, l))
                     detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
+            if (!layout.leafShares[node]) continue;
+            for (int a = r.parent; a >= 0; a = h.nodes[a].parent) {
+                const auto links = solver.linksOf(a);
+                forNearLinks(layout, a, links.size(), [&](size_t j) {
+                    const Link& l = links[j];
+                    if (detail::mayCarry(l) && sharedAtLeaf(h, layout, node, a, l))
+                        detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
+                });
+            }
         }
         rays += cast;
         meter.add(1);
@@ -184,15 +258,13 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                 if (detail::mayCarry(l))
                     detail::gatherLink(solver, p.polygon, p.x, n, l, pr, rng, cast, acc);
             };
-            for (int node = layout.leafOf[i]; node >= 0; node = h.nodes[node].parent) {
+            const int leaf = layout.leafOf[i];
+            for (int node = leaf; node >= 0; node = h.nodes[node].parent) {
                 const auto links = solver.linksOf(node);
-                const int k = layout.ordinal[node];
-                if (k < 0) {
-                    for (const Link& l : links) gather(l);
-                    continue;
-                }
-                for (size_t j = layout.nearStart[k]; j != layout.nearStart[k + 1]; ++j)
-                    gather(links[static_cast<size_t>(layout.nearIndex[j])]);
+                forNearLinks(layout, node, links.size(), [&](size_t j) {
+                    if (!sharedAtLeaf(h, layout, leaf, node, links[j])) gather(links[j]);
+                });
+                if (layout.ordinal[node] < 0) continue;
                 const int first = layout.first[node];
                 const auto a = affineWeights(h.nodes[node], p.x);
                 for (int c = 0; c < h.nodes[node].vertexCount; ++c)

@@ -24,7 +24,10 @@
 // This is Willmott, Heckbert & Garland 1999's sharing of a face cluster's gather between
 // the triangles it shows, on the element hierarchy: the cost is (links x corners) per
 // element plus (near links + elements on the chain) per point, not (links above x) per
-// point. Cluster receivers (not planar) keep every link per point.
+// point. Cluster receivers (not planar) keep every link per point. A link near its
+// receiving element but far from the leaf that holds the point (a large wall's link to a
+// small source beside it) is gathered at the leaf's corners, when the leaf holds more
+// than twice as many points as it has corners.
 #pragma once
 
 #include <cstdint>
@@ -66,6 +69,9 @@ struct SharedGather {
     uint64_t rays = 0;       ///< visibility rays cast
     size_t sharedLinks = 0;  ///< links gathered per corner (counted once per element)
     size_t nearLinks = 0;    ///< links gathered per point (counted once per element)
+    /// Of those, the links gathered at the corners of a leaf below their receiver instead,
+    /// counted once per leaf (a leaf with many points: sharedFinalGather)
+    size_t leafSharedLinks = 0;
     /// Corners and points gathered after `raysUntil` had passed: their PARTIAL links kept
     /// their own V (the link's mean over its receiver) instead of rays from the point.
     size_t withoutRays = 0;

@@ -304,8 +304,9 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     say(o, "  final gather: " + std::to_string(r.direct.gather.sharedLinks) +
                " far links gathered at " + std::to_string(r.direct.gather.samples()) +
                " element corners, " + std::to_string(r.direct.gather.nearLinks) +
-               " near links per vertex; " + std::to_string(r.direct.gather.terms()) +
-               " terms kept");
+               " near links per vertex (" + std::to_string(r.direct.gather.leafSharedLinks) +
+               " of them at the corners of leaves of many vertices); " +
+               std::to_string(r.direct.gather.terms()) + " terms kept");
     if (r.direct.gather.withoutRays > 0) {
         r.phaseBudgetReached |= PreparedImage::kGatherBudget;
         say(o, "  warning: its share of --time-budget (until " +

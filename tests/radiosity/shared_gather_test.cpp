@@ -10,6 +10,7 @@
 #include "radiosity/light_response.h"
 #include "radiosity/shared_gather.h"
 #include "radiosity/solver.h"
+#include "tests/support/cut_room.h"
 
 using namespace radiosity;
 
@@ -28,6 +29,20 @@ Scene hall() {
     lamp.light = 0;
     s.lights.push_back({"lamp", {static_cast<int>(s.polygons.size())}, Rgb::gray(20.0)});
     s.polygons.push_back(lamp);
+    return s;
+}
+
+/// The hall with a 0.4 m block on the floor under its lamp (x 1.0-1.4 m), each face cut into
+/// 4 x 4 triangle pairs, as furniture comes.
+Scene hallWithCutBlock() {
+    Scene s = hall();
+    s.objects.push_back("block");
+    const double x0 = 1.0, x1 = 1.4, y0 = 1.3, y1 = 1.7, z1 = 0.4;
+    const Vec3 c[8] = {{x0, y0, 0},  {x1, y0, 0},  {x1, y1, 0},  {x0, y1, 0},
+                       {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}};
+    const int f[5][4] = {{4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    for (const auto& q : f)
+        test::addCutQuad(s, {c[q[0]], c[q[1]], c[q[2]], c[q[3]]}, 4, 2, Rgb::gray(0.7));
     return s;
 }
 
@@ -129,4 +144,53 @@ TEST(SharedGather, PastItsTimeItKeepsThePartialLinksMeanVisibility) {
         EXPECT_EQ(late.sampleTerms[t].node, none.sampleTerms[t].node);
         EXPECT_EQ(late.sampleTerms[t].w, none.sampleTerms[t].w);
     }
+}
+
+TEST(SharedGather, ALeafOfManyPointsGathersItsAncestorsNearLinksAtItsCorners) {
+    // The hall with a lit block cut into small triangles, met by a dense grid of points (16
+    // per square metre of floor: several per leaf): the floor's large elements hold links to
+    // the block's triangles one by one, near the floor element as a whole yet far from each
+    // of its leaves away from the block, which a leaf of more than 8 points gathers at its
+    // corners (sharedFinalGather). The bound is that of
+    // MatchesThePerPointGatherWhereLinksAreFar, since the fit over a leaf is the fit over an
+    // element: each point within 5 % of its own gather, the sum within 1 %.
+    SolverOptions o;
+    o.epsilon = 1e-2;
+    HierarchicalSolver solver(hallWithCutBlock(), o);
+    solver.solve();
+    std::vector<GatherPoint> points;
+    for (int i = 0; i < 48; ++i)
+        for (int j = 0; j < 12; ++j)
+            points.push_back(
+                {0, Vec3{0.125 + 0.25 * i, 0.125 + 0.25 * j, 0}, uint64_t(i * 12 + j)});
+    const SharedGather g = sharedFinalGather(solver, points, 4);
+    EXPECT_GT(g.leafSharedLinks, 0u);
+    std::vector<Rgb> shared(points.size());
+    g.addIndirect(solver, shared.data());
+    double sumShared = 0, sumPoint = 0, worst = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Rgb H =
+            finalGatherIndirect(solver, points[i].polygon, points[i].x, 4, points[i].seed);
+        ASSERT_GT(H.r, 0.0);
+        worst = std::max(worst, std::abs(shared[i].r - H.r) / H.r);
+        sumShared += shared[i].r;
+        sumPoint += H.r;
+    }
+    // What the block sends the floor, alone: its share of the gather is what the leaves'
+    // corners carry (the rest is as in the per-point gather).
+    const auto& nodes = solver.hierarchy().nodes;
+    std::vector<Rgb> blockOnly(nodes.size());
+    for (size_t n = 0; n < nodes.size(); ++n)
+        if (!nodes[n].isCluster() && nodes[n].polygon >= 7) blockOnly[n] = nodes[n].B;
+    double sumBlock = 0;
+    for (const GatherPoint& p : points)
+        sumBlock += finalGatherField(solver, blockOnly, p.polygon, p.x, 4, p.seed).r;
+    std::printf("leaf-shared links %zu, worst %.5f, sum ratio %.6f, the block's share %.4f\n",
+                g.leafSharedLinks, worst, sumShared / sumPoint, sumBlock / sumPoint);
+    EXPECT_LT(worst, 0.05);
+    EXPECT_NEAR(sumShared / sumPoint, 1.0, 0.01);
+    // A link counted twice (at the leaf's corners and at the point) or not at all would move
+    // the sum by up to the block's share; the fit moves it by at most 5 % of that share.
+    EXPECT_GT(sumBlock / sumPoint, 1e-3);
+    EXPECT_LT(std::abs(sumShared / sumPoint - 1), 0.05 * sumBlock / sumPoint);
 }
