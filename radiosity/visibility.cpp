@@ -29,6 +29,28 @@ namespace {
 float f(double x) {
     return static_cast<float>(x);
 }
+
+/// The ray of intersect() and occluded(): origin `local` (relative to the scene's centre),
+/// direction `dir`, from tMin (at least 0) to tMax (beyond float range: unbounded, +inf,
+/// which Embree accepts for tfar).
+RTCRay worldRay(const Vec3& local, const Vec3& dir, double tMin, double tMax) {
+    RTCRay ray;
+    ray.org_x = f(local.x);
+    ray.org_y = f(local.y);
+    ray.org_z = f(local.z);
+    ray.dir_x = f(dir.x);
+    ray.dir_y = f(dir.y);
+    ray.dir_z = f(dir.z);
+    ray.tnear = f(std::max(tMin, 0.0));
+    ray.tfar = tMax >= static_cast<double>(std::numeric_limits<float>::max())
+                   ? std::numeric_limits<float>::infinity()
+                   : f(tMax);
+    ray.time = 0;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    return ray;
+}
 }  // namespace
 
 struct Visibility::Impl {
@@ -409,22 +431,7 @@ Visibility::Hit Visibility::intersect(const Vec3& org, const Vec3& dir, double t
                                       int ignore) const {
     RTCRayHit rayHit;
     RTCRay& ray = rayHit.ray;
-    const Vec3 localOrg = org - impl_->origin;
-    ray.org_x = f(localOrg.x);
-    ray.org_y = f(localOrg.y);
-    ray.org_z = f(localOrg.z);
-    ray.dir_x = f(dir.x);
-    ray.dir_y = f(dir.y);
-    ray.dir_z = f(dir.z);
-    ray.tnear = f(std::max(tMin, 0.0));
-    // Beyond float range means "unbounded": Embree accepts +inf for tfar.
-    ray.tfar = tMax >= static_cast<double>(std::numeric_limits<float>::max())
-                   ? std::numeric_limits<float>::infinity()
-                   : f(tMax);
-    ray.time = 0;
-    ray.mask = 0xFFFFFFFFu;
-    ray.id = 0;
-    ray.flags = 0;
+    ray = worldRay(org - impl_->origin, dir, tMin, tMax);
     rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -442,22 +449,7 @@ Visibility::Hit Visibility::intersect(const Vec3& org, const Vec3& dir, double t
 bool Visibility::occluded(const Vec3& org, const Vec3& dir, double tMin, double tMax,
                           int ignore) const {
     // The ray exactly as intersect() builds it, so that both agree on whether it hits.
-    RTCRay ray;
-    const Vec3 localOrg = org - impl_->origin;
-    ray.org_x = f(localOrg.x);
-    ray.org_y = f(localOrg.y);
-    ray.org_z = f(localOrg.z);
-    ray.dir_x = f(dir.x);
-    ray.dir_y = f(dir.y);
-    ray.dir_z = f(dir.z);
-    ray.tnear = f(std::max(tMin, 0.0));
-    ray.tfar = tMax >= static_cast<double>(std::numeric_limits<float>::max())
-                   ? std::numeric_limits<float>::infinity()
-                   : f(tMax);
-    ray.time = 0;
-    ray.mask = 0xFFFFFFFFu;
-    ray.id = 0;
-    ray.flags = 0;
+    RTCRay ray = worldRay(org - impl_->origin, dir, tMin, tMax);
     if (!(ray.tnear < ray.tfar)) return false;
     EndContext context(ignore, -1, impl_->geomFirst);
     rtcOccluded1(impl_->scene, &context.context, &ray);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "furnace.h"
 #include "radiosity/final_gather.h"
@@ -46,6 +47,25 @@ Scene hallWithCutBlock() {
     return s;
 }
 
+/// The shared gather against the per-point one (red channel): the largest relative
+/// difference at a point, and the sums of both over the points (each point's must be > 0).
+std::tuple<double, double, double> againstPerPoint(const HierarchicalSolver& solver,
+                                                   const SharedGather& g,
+                                                   const std::vector<GatherPoint>& points) {
+    std::vector<Rgb> shared(points.size());
+    g.addIndirect(solver, shared.data());
+    double sumShared = 0, sumPoint = 0, worst = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Rgb H =
+            finalGatherIndirect(solver, points[i].polygon, points[i].x, 4, points[i].seed);
+        EXPECT_GT(H.r, 0.0);
+        worst = std::max(worst, std::abs(shared[i].r - H.r) / std::max(H.r, 1e-300));
+        sumShared += shared[i].r;
+        sumPoint += H.r;
+    }
+    return {worst, sumShared, sumPoint};
+}
+
 }  // namespace
 
 TEST(SharedGather, MatchesThePerPointGatherWhereLinksAreFar) {
@@ -65,18 +85,8 @@ TEST(SharedGather, MatchesThePerPointGatherWhereLinksAreFar) {
     ASSERT_EQ(g.points(), points.size());
     // The hall has far links, and the floor's elements are met by several points each.
     EXPECT_GT(g.sharedLinks, 0u);
-    std::vector<Rgb> shared(points.size());
-    g.addIndirect(solver, shared.data());
-    double sumShared = 0, sumPoint = 0, worst = 0;
-    for (size_t i = 0; i < points.size(); ++i) {
-        const Rgb H =
-            finalGatherIndirect(solver, points[i].polygon, points[i].x, 4, points[i].seed);
-        ASSERT_GT(H.r, 0.0);
-        // An empty room: no PARTIAL link, so no ray, and both are deterministic.
-        worst = std::max(worst, std::abs(shared[i].r - H.r) / H.r);
-        sumShared += shared[i].r;
-        sumPoint += H.r;
-    }
+    // An empty room: no PARTIAL link, so no ray, and both are deterministic.
+    const auto [worst, sumShared, sumPoint] = againstPerPoint(solver, g, points);
     // A far link's transfer misses its affine fit by at most about 3 (R_r / d)^2 / 4 < 5 %
     // of itself at kFar = 4 (shared_gather.h); far links are a part of each point's light,
     // so each point is within 5 % and the sum within 1 % (errors of both signs over an
@@ -165,17 +175,7 @@ TEST(SharedGather, ALeafOfManyPointsGathersItsAncestorsNearLinksAtItsCorners) {
                 {0, Vec3{0.125 + 0.25 * i, 0.125 + 0.25 * j, 0}, uint64_t(i * 12 + j)});
     const SharedGather g = sharedFinalGather(solver, points, 4);
     EXPECT_GT(g.leafSharedLinks, 0u);
-    std::vector<Rgb> shared(points.size());
-    g.addIndirect(solver, shared.data());
-    double sumShared = 0, sumPoint = 0, worst = 0;
-    for (size_t i = 0; i < points.size(); ++i) {
-        const Rgb H =
-            finalGatherIndirect(solver, points[i].polygon, points[i].x, 4, points[i].seed);
-        ASSERT_GT(H.r, 0.0);
-        worst = std::max(worst, std::abs(shared[i].r - H.r) / H.r);
-        sumShared += shared[i].r;
-        sumPoint += H.r;
-    }
+    const auto [worst, sumShared, sumPoint] = againstPerPoint(solver, g, points);
     // What the block sends the floor, alone: its share of the gather is what the leaves'
     // corners carry (the rest is as in the per-point gather).
     const auto& nodes = solver.hierarchy().nodes;
