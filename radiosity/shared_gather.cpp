@@ -85,9 +85,13 @@ struct SampleLayout {
 
 /// Whether link l of element ancestor `a` of leaf `leaf` is gathered at the leaf's corners:
 /// near the ancestor (a large wall's link to a source beside it), but far from the leaf.
-bool sharedAtLeaf(const Hierarchy& h, const SampleLayout& s, int leaf, int a, const Link& l) {
-    if (leaf < 0 || !s.leafShares[leaf] || a == leaf || h.nodes[a].isCluster()) return false;
+bool nearAncestorFarLeaf(const Hierarchy& h, int leaf, int a, const Link& l) {
+    if (a == leaf || h.nodes[a].isCluster()) return false;
     return !sharedLink(h, h.nodes[a], l) && sharedLink(h, h.nodes[leaf], l);
+}
+
+bool sharedAtLeaf(const Hierarchy& h, const SampleLayout& s, int leaf, int a, const Link& l) {
+    return leaf >= 0 && s.leafShares[leaf] && nearAncestorFarLeaf(h, leaf, a, l);
 }
 
 /// The links of node `node` that a point gathers itself (not at node's corners): its near
@@ -122,12 +126,12 @@ void shareAtLeaves(const HierarchicalSolver& solver, std::span<const GatherPoint
     for (const int leaf : leaves) {
         const Node& L = h.nodes[leaf];
         if (L.isCluster() || L.vertexCount < 3 || count[leaf] <= 2 * L.vertexCount) continue;
-        s.leafShares[leaf] = 1;  // for sharedAtLeaf's count below
         size_t mid = 0;
         for (int a = L.parent; a >= 0; a = h.nodes[a].parent) {
             const auto links = solver.linksOf(a);
-            forNearLinks(s, a, links.size(),
-                         [&](size_t j) { mid += sharedAtLeaf(h, s, leaf, a, links[j]) ? 1 : 0; });
+            forNearLinks(s, a, links.size(), [&](size_t j) {
+                mid += nearAncestorFarLeaf(h, leaf, a, links[j]) ? 1 : 0;
+            });
         }
         s.leafShares[leaf] = mid > 0;
         s.leafShared += mid;
