@@ -11,8 +11,9 @@
 # its .git/info/exclude). The tracked files of the checkout already take 50 of the 64 MiB that
 # one call may carry, so the bundle is cut in two, each under 13 MiB:
 #   .gpuA  the libraries the bench loads (Embree alone is 8.8 MB as xz);
-#   .gpuB  the bench, X's client libraries, Xvfb, xkbcomp, the xkb data, Mesa's swrast_dri.so (Xvfb's GLX provider: without it
-#          Xvfb has no GLX extension and GLFW cannot make a window), run.sh;
+#   .gpuB  the bench, bench/gpu_glx_probe.c built, X's client libraries, Xvfb, xkbcomp, the
+#          xkb data, Mesa's swrast_dri.so (Xvfb's GLX provider: without it Xvfb has no GLX
+#          extension and GLFW cannot make a window), run.sh;
 #   .gl    the vendor-neutral GL loaders (glvnd) as Debian packages, as the device README says.
 # Two calls on one warm machine: the first stages .gpuA under /tmp (stage_a.sh), the second
 # (within the 30 s the machine stays warm) carries .gpuB and .gl and runs run.sh.
@@ -61,7 +62,9 @@ resolve() {
 # kept) into DEST/lib, stand-ins for every other library that they or the roots need, except
 # those in ELSEWHERE (packed in the other part).
 pack() {
-    local dest=$1 keep=" $(echo $2) " elsewhere=" $(echo $3) "
+    local dest=$1 keep elsewhere
+    keep=" $(echo $2) "  # one space between names, none at the ends
+    elsewhere=" $(echo $3) "
     shift 3
     mkdir -p "$dest/lib" "$dest/stub"
     local -a queue=("$@") consumers=("$@")
@@ -108,6 +111,7 @@ B=$WORK/b
 mkdir -p "$B/bin" "$B/dri" "$B/xkb"
 cp /usr/bin/Xvfb /usr/bin/xkbcomp "$BUILD/bench/viewer_frames" "$B/bin/"
 strip "$B/bin/viewer_frames"
+gcc -O1 -o "$B/bin/gpu_glx_probe" "$HERE/gpu_glx_probe.c" -lX11 -lGL
 cp "$LIBDIR/dri/swrast_dri.so" "$B/dri/"
 # What GLFW opens with dlopen (X extensions) and NVIDIA's GLX library links (libXext): an
 # image without X has none of them.

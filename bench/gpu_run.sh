@@ -32,18 +32,28 @@ NVDIR=$(dirname "${NV:-/nonexistent/x}")
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
 echo "CPU: $(nproc) threads, $(grep -m1 'model name' /proc/cpuinfo)"
 
-LD_LIBRARY_PATH=$D/b/lib:$D/b/stub GALLIUM_DRIVER=softpipe "$D/b/bin/Xvfb" :99 \
+N=99  # the first display number free here
+while [ -e /tmp/.X11-unix/X$N ] || [ -e /tmp/.X$N-lock ]; do N=$((N + 1)); done
+LD_LIBRARY_PATH=$D/b/lib:$D/b/stub GALLIUM_DRIVER=softpipe "$D/b/bin/Xvfb" :$N \
     -screen 0 1920x1080x24 -nolisten tcp -fp built-ins >"$OUT/xvfb.txt" 2>&1 &
 XPID=$!
-for _ in $(seq 50); do [ -e /tmp/.X11-unix/X99 ] && break; sleep 0.2; done
-[ -e /tmp/.X11-unix/X99 ] || { echo "Xvfb did not start:"; cat "$OUT/xvfb.txt"; exit 4; }
+for _ in $(seq 50); do [ -e /tmp/.X11-unix/X$N ] && break; sleep 0.2; done
+if [ ! -e /tmp/.X11-unix/X$N ] || ! kill -0 $XPID 2>/dev/null; then
+    echo "Xvfb did not start:"
+    cat "$OUT/xvfb.txt"
+    exit 4
+fi
+
+echo "=== what the GLX client library ($VENDOR) offers on Xvfb (bench/gpu_glx_probe.c):"
+env LD_LIBRARY_PATH=$D/b/lib:$NVDIR DISPLAY=:$N __GLX_VENDOR_LIBRARY_NAME=$VENDOR \
+    timeout 30 "$D/b/bin/gpu_glx_probe"
 
 bench() {  # bench LOG SECONDS ARGS...: the bench, SECONDS at most
     local log=$1 limit=$2
     shift 2
     echo "=== $log: viewer_frames data $*"
     local t0=$SECONDS
-    env LD_LIBRARY_PATH=$D/a/lib:$D/b/lib:$D/a/stub:$NVDIR DISPLAY=:99 \
+    env LD_LIBRARY_PATH=$D/a/lib:$D/b/lib:$D/a/stub:$NVDIR DISPLAY=:$N \
         __GLX_VENDOR_LIBRARY_NAME=$VENDOR timeout "$limit" "$D/b/bin/viewer_frames" data "$@" \
         >"$OUT/$log" 2>&1
     echo "exit $? after $((SECONDS - t0)) s"
