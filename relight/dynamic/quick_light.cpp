@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "radiosity/defaults.h"
 #include "radiosity/detail/form_factor.h"
 #include "radiosity/detail/rng.h"
 #include "radiosity/hierarchy.h"
@@ -139,9 +140,12 @@ void quickPointGeometry(const radiosity::Scene& scene, const radiosity::Visibili
                 ++n;
             }
             if (n == 0) continue;
+            // As DirectLight::geometry: the first minRays decide, the rest only in penumbra.
+            int cast = 0;
             const int visible =
-                vis.visibleBatch(from, to, n, nullptr, p.polygon, sameScene ? qi : -1);
-            g += F * static_cast<double>(visible) / n;
+                vis.visibleAdaptive(from, to, std::min(n, radiosity::kDefaultMinRays), n, cast,
+                                    p.polygon, sameScene ? qi : -1);
+            if (cast > 0) g += F * static_cast<double>(visible) / cast;
         }
         G[l] = g;
         if (unoccluded) unoccluded[l] = g0;
