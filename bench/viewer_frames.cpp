@@ -24,7 +24,10 @@
 //     from it;
 //   - box drag: the box dragged over the floor, the pointer moving in equal steps along a
 //     straight line of 60 K pixels (about a pixel of the photo per frame at N = 60, as a
-//     mouse reports it); the solver moves the last part incrementally (moveLastObject).
+//     mouse reports it); the solver moves the last part incrementally (moveLastObject);
+//     then, per pixel, the window's quick frames (Session::setQuickMoves: the box's direct
+//     light and shadows per pixel, DynamicRelighting::previewLastObject) and the drag at
+//     rest (Session::settle: render's image).
 // each in the ratio display with both framebuffers: float (one pass) and the paper's 8-bit
 // multipass (Loscos et al. 2000, §5.3: ratios above 1 drawn as passes added in the
 // framebuffer, n = ceil(max ratio), so the draw grows with the brightest ratio), and in the
@@ -273,10 +276,10 @@ void sunDrag(Session& session, FrameRenderer& frame, int frames, int upscale) {
         printRow(quick ? "sun drag, quick" : "sun drag, each exact", display, s);
         if (!session.exactPending()) continue;
         const Image q = session.relitPerPixel();
-        const auto t0 = Clock::now();
+        const auto rest = Clock::now();
         session.settle();
         frame.render();
-        const double ms = 1e3 * secondsSince(t0);
+        const double ms = 1e3 * secondsSince(rest);
         const Image exact = session.relitPerPixel();
         double worst = 0, rel = 0;
         compare(q, exact, worst, rel);
@@ -372,6 +375,33 @@ int run(const Args& a) {
         printRow("box drag", display, s);
         forwards = !forwards;
     }
+    // The same drag in the per-pixel display with the window's quick moves
+    // (Session::setQuickMoves: DynamicRelighting::previewLastObject, the box's direct light
+    // and shadows per pixel, the solver without it), then the pointer resting
+    // (Session::settle: the box inserted where it is, render's image) and how far the last
+    // quick frame was from it.
+    session.setQuickMoves(true);
+    const Samples quick = timeFrames(frame, kDisplays[2], a.frames, [&](int i) {
+        const double f = static_cast<double>(i + 1) / a.frames;
+        if (!session.dragTo(u + (forwards ? f : 1 - f) * du, v + (forwards ? f : 1 - f) * dv))
+            ++misses;
+    });
+    printRow("box drag, quick", kDisplays[2], quick);
+    if (session.exactPending()) {
+        const Image q = session.relitPerPixel();
+        const auto rest = Clock::now();
+        session.settle();
+        frame.render();
+        const double ms = 1e3 * secondsSince(rest);
+        const Image exact = session.relitPerPixel();
+        double worst = 0, rel = 0;
+        compare(q, exact, worst, rel);
+        std::printf(
+            "  the drag at rest: the exact image in %.1f ms (one frame); the last quick one "
+            "against it: at most %.4f, rel_rmse %.5f\n",
+            ms, worst, rel);
+    }
+    session.setQuickMoves(false);
     session.endDrag();
     const auto& m = session.objects().at(0).object.transform;  // the unit box scaled
     std::printf(

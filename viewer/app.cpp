@@ -501,7 +501,7 @@ void App::statsOverlay(const PhotoRect& r) {
         ImGui::Text("last part: shafts %.1f, rays %.1f, links %.1f, radiosity %.1f ms",
                     1e3 * t->shafts, 1e3 * t->visibility, 1e3 * t->links, 1e3 * t->radiosity);
     // What is shown: a slider's quick image, or what `relight render` draws of the edit.
-    if (session_.exactPending()) ImGui::Text("quick image: exact when the slider rests");
+    if (session_.exactPending()) ImGui::TextWrapped("%s", session_.stage().c_str());
     ImGui::End();
 }
 

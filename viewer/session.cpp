@@ -277,7 +277,9 @@ void Session::sunAngles(const Vec3& direction, double& azimuth, double& elevatio
 }
 
 bool Session::settle() {
-    if (!exactPending_ || dragging_ >= 0) return false;
+    // During a drag only the moved object's quick image settles (the pointer rests); the
+    // next move shows it quickly again.
+    if (!exactPending_ || (dragging_ >= 0 && !(dyn_ && dyn_->previewingObject()))) return false;
     stale_ = true;
     update();
     return true;
@@ -326,6 +328,8 @@ void Session::update() {
     // superposition path: nothing to solve. With virtual objects, the quick path while a
     // slider moves (settle() makes it exact); a sun or lamp moved, its quick path too.
     bool quickMove = false;
+    // An object shown moved (dragTo's quick frames) is not in the solver: insert it again.
+    if (dyn_ && dyn_->previewingObject()) stale_ = true;
     if (!stale_ && strengthsKept && !shapesKept && quickMoves_ && previewMoves())
         quickMove = exactPending_ = true;
     else if (!stale_ && radianceChanged && shapesKept && dyn_ && before.size() == now.size() &&
@@ -541,7 +545,7 @@ void Session::addLightAt(const Pick& p) {
     l.face.corners = {c + (-t - b) * h, c + (t - b) * h, c + (t + b) * h, c + (-t + b) * h};
     l.setRadiance(radiance);
     l.face.radiance = radiance;
-    const bool appendable = dyn_ && !stale_ && objects_.empty();
+    const bool appendable = dyn_ && !stale_ && !dyn_->previewingObject() && objects_.empty();
     lights_.push_back(l);
     if (appendable) {
         dyn_->addLight(l.face);
@@ -625,7 +629,7 @@ void Session::addBoxAt(const Pick& p) {
     o.object.transform[3] = {0, 0, 0, 1};
     std::vector<std::string> warnings;
     placeObject(o.object, o.geometry, warnings);
-    const bool appendable = dyn_ && !stale_;
+    const bool appendable = dyn_ && !stale_ && !dyn_->previewingObject();
     objects_.push_back(std::move(o));
     if (appendable) {
         const size_t first = r_->solver->scene().polygons.size();
@@ -669,10 +673,25 @@ bool Session::dragTo(double u, double v) {
     for (int i = 0; i < 3; ++i) o.object.transform[static_cast<size_t>(i)][3] += delta[i];
     std::vector<std::string> warnings;
     placeObject(o.object, o.geometry, warnings);
-    dyn_->moveLastObject(o.object.polygons);
+    if (quickMoves_ && dyn_->previewLastObject(o.object.polygons)) {
+        exactPending_ = true;  // settle() or endDrag() inserts it where it is
+    } else if (dyn_->previewingObject()) {
+        stale_ = true;  // quick moves turned off during the drag: solved as render solves it
+        update();
+    } else {
+        dyn_->moveLastObject(o.object.polygons);
+    }
     updateSeconds_ = secondsSince(t0);
     changed();
     return true;
+}
+
+std::string Session::stage() const {
+    if (!exactPending_) return "exact";
+    if (dyn_ && dyn_->previewingObject())
+        return "drag: direct light only (the box's shadows and its own light; the indirect "
+               "light as without it), exact when the drag rests";
+    return "quick image: exact when the slider rests";
 }
 
 void Session::endDrag() {
@@ -688,7 +707,7 @@ void Session::removeLight(int i) {
     const bool last = objects_.empty() && i == static_cast<int>(lights_.size()) - 1 &&
                       !lights_[static_cast<size_t>(i)].emitter;
     lights_.erase(lights_.begin() + i);
-    if (last && dyn_ && !stale_) {
+    if (last && dyn_ && !stale_ && !dyn_->previewingObject()) {
         dyn_->removeLast();
         applied_.erase(applied_.begin() + i);
         if (static_cast<size_t>(i) < appliedEmitters_.size())
@@ -706,7 +725,7 @@ void Session::removeObject(int i) {
     const bool last = i == static_cast<int>(objects_.size()) - 1;
     objects_.erase(objects_.begin() + i);
     dragging_ = -1;
-    if (last && dyn_ && !stale_) {
+    if (last && dyn_ && !stale_ && !dyn_->previewingObject()) {
         dyn_->removeLast();
         objectPolygons_.pop_back();
         if (!hasVirtualParts()) dyn_.reset();

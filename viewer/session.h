@@ -153,6 +153,10 @@ class Session {
     void beginDrag(int i, const Pick& p);
     /// Moves the dragged object so that the grabbed point follows the camera ray through
     /// (u, v) in the plane of the object's base. False when that ray misses the plane.
+    /// With setQuickMoves (the per-pixel displays) a quick frame
+    /// (DynamicRelighting::previewLastObject: its shadows and its own light per pixel, the
+    /// solver without it; exactPending() until settle() or endDrag()); else the solver moves
+    /// it (moveLastObject).
     bool dragTo(double u, double v);
     /// Ends the drag. The object's last position is inserted again from the prepared
     /// solver, as `relight render` inserts it: the incremental moves of the drag agree with
@@ -160,6 +164,10 @@ class Session {
     /// a saved edit renders to what the window shows.
     void endDrag();
     int dragging() const { return dragging_; }
+    /// What the image shows, for the window to say: "exact" (`relight render`'s image of the
+    /// edit), or which quick stage (a slider's quick image; a dragged object's quick frames,
+    /// DynamicRelighting::previewLastObject, in the per-pixel displays with setQuickMoves).
+    std::string stage() const;
     void removeLight(int i);  ///< a virtual light (index into lights())
     void removeObject(int i);
     /// Takes the scene's removable object `name` out (Loscos et al. 1999, §5.3: its pixels

@@ -12,9 +12,32 @@
 #include "relight/display/wen_display.h"
 #include "relight/dynamic/dynamic_relighting.h"
 #include "relight/dynamic/overlay_samples.h"
+#include "relight/dynamic/quick_light.h"
 #include "relight/pipeline/pixel_light.h"
 
 namespace relight {
+
+namespace {
+/// Grows the pixel box [x0, x1] x [y0, y1] over what `polygons` project to; the whole image
+/// when a corner is behind the camera.
+void growProjectedBox(const Camera& camera, std::span<const radiosity::Polygon> polygons, int& x0,
+                      int& y0, int& x1, int& y1) {
+    for (const radiosity::Polygon& poly : polygons)
+        for (int i = 0; i < poly.vertexCount; ++i) {
+            double u = 0, v = 0, depth = 0;
+            if (!camera.project(poly.v[static_cast<size_t>(i)], u, v, depth) || !(depth > 0)) {
+                x0 = y0 = 0;
+                x1 = camera.width - 1;
+                y1 = camera.height - 1;
+                continue;
+            }
+            x0 = std::min(x0, static_cast<int>(std::floor(u)));
+            y0 = std::min(y0, static_cast<int>(std::floor(v)));
+            x1 = std::max(x1, static_cast<int>(std::ceil(u)));
+            y1 = std::max(y1, static_cast<int>(std::ceil(v)));
+        }
+}
+}  // namespace
 
 using radiosity::Clock;
 using radiosity::parallelFor;
@@ -112,6 +135,7 @@ Image DynamicRelighting::render(DisplayMode mode) {
     }
     const double tRatio = secondsSince(t0);
     applyOverlay(img, overlay());
+    if (objectPreview_) applyOverlay(img, previewOverlay());
     times_.display += tRatio;
     return img;
 }
@@ -132,22 +156,7 @@ VirtualOverlay DynamicRelighting::overlay() {
     const Camera& camera = r_.scene.camera;
     const auto& scene = solver_.scene();
     int x0 = camera.width, y0 = camera.height, x1 = -1, y1 = -1;
-    for (size_t p = realPolygons_; p < scene.polygons.size(); ++p) {
-        const auto& poly = scene.polygons[p];
-        for (int i = 0; i < poly.vertexCount; ++i) {
-            double u = 0, v = 0, depth = 0;
-            if (!camera.project(poly.v[i], u, v, depth) || !(depth > 0)) {
-                x0 = y0 = 0;  // behind the camera: the whole image
-                x1 = camera.width - 1;
-                y1 = camera.height - 1;
-                continue;
-            }
-            x0 = std::min(x0, static_cast<int>(std::floor(u)));
-            y0 = std::min(y0, static_cast<int>(std::floor(v)));
-            x1 = std::max(x1, static_cast<int>(std::ceil(u)));
-            y1 = std::max(y1, static_cast<int>(std::ceil(v)));
-        }
-    }
+    growProjectedBox(camera, std::span(scene.polygons).subspan(realPolygons_), x0, y0, x1, y1);
     // The pixels of the real objects taken out.
     const RemovedRegion& gone = removed_;
     if (!gone.empty()) {
@@ -239,6 +248,81 @@ VirtualOverlay DynamicRelighting::overlay() {
         }
     });
     times_.display = secondsSince(t0);
+    return o;
+}
+
+namespace {
+// The stream of the moved object's shadow rays (previewOverlay), apart from the others.
+constexpr uint64_t kPreviewSeed = 0x7d4a6bull << 28;
+constexpr double kPi = std::numbers::pi;
+}  // namespace
+
+VirtualOverlay DynamicRelighting::previewOverlay() const {
+    const ObjectPreview& q = *objectPreview_;
+    const Camera& camera = r_.scene.camera;
+    int x0 = camera.width, y0 = camera.height, x1 = -1, y1 = -1;
+    growProjectedBox(camera, q.polygons, x0, y0, x1, y1);
+    VirtualOverlay o;
+    o.x0 = std::max(x0, 0);
+    o.y0 = std::max(y0, 0);
+    o.width = std::min(x1, camera.width - 1) - o.x0 + 1;
+    o.height = std::min(y1, camera.height - 1) - o.y0 + 1;
+    if (o.empty()) {
+        o.width = o.height = 0;
+        return o;
+    }
+    o.rgba.assign(static_cast<size_t>(o.width) * static_cast<size_t>(o.height) * 4, 0.0f);
+    const OverlaySamples samples(r_.items.spp);
+    const Vec3 eye = camera.position();
+    const auto& scene = solver_.scene();
+    const auto& vis = solver_.visibility();
+    const size_t L = scene.lights.size();
+    parallelFor(static_cast<size_t>(o.height), 1, [&](size_t row) {
+        std::vector<double> G(L);
+        const int by = static_cast<int>(row);
+        for (int bx = 0; bx < o.width; ++bx) {
+            const int x = o.x0 + bx, y = o.y0 + by;
+            double realShare = 0;
+            Rgb added, shade;
+            int shaded = -1;  // the face whose radiance `shade` holds for this pixel
+            for (int s = 0; s < samples.count(); ++s) {
+                const auto [u, v] = samples.at(x, y, s);
+                const Vec3 dir = camera.rayDirection(u, v);
+                const auto hit = q.vis->intersect(eye, dir);
+                // Not the object, or the scene (or another part) in front of it: the image
+                // as it is there.
+                if (hit.polygon < 0 || vis.occluded(eye, dir, 0, hit.t)) {
+                    realShare += 1;
+                    continue;
+                }
+                const size_t f = static_cast<size_t>(hit.polygon);
+                const radiosity::Polygon& face = q.polygons[f];
+                if (glm::dot(face.normal, dir) >= 0) continue;  // back: black, as overlay()
+                if (shaded != hit.polygon) {
+                    // One point per pixel and face: the direct light from kPreviewRays rays
+                    // per lamp face, the indirect as the face gathered it before the drag.
+                    const radiosity::ReceiverPoint at{eye + hit.t * dir, face.normal, -1};
+                    const uint64_t seed =
+                        kPreviewSeed ^
+                        ((static_cast<uint64_t>(y) * 4099u + static_cast<uint64_t>(x)) * 64u + f);
+                    quickPointGeometry(scene, vis, /*sameScene=*/true, at, kPreviewRays, seed,
+                                       G.data());
+                    Rgb H = q.indirect[f];
+                    for (size_t l = 0; l < L && l < radiance_.size(); ++l)
+                        H += radiance_[l] * (kPi * G[l]);
+                    shade = q.rho[f] * H * (1.0 / kPi);
+                    shaded = hit.polygon;
+                }
+                added += shade;
+            }
+            const double n = static_cast<double>(samples.count());
+            float* a = &o.rgba[(static_cast<size_t>(by) * static_cast<size_t>(o.width) +
+                                static_cast<size_t>(bx)) *
+                               4];
+            for (int c = 0; c < 3; ++c) a[c] = static_cast<float>(added[c] / n);
+            a[3] = static_cast<float>(realShare / n);
+        }
+    });
     return o;
 }
 

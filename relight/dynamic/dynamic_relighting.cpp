@@ -154,7 +154,8 @@ void DynamicRelighting::makeUnitSources() {
 
 bool DynamicRelighting::setRealRadiances(std::span<const Rgb> radiance) {
     const auto& scene = solver_.scene();
-    if (!cache_ || unitIndirect_.empty() || radiance.size() != static_cast<size_t>(realLights_) ||
+    if (!cache_ || objectPreview_ || unitIndirect_.empty() ||
+        radiance.size() != static_cast<size_t>(realLights_) ||
         scene.lights.size() != radiance.size() || !solver_.removedObjects().empty() ||
         !gatherDelta_.empty() || !gatherDeltaRays_.empty())
         return false;
@@ -214,6 +215,7 @@ std::vector<Rgb> DynamicRelighting::indirectPerNode() const {
 }
 
 int DynamicRelighting::addLight(const VirtualLight& light) {
+    noPreview("addLight");
     completeVertexGather();
     if (light.emitter) {
         // A sun, point lamp or sky (radiosity/emitter.h): no face, no link; its direct light
@@ -237,6 +239,7 @@ int DynamicRelighting::addLight(const VirtualLight& light) {
 }
 
 void DynamicRelighting::addObject(const VirtualObject& object) {
+    noPreview("addObject");
     completeVertexGather();
     radiosity::DynamicUpdate u;
     solver_.insertObject(object.name, object.polygons, nullptr, &u);
@@ -273,6 +276,7 @@ Rgb DynamicRelighting::specularAt(const SpecularLights* lights, int polygon, con
 }
 
 void DynamicRelighting::moveLastObject(std::vector<radiosity::Polygon> polygons) {
+    noPreview("moveLastObject");
     completeVertexGather();
     radiosity::DynamicUpdate u;
     solver_.moveLastObject(std::move(polygons), &u);
@@ -280,6 +284,7 @@ void DynamicRelighting::moveLastObject(std::vector<radiosity::Polygon> polygons)
 }
 
 void DynamicRelighting::removeObject(const std::string& name) {
+    noPreview("removeObject");
     completeVertexGather();
     const auto& scene = solver_.scene();
     const int object = scene.findObject(name);
@@ -292,6 +297,7 @@ void DynamicRelighting::removeObject(const std::string& name) {
 }
 
 void DynamicRelighting::removeLast() {
+    noPreview("removeLast");
     completeVertexGather();
     const bool removal = solver_.lastIsRemoval();
     const bool light = !removal && static_cast<int>(solver_.scene().lights.size()) > realLights_ &&
@@ -468,7 +474,7 @@ std::span<const float> DynamicRelighting::pixelDirect() {
     });
     if (cache) cache->pixelHits += hits.load();
     std::fill(leafPending_.begin(), leafPending_.end(), 0);
-    if (previews_.empty()) return pixelDirect_;
+    if (previews_.empty() && !objectPreview_) return pixelDirect_;
     // The lights shown moved (previewEmitter): their columns from the quick measurement.
     pixelShown_ = pixelDirect_;
     for (const Preview& q : previews_)
@@ -476,10 +482,15 @@ std::span<const float> DynamicRelighting::pixelDirect() {
             for (int c = 0; c < q.count; ++c)
                 pixelShown_[px * L + static_cast<size_t>(q.light + c)] =
                     q.direct[px * static_cast<size_t>(q.count) + static_cast<size_t>(c)];
+    // The object shown moved (previewLastObject): the share of each light it lets through.
+    if (objectPreview_ && objectPreview_->transmission.size() == pixelShown_.size())
+        for (size_t i = 0; i < pixelShown_.size(); ++i)
+            pixelShown_[i] *= objectPreview_->transmission[i];
     return pixelShown_;
 }
 
 void DynamicRelighting::previewEmitter(int light, const radiosity::Emitter& moved) {
+    noPreview("previewEmitter");
     const auto& lights = solver_.scene().lights;
     if (light < 0 || static_cast<size_t>(light) >= lights.size() ||
         !lights[static_cast<size_t>(light)].emitter)
@@ -760,6 +771,7 @@ void DynamicRelighting::refreshIndirect(bool full) {
     if (static_cast<size_t>(solver_.hierarchy().nodes.size()) <= realNodes_) {
         objectMesh_.reset();
         objectRadiance_.clear();
+        objectIndirect_.clear();
         return;
     }
     // The virtual objects' surfaces: rho H / pi at their leaf corners, H from the direct
@@ -768,7 +780,8 @@ void DynamicRelighting::refreshIndirect(bool full) {
     objectMesh_ = std::make_unique<radiosity::LeafMesh>(h, static_cast<int>(realNodes_),
                                                         radiosity::LeafMesh::SplitRule{},
                                                         static_cast<int>(realPolygons_));
-    const auto indirectAtCorners = objectMesh_->averageOfLeaves([&](int n) { return now[n]; });
+    objectIndirect_ = objectMesh_->averageOfLeaves([&](int n) { return now[n]; });
+    const std::vector<Rgb>& indirectAtCorners = objectIndirect_;
     const auto& scene = solver_.scene();
     const int lights = static_cast<int>(scene.lights.size());
     const radiosity::DirectLight direct(solver_);
@@ -809,6 +822,75 @@ void DynamicRelighting::completeVertexGather(const std::vector<int>* only) const
         gatherWaiting_.clear();
         gatherChange_.clear();
     }
+}
+
+void DynamicRelighting::noPreview(const char* what) const {
+    if (objectPreview_)
+        throw std::logic_error(std::string("DynamicRelighting::") + what +
+                               ": an object is shown moved (previewLastObject); insert the "
+                               "parts again first");
+}
+
+bool DynamicRelighting::startObjectPreview(const std::vector<radiosity::Polygon>& polygons) {
+    const auto& scene = solver_.scene();
+    const size_t count = polygons.size();
+    if (solver_.insertedObjects() == 0 || solver_.lastIsRemoval() ||
+        !solver_.removedObjects().empty() || count == 0 ||
+        scene.polygons.size() < realPolygons_ + count)
+        return false;
+    const size_t first = scene.polygons.size() - count;
+    const int object = scene.polygons[first].object;
+    for (size_t p = first; p < scene.polygons.size(); ++p)
+        if (scene.polygons[p].light >= 0 || scene.polygons[p].object != object) return false;
+    if (first > realPolygons_ && scene.polygons[first - 1].object == object)
+        return false;  // another face count than the object's
+    if (object >= 0 && static_cast<size_t>(object) < objectSpecular_.size() &&
+        objectSpecular_[static_cast<size_t>(object)])
+        return false;  // the specular pass is not drawn quickly
+    auto q = std::make_unique<ObjectPreview>();
+    // What the faces gathered as last solved: the mean over each face's leaf corners.
+    q->rho.resize(count);
+    q->indirect.assign(count, Rgb{});
+    std::vector<double> corners(count, 0.0);
+    if (objectMesh_ && objectIndirect_.size() == objectMesh_->vertices().size())
+        for (size_t v = 0; v < objectIndirect_.size(); ++v) {
+            const int p = objectMesh_->vertices()[v].polygon;
+            if (p < static_cast<int>(first)) continue;
+            q->indirect[static_cast<size_t>(p) - first] += objectIndirect_[v];
+            corners[static_cast<size_t>(p) - first] += 1;
+        }
+    for (size_t i = 0; i < count; ++i) {
+        q->rho[i] = scene.polygons[first + i].rho;
+        if (corners[i] > 0) q->indirect[i] = q->indirect[i] * (1.0 / corners[i]);
+    }
+    // The object out of the solver: the rest exactly as without it (one update).
+    completeVertexGather();
+    radiosity::DynamicUpdate u;
+    solver_.removeLastObject(&u);
+    objectSpecular_.resize(std::min(objectSpecular_.size(), solver_.scene().objects.size()));
+    afterUpdate(u, false);
+    // The object alone, in an Embree scene of its own (moved by movePolygons).
+    q->vis = std::make_unique<radiosity::Visibility>(radiosity::Scene{});
+    q->group = q->vis->addPolygons(polygons, 0);
+    objectPreview_ = std::move(q);
+    return true;
+}
+
+bool DynamicRelighting::previewLastObject(const std::vector<radiosity::Polygon>& polygons) {
+    const auto t0 = Clock::now();
+    if (!objectPreview_) {
+        if (!startObjectPreview(polygons)) return false;
+    } else {
+        if (polygons.size() != objectPreview_->polygons.size()) return false;
+        objectPreview_->vis->movePolygons(objectPreview_->group, polygons);
+        times_ = FrameTimes{};
+    }
+    ObjectPreview& q = *objectPreview_;
+    q.polygons = polygons;
+    q.transmission = quickTransmission(r_.items, solver_.scene(), *q.vis,
+                                       boundingSphere(q.polygons), kPreviewRays);
+    times_.visibility += secondsSince(t0);
+    return true;
 }
 
 }  // namespace relight

@@ -37,6 +37,7 @@
 
 #include "radiosity/leaf_mesh.h"
 #include "radiosity/solver.h"
+#include "radiosity/visibility.h"
 #include "relight/dynamic/object_removal.h"
 #include "relight/dynamic/specular.h"
 #include "relight/io/edit_file.h"
@@ -160,7 +161,34 @@ class DynamicRelighting {
     /// sky, or a component count that differs.
     void previewEmitter(int light, const radiosity::Emitter& moved);
     /// Whether a light is shown by previewEmitter() (the image is a quick one).
-    bool previewing() const { return !previews_.empty(); }
+    bool previewing() const { return !previews_.empty() || objectPreview_ != nullptr; }
+    /// A quick look at the object added last moved to `polygons` (same faces, world space),
+    /// for the frames of a drag (the viewer's box drag; issue 32): bounded work per frame,
+    /// no link or visibility work in the solver. The first call takes the object out of the
+    /// solver (removeLastObject: the scene and its light as without it, exactly, one
+    /// update), keeping what its faces gathered (their mean indirect irradiance). Each call
+    /// then shows, in the per-pixel displays (render(), pixelDirect()):
+    ///   - its shadows: each pixel's direct light of every light times the share of it that
+    ///     the object at `polygons` lets through, measured at one camera sample with
+    ///     kPreviewRays shadow rays per lamp face against the object alone (its own Embree
+    ///     scene; quickTransmission(), quick_light.h), at the pixels whose rays can meet
+    ///     its bounding sphere only; exact where the object's shadow and the scene's own do
+    ///     not overlap within a pixel, as independent shares elsewhere;
+    ///   - the object itself over the image: rho (direct + indirect) / pi, its direct light
+    ///     from kPreviewRays rays per lamp face against the scene (it does not shade itself:
+    ///     exact for a convex object) at one point per pixel and face, its indirect light
+    ///     the faces' gathered mean as last solved (before the drag);
+    ///   - the indirect light of the rest as the scene has it without the object (it moves:
+    ///     no light bounced off or blocked by it at either place).
+    /// Not `relight render`'s image: a new instance with the object at its place is (the
+    /// viewer's Session::settle). Returns false, changing nothing, where it does not apply
+    /// (no object added last, a lamp's face, a real object taken out, a specular term on the
+    /// object, another face count); then moveLastObject() is the exact move. While it is on,
+    /// the other edits throw std::logic_error: insert the parts again (a new instance).
+    bool previewLastObject(const std::vector<radiosity::Polygon>& polygons);
+    bool previewingObject() const { return objectPreview_ != nullptr; }
+    /// Shadow rays per lamp face of previewLastObject()'s frames.
+    static constexpr int kPreviewRays = 16;
     /// Undoes the last change: removes the virtual part added last (object or light), or
     /// brings back the real object taken out last.
     void removeLast();
@@ -296,6 +324,26 @@ class DynamicRelighting {
         std::vector<float> direct;
     };
     std::vector<Preview> previews_;
+    /// previewLastObject()'s object: where it is shown, its faces' reflectance and indirect
+    /// irradiance (from before the drag), its own Embree scene (group 0), and per pixel and
+    /// light the share of the direct light it lets through.
+    struct ObjectPreview {
+        std::vector<radiosity::Polygon> polygons;
+        std::vector<Rgb> rho, indirect;
+        std::unique_ptr<radiosity::Visibility> vis;
+        int group = -1;
+        std::vector<float> transmission;
+    };
+    std::unique_ptr<ObjectPreview> objectPreview_;
+    /// The moved object over the image (previewLastObject): its pixels' share and radiance.
+    VirtualOverlay previewOverlay() const;
+    /// Throws std::logic_error while an object is shown moved (`what`: the edit refused).
+    void noPreview(const char* what) const;
+    /// previewLastObject()'s first call: the checks, the faces' indirect light, the object
+    /// out of the solver, its own Embree scene.
+    bool startObjectPreview(const std::vector<radiosity::Polygon>& polygons);
+    /// Per object vertex (objectMesh_): the indirect irradiance its leaves gather.
+    std::vector<Rgb> objectIndirect_;
     std::vector<float> pixelShown_;
     size_t pixelLights_ = 0;
     /// The real objects taken out: their pixels (object_removal.h), and the mask's growth.

@@ -11,8 +11,14 @@
 // Inside a lit or shadowed region it is the exact value up to the normal's and the disc's
 // spread over the pixel; at a shadow's edge it is 0 or 1 where the exact value is a
 // fraction (a hard, pixel-sized edge).
+//
+// The same for an object moved (DynamicRelighting::previewLastObject, a box dragged): the
+// share of every light that the object lets through at one camera sample per pixel
+// (quickTransmission), traced against the object alone in its own Embree scene, at the
+// pixels whose shadow rays can meet it (a cone test against its bounding sphere) only.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "radiosity/emitter.h"
@@ -29,5 +35,36 @@ namespace relight {
 std::vector<float> quickPixelLight(const ItemBuffer& items, const radiosity::Scene& scene,
                                    const radiosity::Visibility& vis,
                                    const radiosity::Emitter& light);
+
+/// A sphere that bounds a moved object (its polygons' corners), to tell the points whose
+/// light it may block.
+struct BoundingSphere {
+    radiosity::Vec3 centre{0, 0, 0};
+    double radius = 0;
+};
+BoundingSphere boundingSphere(std::span<const radiosity::Polygon> polygons);
+
+/// G_l at `at` for every light l of `scene` (DirectLight::geometry's quantity: pi G is the
+/// light's unit irradiance; a quad light's faces by Lambert's contour integral times the
+/// share of `rays` stratified shadow rays that arrive, a sun, point lamp or sky through its
+/// own sampling, radiosity::Emitter::unitIrradiance), its shadows traced in `vis`, never
+/// the links' verdicts (they hold for the solver's geometry, not for an object moved
+/// outside it). `sameScene`: `vis` holds `scene`'s polygons (the receiver's and the lamps'
+/// faces are then ignored as blockers); false for an occluder's own scene (quickTransmission's).
+/// `unoccluded` (optional): the same without blockers. `near` (optional): a quad's face
+/// whose rays from `at` cannot meet that sphere is taken as unblocked without a ray.
+void quickPointGeometry(const radiosity::Scene& scene, const radiosity::Visibility& vis,
+                        bool sameScene, const radiosity::ReceiverPoint& at, int rays, uint64_t seed,
+                        double* G, double* unoccluded = nullptr,
+                        const BoundingSphere* near = nullptr);
+
+/// Per pixel and light of `scene`, [pixel * lights + l]: the share of light l's unit
+/// irradiance at one camera sample of the pixel (quickPixelLight's) that the polygons of
+/// `occluder` (their own scene: a moved object) let through, from quickPointGeometry with
+/// `rays` rays; 1 where they block nothing, where no ray can meet `near`, or where the
+/// light sends nothing there.
+std::vector<float> quickTransmission(const ItemBuffer& items, const radiosity::Scene& scene,
+                                     const radiosity::Visibility& occluder,
+                                     const BoundingSphere& near, int rays);
 
 }  // namespace relight

@@ -488,3 +488,83 @@ TEST(DynamicRelighting, ASliderWithAVirtualLampIsNotQuick) {
     EXPECT_FALSE(dyn.setRealRadiances(other));
     EXPECT_EQ(dyn.radiance()[0], radianceOf(e)[0]);  // unchanged
 }
+
+// A box dragged in the viewer's per-pixel display (previewLastObject, issue 32): the quick
+// frame at a place against the box inserted there (render's image), and the relighting as
+// the drag found it once the quick session ends.
+TEST(DynamicRelighting, ADraggedBoxsQuickImageIsNearTheExactOne) {
+    const auto radiance = radianceOf(EditFile{});
+    const VirtualObject here = edit("virtual_box").addObjects.at(0);
+    const VirtualObject there = edit("virtual_box_moved").addObjects.at(0);
+    Image exactFirst;
+    {
+        DynamicRelighting dyn(room(), radiance);
+        dyn.addObject(there);
+        exactFirst = dyn.render(DisplayMode::pixel);
+    }
+    GeometryCache cache;
+    Image quick;
+    std::vector<float> quickDirect;
+    {
+        DynamicRelighting dyn(room(), radiance, &cache);
+        dyn.addObject(here);
+        dyn.render(DisplayMode::pixel);
+        // The first call takes the box out of the solver; the next ones move it alone.
+        ASSERT_TRUE(dyn.previewLastObject(here.polygons));
+        ASSERT_TRUE(dyn.previewLastObject(there.polygons));
+        EXPECT_TRUE(dyn.previewingObject());
+        quick = dyn.render(DisplayMode::pixel);
+        const std::span<const float> d = dyn.pixelDirect();
+        quickDirect.assign(d.begin(), d.end());
+        EXPECT_THROW(dyn.moveLastObject(there.polygons), std::logic_error);
+        EXPECT_FALSE(dyn.setRealRadiances(radiance));
+    }
+    DynamicRelighting exact(room(), radiance, &cache);
+    exact.addObject(there);
+    const Image img = exact.render(DisplayMode::pixel);
+    // The solver went back to the preparation bit for bit: the same image as before the drag.
+    EXPECT_EQ(maxAbsDiff(img, exactFirst), 0.0);
+    // The direct light per pixel and light: where no ray can meet the box, the cached value
+    // of the scene without it, which the exact one also is (the same seeded rays, none
+    // blocked); under its shadow, the share it lets through from one camera sample of 16.
+    // Bounds: 99 % of the values identical (seen: 99.85 %), 0.5 % off by more than 2 %
+    // (seen: 0.12 %: pixels whose samples straddle the shadow's edge or a surface's), and
+    // the image's total within 0.5 % (seen: 0.001 %: the shadow takes as much light away).
+    const std::span<const float> d = exact.pixelDirect();
+    ASSERT_EQ(d.size(), quickDirect.size());
+    size_t same = 0, off = 0;
+    double sumQuick = 0, sumExact = 0;
+    for (size_t i = 0; i < d.size(); ++i) {
+        const double a = static_cast<double>(quickDirect[i]), b = static_cast<double>(d[i]);
+        same += a == b ? 1 : 0;
+        off += std::abs(a - b) > 0.02 * std::max(b, 0.01) ? 1 : 0;
+        sumQuick += a;
+        sumExact += b;
+    }
+    EXPECT_GE(same, d.size() * 99 / 100);
+    EXPECT_LE(off, d.size() / 200);
+    EXPECT_NEAR(sumQuick, sumExact, 0.005 * sumExact);
+    // The image: beyond the direct light, the indirect light is the scene's without the box
+    // (its bounce and the light it blocks are missing, over the room: up to 0.004 on the
+    // walls) and the box's faces keep what they gathered where it was. Bounds: 1 % of the
+    // values beyond 1/255 (seen: 0.52 %), none beyond 10/255 (seen: 0.0254, by the box).
+    size_t beyond = 0;
+    for (size_t i = 0; i < img.rgb.size(); ++i)
+        beyond += std::abs(static_cast<double>(quick.rgb[i]) - static_cast<double>(img.rgb[i])) >
+                          1.0 / 255
+                      ? 1
+                      : 0;
+    EXPECT_LE(beyond, img.rgb.size() / 100);
+    EXPECT_LE(maxAbsDiff(quick, img), 10.0 / 255);
+    // Against the path-traced truth, the issue's bounds for the room's virtual edits (0.05,
+    // 0.15 where the edit changes the image), as the exact image meets them (seen: quick
+    // 0.0126 and 0.103, exact 0.0114 and 0.036: the quick frame's error is the box's own
+    // light and the indirect light near it).
+    const Score q = score("virtual_box_moved", quick);
+    EXPECT_LE(q.relRmse, 0.05);
+    EXPECT_LE(q.changedRelRmse, 0.15);
+    std::printf(
+        "direct: %zu of %zu values equal, %zu off by > 2 %%; image: %zu values beyond "
+        "1/255, at most %.4f; truth: rel_rmse %.4f, changed %.4f\n",
+        same, d.size(), off, beyond, maxAbsDiff(quick, img), q.relRmse, q.changedRelRmse);
+}
