@@ -1,12 +1,13 @@
 #include "radiosity/face_clusters.h"
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <numbers>
 #include <queue>
-#include <unordered_map>
 #include <utility>
 
 namespace radiosity {
@@ -98,23 +99,6 @@ double mergeCost(const Stats& a, const Stats& b, double shared, const FaceCluste
     return eDir + eFit + o.shapeWeight * eShape;
 }
 
-struct CornerKey {
-    double x, y, z;
-    bool operator==(const CornerKey& k) const { return x == k.x && y == k.y && z == k.z; }
-};
-struct CornerHash {
-    size_t operator()(const CornerKey& k) const {
-        uint64_t h = 1469598103934665603ull;
-        for (double d : {k.x, k.y, k.z}) {
-            uint64_t bits;
-            std::memcpy(&bits, &d, sizeof bits);
-            h = (h ^ bits) * 1099511628211ull;
-            h ^= h >> 29;
-        }
-        return static_cast<size_t>(h);
-    }
-};
-
 using Adjacency = std::vector<std::vector<std::pair<int, double>>>;  // (neighbour, shared length)
 
 void addShared(std::vector<std::pair<int, double>>& list, int other, double length) {
@@ -126,45 +110,83 @@ void addShared(std::vector<std::pair<int, double>>& list, int other, double leng
     list.emplace_back(other, length);
 }
 
+/// Every corner of the reflecting polygons numbered so that corners equal to the last bit
+/// share a number: the corners sorted by their coordinates' bits (sorting 10^6 corners
+/// costs a fifth of hashing them into a map of vectors, bench/RESULTS.md 2026-11-27, eighth
+/// session). cornerId[k] is the number of corner k of the concatenated corner lists,
+/// polygon by polygon (first[p]: where polygon p's begin).
+struct CornerIds {
+    std::vector<int> first, id;
+};
+
+CornerIds numberCorners(std::span<const Polygon> polygons) {
+    CornerIds c;
+    c.first.resize(polygons.size() + 1, 0);
+    for (size_t p = 0; p < polygons.size(); ++p)
+        c.first[p + 1] = c.first[p] + (polygons[p].light >= 0 ? 0 : polygons[p].vertexCount);
+    const size_t count = static_cast<size_t>(c.first.back());
+    struct Corner {
+        std::array<uint64_t, 3> bits;
+        int index;
+    };
+    std::vector<Corner> corners(count);
+    for (size_t p = 0; p < polygons.size(); ++p)
+        for (int k = c.first[p]; k < c.first[p + 1]; ++k) {
+            const Vec3& v = polygons[p].v[k - c.first[p]];
+            Corner& x = corners[static_cast<size_t>(k)];
+            std::memcpy(x.bits.data(), &v.x, 8);
+            std::memcpy(x.bits.data() + 1, &v.y, 8);
+            std::memcpy(x.bits.data() + 2, &v.z, 8);
+            x.index = k;
+        }
+    tbb::parallel_sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) {
+        return a.bits != b.bits ? a.bits < b.bits : a.index < b.index;
+    });
+    c.id.resize(count);
+    int next = -1;
+    for (size_t i = 0; i < count; ++i) {
+        if (i == 0 || corners[i].bits != corners[i - 1].bits) ++next;
+        c.id[static_cast<size_t>(corners[i].index)] = next;
+    }
+    return c;
+}
+
 /// Polygons that share an edge (both corners equal to the last bit), of the same object and
 /// neither a lamp's face.
 Adjacency sharedEdges(std::span<const Polygon> polygons, size_t capacity) {
-    std::unordered_map<CornerKey, int, CornerHash> corners;
-    corners.reserve(polygons.size() * 2);
-    const auto cornerId = [&](const Vec3& v) {
-        return corners.try_emplace(CornerKey{v.x, v.y, v.z}, static_cast<int>(corners.size()))
-            .first->second;
+    const CornerIds corners = numberCorners(polygons);
+    struct EdgeUse {
+        uint64_t key;  ///< the two corner numbers, smaller first
+        int polygon;
+        double length;
     };
-    std::unordered_map<uint64_t, std::vector<int>> edges;
-    edges.reserve(polygons.size() * 2);
+    std::vector<EdgeUse> uses;
+    uses.reserve(corners.id.size());
     for (size_t p = 0; p < polygons.size(); ++p) {
-        const Polygon& P = polygons[p];
-        if (P.light >= 0) continue;
-        for (int i = 0; i < P.vertexCount; ++i) {
-            const uint64_t a = static_cast<uint32_t>(cornerId(P.v[i]));
-            const uint64_t b = static_cast<uint32_t>(cornerId(P.v[(i + 1) % P.vertexCount]));
+        const int f = corners.first[p], count = corners.first[p + 1] - f;
+        for (int i = 0; i < count; ++i) {
+            const uint64_t a = static_cast<uint32_t>(corners.id[static_cast<size_t>(f + i)]);
+            const uint64_t b =
+                static_cast<uint32_t>(corners.id[static_cast<size_t>(f + (i + 1) % count)]);
             if (a == b) continue;
-            edges[std::min(a, b) << 32 | std::max(a, b)].push_back(static_cast<int>(p));
+            // The same length from every polygon on the edge: its corners are equal.
+            const double length = glm::length(polygons[p].v[(i + 1) % count] - polygons[p].v[i]);
+            uses.push_back({std::min(a, b) << 32 | std::max(a, b), static_cast<int>(p), length});
         }
     }
+    tbb::parallel_sort(uses.begin(), uses.end(), [](const EdgeUse& a, const EdgeUse& b) {
+        return a.key != b.key ? a.key < b.key : a.polygon < b.polygon;
+    });
     Adjacency adj(capacity);
-    for (const auto& [key, faces] : edges) {
-        if (faces.size() < 2 || faces.size() > 8) continue;  // a boundary, or a fan of sheets
-        const Polygon& P0 = polygons[faces[0]];
-        double length = 0;
-        for (int i = 0; i < P0.vertexCount && length == 0; ++i) {
-            const Vec3& a = P0.v[i];
-            const Vec3& b = P0.v[(i + 1) % P0.vertexCount];
-            const uint64_t ia = static_cast<uint32_t>(cornerId(a)),
-                           ib = static_cast<uint32_t>(cornerId(b));
-            if ((std::min(ia, ib) << 32 | std::max(ia, ib)) == key) length = glm::length(b - a);
-        }
-        for (size_t i = 0; i < faces.size(); ++i)
-            for (size_t j = i + 1; j < faces.size(); ++j) {
-                const int f = faces[i], g = faces[j];
+    for (size_t begin = 0, end = 0; begin < uses.size(); begin = end) {
+        while (end < uses.size() && uses[end].key == uses[begin].key) ++end;
+        if (end - begin < 2 || end - begin > 8) continue;  // a boundary, or a fan of sheets
+        for (size_t i = begin; i < end; ++i)
+            for (size_t j = i + 1; j < end; ++j) {
+                const int f = uses[i].polygon, g = uses[j].polygon;
                 if (f == g || polygons[f].object != polygons[g].object) continue;
-                addShared(adj[f], g, length);
-                addShared(adj[g], f, length);
+                addShared(adj[f], g, uses[begin].length);
+                addShared(adj[g], f, uses[begin].length);
             }
     }
     return adj;

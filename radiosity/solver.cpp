@@ -49,13 +49,21 @@ HierarchicalSolver::HierarchicalSolver(Scene scene, SolverOptions options)
     : scene_(std::move(scene)),
       options_(std::move(options)),
       h_(scene_, options_.maxPolygonsPerCluster) {
-    const auto t0 = Clock::now();
+    const double tHierarchy = secondsSince(constructed_);
     vis_ = std::make_unique<Visibility>(scene_);
     transfer_ = std::make_unique<TransferEvaluator>(h_, *vis_, options_.transfer);
     minArea_ = options_.minArea > 0 ? options_.minArea : 2e-5 * scene_.totalArea();
     maxMemory_ = options_.maxMemory > 0 ? options_.maxMemory : defaultMemoryBudget();
     maxLinks_ = options_.maxLinks > 0 ? options_.maxLinks : maxMemory_ / sizeof(Link);
-    timing_.timeBuild = secondsSince(t0);
+    timing_.timeBuild = secondsSince(constructed_);
+    if (options_.progress) {
+        char msg[160];
+        std::snprintf(msg, sizeof msg,
+                      "hierarchy of %d polygons in %d face clusters: %.1f s; visibility: %.1f s",
+                      static_cast<int>(scene_.polygons.size()), h_.faceClusterCount(), tHierarchy,
+                      timing_.timeBuild - tHierarchy);
+        report(msg);
+    }
 }
 
 size_t defaultMemoryBudget() {
@@ -141,10 +149,25 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
     const bool splitR = canSplit(r), splitS = canSplit(s);
     if (!splitR && !splitS) return {Decision::accept, value};
     if (R.isCluster() || S.isCluster()) {
-        // Open clusters first; of two clusters the larger one.
+        // Of two clusters the larger one is opened. Of a cluster and an element, the
+        // cluster, unless it is a surface (its faces within a cone narrower than
+        // kSurfaceCone: none faces away from another) and the element is the larger: the
+        // element is split then (Smits, Arvo & Greenberg 1994: the end that subtends the
+        // larger angle). Opening every cluster first linked a 36 m^2 wall to 79 k triangles
+        // of a chandelier one by one, and every point of the wall gathered them all; a
+        // cluster of faces turned every way (a lamp's shade, inside and out) must still be
+        // opened, or it sends its bright side's light out through its dark one.
         if (R.isCluster() && S.isCluster())
             return {R.radius >= S.radius ? Decision::splitReceiver : Decision::splitSource, value};
-        return {R.isCluster() ? Decision::splitReceiver : Decision::splitSource, value};
+        const auto elementFirst = [](const Node& cluster, const Node& element, bool canSplitIt) {
+            return canSplitIt && cluster.coneAngle < kSurfaceCone &&
+                   element.radius > kElementFirstRatio * cluster.radius;
+        };
+        if (R.isCluster())
+            return {elementFirst(R, S, splitS) ? Decision::splitSource : Decision::splitReceiver,
+                    value};
+        return {elementFirst(S, R, splitR) ? Decision::splitReceiver : Decision::splitSource,
+                value};
     }
     if (!splitR) return {Decision::splitSource, value};
     if (!splitS) return {Decision::splitReceiver, value};

@@ -453,6 +453,15 @@ class HierarchicalSolver {
     static constexpr double kFarField = 0.1;
     /// Fraction of the power threshold above which a near-field cluster link is refined.
     static constexpr double kNearFieldPower = 0.1;
+    /// A cluster whose normal cone is narrower than this (radians, 90 degrees) is a surface
+    /// for the oracle: none of its faces faces away from another, and a larger element
+    /// linked to it is split before it is opened (oracle()).
+    static constexpr double kSurfaceCone = 1.5707963267948966;
+    /// How many times a surface-like cluster's bounding radius an element's must be for the
+    /// element to be split first: a cluster that small is nearly a point seen from the
+    /// element, so opening it leaves the link's error (the variation of the form factor over
+    /// the element) as it was; of comparable sizes the cluster is opened, as before.
+    static constexpr double kElementFirstRatio = 4.0;
     /// Strata per side of the rays that measure a lamp face's `seen` (measureSeen).
     static constexpr int kLampSeenSide = 64;
     /// Smallest face cluster whose polygons take its `seen`, measured once
@@ -607,6 +616,9 @@ class HierarchicalSolver {
 
     Scene scene_;
     SolverOptions options_;
+    /// When construction began: set before h_ is built, so that timeBuild counts the face
+    /// clusters and the hierarchy (seconds on a 10^5-triangle mesh), not only the BVH.
+    Clock::time_point constructed_ = Clock::now();
     Hierarchy h_;
     std::unique_ptr<Visibility> vis_;
     std::unique_ptr<TransferEvaluator> transfer_;

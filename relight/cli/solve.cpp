@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "radiosity/deadline.h"
 #include "radiosity/solver.h"
 #include "relight/cli/util.h"
 #include "relight/io/image.h"
@@ -64,6 +65,20 @@ class CameraSamples {
         if (!haveLighting_) lighting_ = measure(plan_.stride);
         haveLighting_ = true;
         return lighting_;
+    }
+
+    /// The same, given up at `deadline` (radiosity::runUntil): null when it could not be
+    /// measured by then, and nothing partial is kept for a later call.
+    const LightingBuffer* lightingUntil(Clock::time_point deadline) {
+        if (haveLighting_) return &lighting_;
+        LightingBuffer b;
+        if (!radiosity::runUntil(deadline, [&] { b = measure(plan_.stride); })) {
+            std::fprintf(stderr, "per-pixel lighting given up at the deadline\n");
+            return nullptr;
+        }
+        lighting_ = std::move(b);
+        haveLighting_ = true;
+        return &lighting_;
     }
 
     /// The lighting of every pixel, for the -o image.
@@ -158,14 +173,19 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
     // Already past the estimate's share (a large mesh on a loaded machine: the stair hall at
     // load 8 reached it during the refinement), the per-pixel lighting it would need is not
     // measured either: 7 s there.
+    // The lighting is part of the set-up: given up with it at the share's end (3 s of shadow
+    // rays on the stair hall, measured and then thrown away when the rest did not fit).
+    const LightingBuffer* lighting = nullptr;
     if (Clock::now() < budget.until(share)) {
         const ItemBuffer& items = camera.items();
-        const LightingBuffer& lighting = camera.lighting();
-        ReflectanceOptions ro;
-        ro.rounds = a.reflectanceRounds;
-        ro.seconds = budget.secondsUntil(share);
-        ro.setUpUntil = budget.until(share);
-        rep = estimatePolygonReflectance(solver, sf, items, lighting, photo, ro);
+        lighting = camera.lightingUntil(budget.until(share));
+        if (lighting) {
+            ReflectanceOptions ro;
+            ro.rounds = a.reflectanceRounds;
+            ro.seconds = budget.secondsUntil(share);
+            ro.setUpUntil = budget.until(share);
+            rep = estimatePolygonReflectance(solver, sf, items, *lighting, photo, ro);
+        }
     }
     if (rep.skipped)
         std::fprintf(stderr,

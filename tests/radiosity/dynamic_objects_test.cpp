@@ -164,13 +164,23 @@ TEST(DynamicObjects, IncrementalUpdatesAgreeWithSolutionsFromScratch) {
         scratch.solve();
         const auto a = polygonMeans(solver), b = polygonMeans(scratch);
         ASSERT_EQ(a.size(), b.size());
+        const double power = scratch.stats().emittedPower.average();
         for (size_t p = 0; p < a.size(); ++p) {
-            // Mean radiosity per polygon within 3 % of the brightest channel: both solutions
-            // stop refining at the same epsilon (1e-3 of the emitted power per link), but
-            // the incremental one keeps the scene's subdivision and the scratch one refines
-            // the floor in the new shadow, so they differ by a few such link budgets.
+            // Mean radiosity per polygon within 3 % of the brightest channel, plus rho times
+            // one link's budget on the polygon: both solutions stop refining at the same
+            // epsilon (a link is kept when the power its receiver reflects from it is at
+            // most epsilon of the emitted power Phi), so where the two refine differently a
+            // polygon's mean can differ by epsilon Phi / A. They do on the box's dim sides:
+            // the scratch hierarchy holds the box in other clusters than the inserted one, and
+            // the oracle splits the floor or opens a cluster accordingly (kElementFirstRatio).
+            // Measured against a converged solution (epsilon 1e-6, 64 rays), the +x side at
+            // x = 0.7 reads 0.0105 incremental, 0.0072 from scratch, 0.0060 converged: 0.0033
+            // apart, a fifth of its link budget (0.015).
+            const Polygon& poly = scratch.scene().polygons[p];
+            const double linkBudget =
+                poly.rho.maxComponent() * options().epsilon * power / std::max(poly.area, 1e-12);
             for (int c = 0; c < 3; ++c)
-                EXPECT_NEAR(a[p][c], b[p][c], 0.03 * b[p].maxComponent() + 1e-9)
+                EXPECT_NEAR(a[p][c], b[p][c], 0.03 * b[p].maxComponent() + linkBudget + 1e-9)
                     << what << ", polygon " << p << ", channel " << c;
         }
         for (double x : {0.0, 1.0, -1.2})
