@@ -5,6 +5,9 @@
 //   LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1920x1080x24"
 //       ./build/bench/viewer_frames data [--scene NAME] [--upscale K] [--frames N]  (one line)
 //
+// --context egl: a headless context through EGL on a pbuffer instead of a hidden GLX window
+// (viewer/egl_context.h), for a GPU with no X server its driver draws for; no xvfb-run.
+//
 // --scene courtyard (any scene with a sun): the sun drag alone (sunDrag below).
 // Prepares data/room (default RelightOptions), with --upscale K at K times the photo's
 // resolution (the camera scaled, the photo upscaled by pixel replication: the same scene,
@@ -44,6 +47,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <system_error>
@@ -60,6 +64,7 @@
 #include "relight/io/scene_file.h"
 #include "relight/pipeline/camera.h"
 #include "relight/relighting.h"
+#include "viewer/egl_context.h"
 #include "viewer/frame.h"
 #include "viewer/gl_window.h"
 #include "viewer/gpu_display.h"
@@ -77,13 +82,16 @@ namespace {
 struct Args {
     std::string data;
     std::string scene = "room";
+    std::string context = "glx";  ///< "glx": a hidden window; "egl": a pbuffer (no display)
     int upscale = 1, frames = 60;
 };
 
 /// `<data_dir> [--upscale K] [--frames N]`; false (after a usage line) when they are wrong.
 bool parseArgs(int argc, char** argv, Args& a) {
     const auto usage = [&] {
-        std::fprintf(stderr, "usage: %s <data_dir> [--scene NAME] [--upscale K] [--frames N]\n",
+        std::fprintf(stderr,
+                     "usage: %s <data_dir> [--scene NAME] [--upscale K] [--frames N] "
+                     "[--context glx|egl]\n",
                      argv[0]);
         return false;
     };
@@ -93,6 +101,11 @@ bool parseArgs(int argc, char** argv, Args& a) {
         if (i + 1 >= argc) return usage();
         if (std::strcmp(argv[i], "--scene") == 0) {
             a.scene = argv[i + 1];
+            continue;
+        }
+        if (std::strcmp(argv[i], "--context") == 0) {
+            a.context = argv[i + 1];
+            if (a.context != "glx" && a.context != "egl") return usage();
             continue;
         }
         int* value = std::strcmp(argv[i], "--upscale") == 0  ? &a.upscale
@@ -296,9 +309,15 @@ int run(const Args& a) {
     const fs::path dir = fs::path(a.data) / a.scene;
     // The window before the preparation: without a display the bench fails at once.
     SceneFile sf = loadScene(dir);
-    GlWindow window(sf.camera.width * a.upscale, sf.camera.height * a.upscale, "viewer_frames",
-                    false);
-    std::printf("renderer: %s; %u hardware threads\n", window.renderer().c_str(),
+    const int width = sf.camera.width * a.upscale, height = sf.camera.height * a.upscale;
+    std::unique_ptr<GlWindow> window;
+    std::unique_ptr<EglContext> egl;
+    if (a.context == "egl")
+        egl = std::make_unique<EglContext>(width, height);
+    else
+        window = std::make_unique<GlWindow>(width, height, "viewer_frames", false);
+    std::printf("renderer: %s; %u hardware threads\n",
+                (egl ? egl->renderer() : window->renderer()).c_str(),
                 std::thread::hardware_concurrency());
 
     const TempDir tmp(fs::temp_directory_path() /
