@@ -217,6 +217,38 @@ void printRow(const char* scenario, const Display& display, const Samples& s) {
                 cell(s.draw).c_str(), 1e3 / quantile(s.frame, 0.5), passes);
 }
 
+/// The largest difference of two images of one size, and their rel_rmse-like mean: the
+/// root of the mean squared difference over the root of the mean square of `b`.
+void compare(const Image& a, const Image& b, double& worst, double& rel) {
+    double d2 = 0, b2 = 0;
+    worst = 0;
+    for (size_t i = 0; i < a.rgb.size() && i < b.rgb.size(); ++i) {
+        const double x = a.rgb[i], y = b.rgb[i];
+        const double d = x - y;
+        worst = std::max(worst, std::abs(d));
+        d2 += d * d;
+        b2 += y * y;
+    }
+    rel = b2 > 0 ? std::sqrt(d2 / b2) : 0;
+}
+
+/// The pointer or slider resting after quick frames (Session::settle: the exact image):
+/// the time of that one frame and how far the last quick image was from it, printed.
+void printAtRest(Session& session, FrameRenderer& frame, const char* what) {
+    const Image quick = session.relitPerPixel();
+    const auto rest = Clock::now();
+    session.settle();
+    frame.render();
+    const double ms = 1e3 * secondsSince(rest);
+    const Image exact = session.relitPerPixel();
+    double worst = 0, rel = 0;
+    compare(quick, exact, worst, rel);
+    std::printf(
+        "  the %s at rest: the exact image in %.1f ms (one frame); the last quick one against "
+        "it: at most %.4f, rel_rmse %.5f (per-pixel display)\n",
+        what, ms, worst, rel);
+}
+
 /// The light slider in every display: light 0 from 0.2x its intensity up to 2x and
 /// back (a raised cosine, as a hand moves a slider), then the photo's intensity again.
 void lightSlider(const char* scenario, Session& session, FrameRenderer& frame, int frames) {
@@ -232,41 +264,12 @@ void lightSlider(const char* scenario, Session& session, FrameRenderer& frame, i
         // With virtual objects the slider's frames are quick images (Session::update); the
         // slider at rest, the exact one (Session::settle): its frame, and how far the last
         // quick image was from it.
-        if (session.exactPending()) {
-            const Image quick = session.relitPerPixel();
-            const auto t0 = Clock::now();
-            session.settle();
-            frame.render();
-            const double ms = 1e3 * secondsSince(t0);
-            const Image exact = session.relitPerPixel();
-            double worst = 0;
-            for (size_t i = 0; i < exact.rgb.size(); ++i)
-                worst = std::max(worst, static_cast<double>(std::abs(exact.rgb[i] - quick.rgb[i])));
-            std::printf(
-                "  the slider at rest: the exact image in %.1f ms (one frame); the last "
-                "quick one differed from it by at most %.2e (per-pixel display)\n",
-                ms, worst);
-        }
+        if (session.exactPending()) printAtRest(session, frame, "slider");
     }
     light.intensity = initial;
     session.update();
     session.settle();
     frame.render();
-}
-
-/// The largest difference of two images of one size, and their rel_rmse-like mean: the
-/// root of the mean squared difference over the root of the mean square of `b`.
-void compare(const Image& a, const Image& b, double& worst, double& rel) {
-    double d2 = 0, b2 = 0;
-    worst = 0;
-    for (size_t i = 0; i < a.rgb.size() && i < b.rgb.size(); ++i) {
-        const double x = a.rgb[i], y = b.rgb[i];
-        const double d = x - y;
-        worst = std::max(worst, std::abs(d));
-        d2 += d * d;
-        b2 += y * y;
-    }
-    rel = b2 > 0 ? std::sqrt(d2 / b2) : 0;
 }
 
 /// The sun turned by a drag on the image (Session::dragSun, the viewer's sun tool), in the
@@ -287,19 +290,7 @@ void sunDrag(Session& session, FrameRenderer& frame, int frames, int upscale) {
             session.dragSun(sun, 1.0 * upscale, 0.5 * upscale);
         });
         printRow(quick ? "sun drag, quick" : "sun drag, each exact", display, s);
-        if (!session.exactPending()) continue;
-        const Image q = session.relitPerPixel();
-        const auto rest = Clock::now();
-        session.settle();
-        frame.render();
-        const double ms = 1e3 * secondsSince(rest);
-        const Image exact = session.relitPerPixel();
-        double worst = 0, rel = 0;
-        compare(q, exact, worst, rel);
-        std::printf(
-            "  the drag at rest: the exact image in %.1f ms (one frame); the last quick one "
-            "against it: at most %.3f, rel_rmse %.4f\n",
-            ms, worst, rel);
+        if (session.exactPending()) printAtRest(session, frame, "drag");
     }
 }
 
@@ -406,20 +397,7 @@ int run(const Args& a) {
             ++misses;
     });
     printRow("box drag, quick", kDisplays[2], quick);
-    if (session.exactPending()) {
-        const Image q = session.relitPerPixel();
-        const auto rest = Clock::now();
-        session.settle();
-        frame.render();
-        const double ms = 1e3 * secondsSince(rest);
-        const Image exact = session.relitPerPixel();
-        double worst = 0, rel = 0;
-        compare(q, exact, worst, rel);
-        std::printf(
-            "  the drag at rest: the exact image in %.1f ms (one frame); the last quick one "
-            "against it: at most %.4f, rel_rmse %.5f\n",
-            ms, worst, rel);
-    }
+    if (session.exactPending()) printAtRest(session, frame, "drag");
     session.setQuickMoves(false);
     session.endDrag();
     const auto& m = session.objects().at(0).object.transform;  // the unit box scaled

@@ -435,6 +435,13 @@ class HierarchicalSolver {
     const SolverOptions& options() const { return options_; }
     SolverStats stats() const;
     double minArea() const { return minArea_; }
+    /// A solve() now would refine no link: its time budget was reached, or
+    /// SolverOptions::refineUntil has passed (refineSeconds, which each solve() counts
+    /// afresh, does not end it). It would only gather again.
+    bool refinementOver() const {
+        return timeBudgetReached_ || (options_.refineUntil != Clock::time_point::max() &&
+                                      Clock::now() >= options_.refineUntil);
+    }
 
   private:
     /// defer: a cluster's self-interaction too weak to refine now, kept aside

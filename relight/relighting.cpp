@@ -239,6 +239,7 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
     ro.rounds = o.reflectanceRounds;
     ro.seconds =
         r.budget.secondsUntil(RelightOptions::kRefineShare + RelightOptions::kReflectanceShare);
+    ro.progress = [&o](const std::string& m) { say(o, m); };
     const ReflectanceReport rep =
         estimatePolygonReflectance(*r.solver, r.scene, r.items, lighting, P.photo, ro);
     r.surface = rep.surface;

@@ -1,5 +1,7 @@
 #include "viewer/egl_context.h"
 
+#include "viewer/gl_window.h"  // glRenderer
+
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
@@ -93,9 +95,7 @@ EglContext::~EglContext() {
 }
 
 std::string EglContext::renderer() const {
-    const auto* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const auto* v = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-    return std::string(r ? r : "?") + ", OpenGL " + (v ? v : "?") + " (EGL, " + platform_ + ")";
+    return glRenderer() + " (EGL, " + platform_ + ")";
 }
 
 }  // namespace relight::viewer

@@ -57,7 +57,7 @@ GlWindow::~GlWindow() {
     glfwTerminate();
 }
 
-std::string GlWindow::renderer() const {
+std::string glRenderer() {
     const auto* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const auto* v = reinterpret_cast<const char*>(glGetString(GL_VERSION));
     return std::string(r ? r : "?") + ", OpenGL " + (v ? v : "?");

@@ -16,6 +16,10 @@ struct WindowError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// The current context's renderer and version: "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL
+/// 4.5 (Core Profile) Mesa 22.3.6" ("?" for what the driver does not say).
+std::string glRenderer();
+
 class GlWindow {
   public:
     /// Opens a window (hidden when !visible: screenshots and benchmarks) with an OpenGL 3.3
@@ -26,8 +30,7 @@ class GlWindow {
     GlWindow& operator=(const GlWindow&) = delete;
 
     GLFWwindow* handle() const { return window_; }
-    /// "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5 (Core Profile) Mesa 22.3.6"
-    std::string renderer() const;
+    std::string renderer() const { return glRenderer(); }  ///< of its context (current)
 
   private:
     GLFWwindow* window_ = nullptr;

@@ -37,6 +37,22 @@ void growProjectedBox(const Camera& camera, std::span<const radiosity::Polygon> 
             y1 = std::max(y1, static_cast<int>(std::ceil(v)));
         }
 }
+
+/// An overlay over the pixel box [x0, x1] x [y0, y1] clipped to the image, its pixels
+/// cleared; with no pixels (width and height 0) when nothing of the box is in the image.
+VirtualOverlay clippedOverlay(const Camera& camera, int x0, int y0, int x1, int y1) {
+    VirtualOverlay o;
+    o.x0 = std::max(x0, 0);
+    o.y0 = std::max(y0, 0);
+    o.width = std::min(x1, camera.width - 1) - o.x0 + 1;
+    o.height = std::min(y1, camera.height - 1) - o.y0 + 1;
+    if (o.empty()) {
+        o.width = o.height = 0;
+        return o;
+    }
+    o.rgba.assign(static_cast<size_t>(o.width) * static_cast<size_t>(o.height) * 4, 0.0f);
+    return o;
+}
 }  // namespace
 
 using radiosity::Clock;
@@ -165,17 +181,11 @@ VirtualOverlay DynamicRelighting::overlay() {
         x1 = std::max(x1, gone.x0 + gone.width - 1);
         y1 = std::max(y1, gone.y0 + gone.height - 1);
     }
-    VirtualOverlay o;
-    o.x0 = std::max(x0, 0);
-    o.y0 = std::max(y0, 0);
-    o.width = std::min(x1, camera.width - 1) - o.x0 + 1;
-    o.height = std::min(y1, camera.height - 1) - o.y0 + 1;
+    VirtualOverlay o = clippedOverlay(camera, x0, y0, x1, y1);
     if (o.empty()) {
-        o.width = o.height = 0;
         times_.display = secondsSince(t0);
         return o;
     }
-    o.rgba.assign(static_cast<size_t>(o.width) * o.height * 4, 0.0f);
     const OverlaySamples samples(r_.items.spp);
     const int k = samples.k;
     const Vec3 eye = camera.position();
@@ -262,16 +272,8 @@ VirtualOverlay DynamicRelighting::previewOverlay() const {
     const Camera& camera = r_.scene.camera;
     int x0 = camera.width, y0 = camera.height, x1 = -1, y1 = -1;
     growProjectedBox(camera, q.polygons, x0, y0, x1, y1);
-    VirtualOverlay o;
-    o.x0 = std::max(x0, 0);
-    o.y0 = std::max(y0, 0);
-    o.width = std::min(x1, camera.width - 1) - o.x0 + 1;
-    o.height = std::min(y1, camera.height - 1) - o.y0 + 1;
-    if (o.empty()) {
-        o.width = o.height = 0;
-        return o;
-    }
-    o.rgba.assign(static_cast<size_t>(o.width) * static_cast<size_t>(o.height) * 4, 0.0f);
+    VirtualOverlay o = clippedOverlay(camera, x0, y0, x1, y1);
+    if (o.empty()) return o;
     const OverlaySamples samples(r_.items.spp);
     const Vec3 eye = camera.position();
     const auto& scene = solver_.scene();

@@ -65,8 +65,8 @@ struct ReflectanceReport {
     int polygonsSeen = 0;       ///< polygons with enough photo samples, or their surface
     int polygonsDefaulted = 0;  ///< reflecting polygons the photo does not see
     double lastChange = 0;      ///< largest reflectance change in the last round
-    /// The rounds stopped early because their time budget (`seconds`) was spent: the
-    /// solution is that of the rounds done, each of them complete.
+    /// The rounds stopped early because their time budget (`seconds` or `until`) was spent:
+    /// the solution is that of the rounds done, each of them complete.
     bool budgetReached = false;
     /// The set-up could not end by ReflectanceOptions::setUpUntil: nothing was estimated,
     /// every polygon keeps its reflectance and the solver its solution (rounds 0).
@@ -90,6 +90,14 @@ struct ReflectanceOptions {
     /// above the gather points, which cannot be told in advance. The report then says
     /// `skipped`. The largest time point: never given up.
     radiosity::Clock::time_point setUpUntil = radiosity::Clock::time_point::max();
+    /// A deadline for the whole estimate, set-up, rounds and closing solve (the largest time
+    /// point: none). Unlike `seconds`, no round is owed: a round begins only when one as long
+    /// as the last fits before it, and its irradiance sums, the part whose cost cannot be
+    /// told in advance, are given up when it passes (that round then changes nothing, and
+    /// may be the first). `relight solve` sets it, whose whole run has a bound.
+    radiosity::Clock::time_point until = radiosity::Clock::time_point::max();
+    /// Told each round's largest change and time (progress on the terminal); may be empty.
+    std::function<void(const std::string&)> progress;
 };
 
 /// `options.rounds` estimate/solve rounds from a solved `solver`. H per sample is the direct

@@ -123,6 +123,27 @@ TEST(TimeBudget, ADeadlineAlreadyPastStopsTheRefinementAsNoTimeDoes) {
     EXPECT_EQ(a.stats().leaves, b.stats().leaves);
 }
 
+TEST(TimeBudget, OnceTheRefinementIsOverASolveRefinesNothing) {
+    // HierarchicalSolver::refinementOver(): past SolverOptions::refineUntil a solve() would
+    // refine no link (the reflectance estimate skips its closing solve then). Without a
+    // deadline the refinement is never over.
+    const Scene room = test::cutRoom(8, 0.5);
+    SolverOptions o;
+    o.epsilon = 1e-5;
+    o.refineUntil = Clock::now() - std::chrono::seconds(1);
+    HierarchicalSolver late(room, o);
+    late.solve();
+    ASSERT_TRUE(late.refinementOver());
+    const SolverStats before = late.stats();
+    late.solve();
+    EXPECT_EQ(late.stats().links, before.links);
+    EXPECT_EQ(late.stats().leaves, before.leaves);
+    o.refineUntil = Clock::time_point::max();
+    HierarchicalSolver free(room, o);
+    free.solve();
+    EXPECT_FALSE(free.refinementOver());
+}
+
 TEST(TimeBudget, PastTheDeadlineWhatLeavesSeeIsNotMeasuredAndTheyStayUnbounded) {
     // What the leaves see (the energy bound's measurement) is measured before the
     // refinement, given up at its deadline: with the deadline already past, no reflecting

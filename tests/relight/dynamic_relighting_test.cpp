@@ -52,6 +52,15 @@ double maxAbsDiff(const Image& a, const Image& b) {
     return m;
 }
 
+/// How many values of two images of one size differ by more than `limit`.
+size_t countBeyond(const Image& a, const Image& b, double limit) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.rgb.size(); ++i)
+        n +=
+            std::abs(static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i])) > limit ? 1 : 0;
+    return n;
+}
+
 Score score(const std::string& name, const Image& img) {
     int w = img.width, h = img.height;
     return scoreImage(img, readImage(kRoom + "/truth/" + name + ".exr"), room().prepared.photo,
@@ -455,13 +464,7 @@ TEST(DynamicRelighting, ASlidersQuickImageIsNearTheExactOneAndComesBackToIt) {
     // render, at all but 0.1 % of the values (seen: 16 of 230 400, all by the box), and
     // 5/255 anywhere (seen: 0.0134, on the box's face). The change itself is far larger:
     // the quick image did follow the light.
-    size_t over = 0;
-    for (size_t i = 0; i < img.rgb.size(); ++i)
-        over += std::abs(static_cast<double>(quick.rgb[i]) - static_cast<double>(img.rgb[i])) >
-                        1.0 / 255
-                    ? 1
-                    : 0;
-    EXPECT_LE(over, img.rgb.size() / 1000);
+    EXPECT_LE(countBeyond(quick, img, 1.0 / 255), img.rgb.size() / 1000);
     EXPECT_LE(maxAbsDiff(quick, img), 5.0 / 255);
     EXPECT_GT(maxAbsDiff(quick, atStart), 20.0 / 255);
     // Back to the radiances it was inserted at, on its own links: the same image within the
@@ -548,12 +551,7 @@ TEST(DynamicRelighting, ADraggedBoxsQuickImageIsNearTheExactOne) {
     // (its bounce and the light it blocks are missing, over the room: up to 0.004 on the
     // walls) and the box's faces keep what they gathered where it was. Bounds: 1 % of the
     // values beyond 1/255 (seen: 0.52 %), none beyond 10/255 (seen: 0.0254, by the box).
-    size_t beyond = 0;
-    for (size_t i = 0; i < img.rgb.size(); ++i)
-        beyond += std::abs(static_cast<double>(quick.rgb[i]) - static_cast<double>(img.rgb[i])) >
-                          1.0 / 255
-                      ? 1
-                      : 0;
+    const size_t beyond = countBeyond(quick, img, 1.0 / 255);
     EXPECT_LE(beyond, img.rgb.size() / 100);
     EXPECT_LE(maxAbsDiff(quick, img), 10.0 / 255);
     // Against the path-traced truth, the bounds for the room's virtual edits (0.05,

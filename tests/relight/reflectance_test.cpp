@@ -6,6 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <string>
+#include <thread>
 
 #include "relight/io/scene_file.h"
 #include "relight/pipeline/item_buffer.h"
@@ -194,36 +197,69 @@ TEST(Reflectance, ASetUpThatCannotEndInTimeIsGivenUpAndChangesNothing) {
         for (int c = 0; c < 3; ++c) EXPECT_EQ(a[p][c], b[p][c]) << p;
 }
 
+namespace {
+
+/// The Cornell box with a photo 40 % darker than its reflectances say, which the estimate
+/// does not match in one round; estimate() runs estimatePolygonReflectance from a fresh
+/// solve with the given options and returns the report and every polygon's reflectance.
+struct DarkCornell {
+    SceneFile sf = loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    radiosity::SolverOptions o;
+    ItemBuffer items;
+    Image photo;
+
+    DarkCornell() {
+        o.epsilon = 1e-4;
+        radiosity::HierarchicalSolver truthSolver(sf.scene, o);
+        truthSolver.solve();
+        items = castItemBuffer(sf.camera, truthSolver.scene(), truthSolver.visibility(), 4);
+        LightingBuffer truthLighting = computeLightingBuffer(items, truthSolver);
+        updateIndirect(truthLighting, truthSolver);
+        photo = renderRadiosity(items, truthLighting, truthSolver.scene());
+        for (float& v : photo.rgb) v *= 0.6f;  // darker than the scene's reflectances say
+    }
+
+    /// `within`: ReflectanceOptions::until that long after the solve, when the estimate
+    /// begins; `took`: how long the estimate took.
+    ReflectanceReport estimate(ReflectanceOptions ro, std::vector<Rgb>* rho,
+                               std::optional<radiosity::Clock::duration> within = {},
+                               radiosity::Clock::duration* took = nullptr) const {
+        radiosity::HierarchicalSolver solver(sf.scene, o);
+        solver.solve();
+        const LightingBuffer lighting = computeLightingBuffer(items, solver);
+        const auto t0 = radiosity::Clock::now();
+        if (within) ro.until = t0 + *within;
+        const ReflectanceReport rep =
+            estimatePolygonReflectance(solver, sf, items, lighting, photo, ro);
+        if (took) *took = radiosity::Clock::now() - t0;
+        for (const auto& poly : solver.scene().polygons) rho->push_back(poly.rho);
+        return rep;
+    }
+};
+
+void expectSameReflectances(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t p = 0; p < a.size(); ++p)
+        for (int c = 0; c < 3; ++c)
+            // The same arithmetic on the same inputs; 1e-9 allows for the order of parallel
+            // sums, far below the change one round makes (the photo is 40 % darker).
+            EXPECT_NEAR(a[p][c], b[p][c], 1e-9) << "polygon " << p << " channel " << c;
+}
+
+}  // namespace
+
 TEST(Reflectance, ATimeBudgetStopsAfterACompleteRound) {
     // The rounds' time budget (estimatePolygonReflectance's `seconds`, a share of
     // --time-budget) is checked between rounds only: a budget spent at once leaves the
     // solution of exactly one complete round (every polygon's reflectance set, then solved),
     // the same as asking for one round, and the report says the budget cut in; without a
-    // budget the same photo takes more rounds. The photo is the Cornell box's, which the estimate
-    // does not match in one round (the photo is darker than its reflectances say).
-    SceneFile sf = loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
-    radiosity::SolverOptions o;
-    o.epsilon = 1e-4;
-    radiosity::HierarchicalSolver truthSolver(sf.scene, o);
-    truthSolver.solve();
-    const ItemBuffer items =
-        castItemBuffer(sf.camera, truthSolver.scene(), truthSolver.visibility(), 4);
-    LightingBuffer truthLighting = computeLightingBuffer(items, truthSolver);
-    updateIndirect(truthLighting, truthSolver);
-    Image photo = renderRadiosity(items, truthLighting, truthSolver.scene());
-    for (float& v : photo.rgb) v *= 0.6f;  // darker than the scene's reflectances say
-
+    // budget the same photo takes more rounds.
+    const DarkCornell scene;
     auto estimate = [&](int rounds, double seconds, std::vector<Rgb>* rho) {
-        radiosity::HierarchicalSolver solver(sf.scene, o);
-        solver.solve();
-        const LightingBuffer lighting = computeLightingBuffer(items, solver);
         ReflectanceOptions ro;
         ro.rounds = rounds;
         ro.seconds = seconds;
-        const ReflectanceReport rep =
-            estimatePolygonReflectance(solver, sf, items, lighting, photo, ro);
-        for (const auto& poly : solver.scene().polygons) rho->push_back(poly.rho);
-        return rep;
+        return scene.estimate(ro, rho);
     };
     std::vector<Rgb> cut, one, full;
     const ReflectanceReport repCut = estimate(12, 1e-9, &cut);
@@ -234,10 +270,60 @@ TEST(Reflectance, ATimeBudgetStopsAfterACompleteRound) {
     EXPECT_FALSE(repOne.budgetReached);  // one round asked, one done: no cut
     EXPECT_FALSE(repFull.budgetReached);
     EXPECT_GT(repFull.rounds, 1) << "the photo must need more than one round for this test";
-    ASSERT_EQ(cut.size(), one.size());
-    for (size_t p = 0; p < cut.size(); ++p)
-        for (int c = 0; c < 3; ++c)
-            // The same arithmetic on the same inputs; 1e-9 allows for the order of parallel
-            // sums, far below the change one round makes (the photo is 40 % darker).
-            EXPECT_NEAR(cut[p][c], one[p][c], 1e-9) << "polygon " << p << " channel " << c;
+    expectSameReflectances(cut, one);
+}
+
+TEST(Reflectance, ADeadlineLeavesWholeRoundsOnly) {
+    // ReflectanceOptions::until owes no round: wherever it falls, the solution is that of
+    // the complete rounds done (the same as asking for that many rounds without it), and
+    // the report says when it cut in. Deadlines at fractions of the time the whole estimate
+    // takes fall in the set-up, in a round's sums or between rounds, whichever the
+    // machine's speed makes it; the property holds at each. A deadline already past
+    // estimates nothing.
+    const DarkCornell scene;
+    std::vector<Rgb> full;
+    radiosity::Clock::duration whole{};
+    const ReflectanceReport repFull = scene.estimate({}, &full, {}, &whole);
+    ASSERT_GT(repFull.rounds, 2) << "the photo must need several rounds for this test";
+    for (double fraction : {0.0, 0.7, 0.8, 0.9, 0.95}) {
+        SCOPED_TRACE(fraction);
+        const auto within =
+            std::chrono::duration_cast<radiosity::Clock::duration>(whole * fraction);
+        std::vector<Rgb> cut, same;
+        const ReflectanceReport rep = scene.estimate({}, &cut, within);
+        if (fraction == 0.0) {
+            EXPECT_TRUE(rep.skipped);
+        }
+        EXPECT_TRUE(rep.skipped || rep.rounds == repFull.rounds || rep.budgetReached);
+        ReflectanceOptions asMany;
+        asMany.rounds = rep.rounds;
+        if (rep.rounds == 0) {
+            for (const auto& poly : scene.sf.scene.polygons) same.push_back(poly.rho);
+        } else {
+            scene.estimate(asMany, &same);
+        }
+        expectSameReflectances(cut, same);
+    }
+}
+
+TEST(Reflectance, ADeadlinePassedBetweenRoundsBeginsNoOther) {
+    // The check between rounds, made deterministic: the deadline is far (three times the
+    // whole estimate) but the progress report of round 2 waits until it has passed, so
+    // that no round fits after it. The solution is exactly that of two rounds.
+    const DarkCornell scene;
+    std::vector<Rgb> full, two, cut;
+    radiosity::Clock::duration whole{};
+    ASSERT_GT(scene.estimate({}, &full, {}, &whole).rounds, 2);
+    ReflectanceOptions ro;
+    int reports = 0;
+    ro.progress = [&](const std::string&) {
+        if (++reports == 2) std::this_thread::sleep_for(3 * whole + std::chrono::milliseconds(50));
+    };
+    const ReflectanceReport rep = scene.estimate(ro, &cut, 3 * whole);
+    EXPECT_EQ(rep.rounds, 2);
+    EXPECT_TRUE(rep.budgetReached);
+    ReflectanceOptions asTwo;
+    asTwo.rounds = 2;
+    scene.estimate(asTwo, &two);
+    expectSameReflectances(cut, two);
 }

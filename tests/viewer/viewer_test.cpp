@@ -22,6 +22,7 @@
 #include <memory>
 #include <string>
 
+#include "../relight/temp_dir.h"
 #include "relight/display/debug_views.h"
 #include "relight/display/multipass.h"
 #include "relight/errors.h"
@@ -303,11 +304,8 @@ TEST_F(ViewerGpu, RealLampPlacedOnTheSurfaceUnderTheClickAndSaved) {
     EXPECT_GT(session.placedLamps()[static_cast<size_t>(j)].width, 0.05);
 
     namespace fs = std::filesystem;
-    const fs::path dir =
-        fs::temp_directory_path() /
-        ("viewer_lamps_" +
-         std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
-    fs::create_directories(dir);
+    const test::TempDir tmp("viewer_lamps");
+    const fs::path& dir = tmp.path();
     for (const char* f : {"scene.json", "room.obj", "photo.exr"})
         fs::copy_file(fs::path(kRoom) / f, dir / f);
     session.saveLamps(dir);
@@ -318,7 +316,6 @@ TEST_F(ViewerGpu, RealLampPlacedOnTheSurfaceUnderTheClickAndSaved) {
     EXPECT_EQ(saved.scene.lights[n].name, "L1");
     EXPECT_TRUE(saved.estimateRadiance[n]);
     EXPECT_TRUE(saved.lightOnInPhoto(n));
-    fs::remove_all(dir);
 }
 
 // The box dragged in the per-pixel display (the window's default; Session::setQuickMoves):
@@ -334,11 +331,8 @@ TEST(ViewerSession, ADraggedBoxsQuickFramesSettleToTheEditsImage) {
     o.pixelLight = true;
     const std::unique_ptr<Relighting> r = prepareRelighting(loadScene(kRoom), o);
     namespace fs = std::filesystem;
-    const fs::path dir =
-        fs::temp_directory_path() /
-        ("viewer_boxdrag_" +
-         std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
-    fs::create_directories(dir);
+    const test::TempDir tmp("viewer_boxdrag");
+    const fs::path& dir = tmp.path();
     Image rested, released;
     {
         Session session(*r, loadEdit(kRoom + "/edits/virtual_box.json", r->scene));
@@ -394,7 +388,6 @@ TEST(ViewerSession, ADraggedBoxsQuickFramesSettleToTheEditsImage) {
         Session fresh(*r, loadEdit(dir / name, r->scene));
         EXPECT_EQ(maxStepDifference(*shown, fresh.relitPerPixel(), kAllPixels), 0) << name;
     }
-    fs::remove_all(dir);
 }
 
 }  // namespace
