@@ -219,6 +219,8 @@ std::vector<std::string> phaseBudgetLines(int budgetReached, double seconds) {
          "shadow-boundary refinement stopped, leaves left unexamined"},
         {PreparedImage::kGatherBudget, RelightOptions::kVertexGatherEnds,
          "the vertices' final gather kept the partly occluded links' mean visibility"},
+        {PreparedImage::kLeafReflectanceBudget, RelightOptions::kVertexGatherEnds,
+         "the leaves' reflectance from their texture skipped (the polygons' kept)"},
         {PreparedImage::kPixelGatherBudget, RelightOptions::kPixelGatherEnds,
          "fewer indirect rays per vertex for the per-pixel display"},
         {PreparedImage::kShadowRemovalBudget, RelightOptions::kShadowRemovalEnds,

@@ -109,6 +109,9 @@ struct PreparedImage {
     /// Real-shadow removal was skipped (D = B of the photo, the 1997 method): its share
     /// could not hold it.
     static constexpr int kShadowRemovalBudget = 64;
+    /// The leaves' reflectance from their texture was skipped (the polygons' estimate
+    /// kept): the vertices' final gather had used up its share.
+    static constexpr int kLeafReflectanceBudget = 128;
     uint64_t solverBytes = 0, maxLinks = 0, maxMemory = 0;
     PrepareTimes times;
 

@@ -319,6 +319,18 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     P.times.vertexLighting = since(t0);
 
     if (!o.leafReflectance) return;
+    // A refinement of the polygons' estimate that costs a radiosity step, the responses
+    // and the vertices' gather again (12 s on the stair hall): past the vertex gather's
+    // share, the phases after it would overrun theirs. The polygons' reflectances stand.
+    if (r.budget.seconds > 0 && Clock::now() >= r.budget.until(RelightOptions::kVertexGatherEnds)) {
+        r.phaseBudgetReached |= PreparedImage::kLeafReflectanceBudget;
+        say(o,
+            "  warning: the leaves' reflectance from their texture skipped: the share of "
+            "--time-budget until " +
+                percentOfBudget(RelightOptions::kVertexGatherEnds) +
+                " was spent (each polygon keeps its estimate from the photo)");
+        return;
+    }
     t0 = Clock::now();
     const std::vector<Rgb> H = vertexIrradiance(P, P.photoRadiance);
     const int set =
@@ -328,6 +340,10 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
     r.responses = std::make_unique<radiosity::LightResponses>(*r.solver, r.responses.get());
     P.lighting = regatherVertexLighting(*r.solver, *r.mesh, *r.responses, r.direct);
     P.times.reflectance += since(t0);
+    char msg[96];
+    std::snprintf(msg, sizeof msg, "  radiosity, responses and vertex lighting again: %.1f s",
+                  since(t0));
+    say(o, msg);
 }
 
 /// The indirect part of vertices [from, to)'s responses per light by r.gatherSide^2 rays
@@ -414,6 +430,11 @@ void lightPixels(Relighting& r, const RelightOptions& o) {
         gatherVertexIndirect(r, L, pilot, nv);
     }
     P.times.vertexLighting += since(t0);
+    char msg[128];
+    std::snprintf(msg, sizeof msg,
+                  "  per-pixel display: direct light and %d x %d indirect rays per vertex, %.1f s",
+                  r.gatherSide, r.gatherSide, since(t0));
+    say(o, msg);
 }
 
 /// Whether real-shadow removal fits in the time its share leaves: it solves the light's

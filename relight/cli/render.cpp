@@ -168,6 +168,8 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
           {"shadow_refinement_budget_reached",
            (p.budgetReached & PreparedImage::kShadowRefinementBudget) != 0},
           {"vertex_gather_budget_reached", (p.budgetReached & PreparedImage::kGatherBudget) != 0},
+          {"leaf_reflectance_skipped",
+           (p.budgetReached & PreparedImage::kLeafReflectanceBudget) != 0},
           {"pixel_gather_budget_reached",
            (p.budgetReached & PreparedImage::kPixelGatherBudget) != 0},
           {"shadow_removal_skipped", (p.budgetReached & PreparedImage::kShadowRemovalBudget) != 0},

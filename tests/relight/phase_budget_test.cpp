@@ -25,6 +25,15 @@ TEST(PhaseBudget, ASpentBudgetTakesEveryFallbackAndTheUneditedRoomIsStillThePhot
     EXPECT_GT(r->refinement.waiting, 0);
     // The gather cast no ray at any of its corners or vertices.
     EXPECT_TRUE(P.budgetReached & PreparedImage::kGatherBudget);
+    // The leaves' reflectance from their texture skipped: every leaf element keeps its
+    // polygon's reflectance (the estimate from the photo), exactly.
+    ASSERT_TRUE(o.leafReflectance);
+    EXPECT_TRUE(P.budgetReached & PreparedImage::kLeafReflectanceBudget);
+    for (const radiosity::Node& n : r->solver->hierarchy().nodes)
+        if (!n.isCluster() && n.isLeaf()) {
+            const radiosity::Rgb& rho = r->solver->scene().polygons[n.polygon].rho;
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(n.rho[c], rho[c]);
+        }
     // The per-pixel display's rays per vertex at their floor, 4 x 4 (the pilot covers 1024
     // vertices; the room has more, so the cut applies).
     ASSERT_GT(P.vertexCount(), 1024u);
@@ -46,7 +55,7 @@ TEST(PhaseBudget, ASpentBudgetTakesEveryFallbackAndTheUneditedRoomIsStillThePhot
                 worst = std::max(worst, std::abs(v - t) / std::max(std::abs(t), 1e-3));
             }
     EXPECT_LT(worst, 1e-5);
-    EXPECT_EQ(phaseBudgetLines(P.budgetReached, o.timeBudget).size(), 4u);
+    EXPECT_EQ(phaseBudgetLines(P.budgetReached, o.timeBudget).size(), 5u);
 }
 
 TEST(PhaseBudget, ThePixelGatherKeepsItsRaysUnlessAskedToCutThem) {
