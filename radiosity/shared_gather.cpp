@@ -232,19 +232,15 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
             for (const Link& l : solver.linksOf(node))
                 if (detail::mayCarry(l) && sharedLink(h, r, l))
                     detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
-            if (layout.leafShares[node])
-                for (int a = r.parent; a >= 0; a = h.nodes[a].parent) {
-                    const auto links = solver.linksOf(a);
-                    forNearLinks(layout, a, links.size(), [&](size_t j) {
-                        const Link& l = links[j];
-                        if (detail::mayCarry(l) && sharedAtLeaf(h, layout, node, a, l))
-                            detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
-                    });
-                }
-            // Exactly as long as it is: push_back's growth leaves up to twice the terms
-            // allocated, and flatten() holds these lists and their concatenation at once
-            // (41 M terms on a stair hall: 0.3 GB each).
-            sampleTerms[static_cast<size_t>(layout.first[node] + c)].shrink_to_fit();
+            if (!layout.leafShares[node]) continue;
+            for (int a = r.parent; a >= 0; a = h.nodes[a].parent) {
+                const auto links = solver.linksOf(a);
+                forNearLinks(layout, a, links.size(), [&](size_t j) {
+                    const Link& l = links[j];
+                    if (detail::mayCarry(l) && sharedAtLeaf(h, layout, node, a, l))
+                        detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
+                });
+            }
         }
         rays += cast;
         meter.add(1);
@@ -278,8 +274,6 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                 for (int c = 0; c < h.nodes[node].vertexCount; ++c)
                     refs[i].push_back({first + c, static_cast<float>(a[c])});
             }
-            pointTerms[i].shrink_to_fit();  // as the corners' above
-            refs[i].shrink_to_fit();
         }
         rays += cast;
         meter.add(to - from);

@@ -320,7 +320,7 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
 
     if (!o.leafReflectance) return;
     // A refinement of the polygons' estimate that costs a radiosity step, the responses
-    // and the vertices' gather again (12 s on the stair hall): past the vertex gather's
+    // and the vertices' gather again (4 s on the stair hall): past the vertex gather's
     // share, the phases after it would overrun theirs. The polygons' reflectances stand.
     if (r.budget.seconds > 0 && Clock::now() >= r.budget.until(RelightOptions::kVertexGatherEnds)) {
         r.phaseBudgetReached |= PreparedImage::kLeafReflectanceBudget;

@@ -189,18 +189,12 @@ ReflectanceEstimate solveScene(const SolveArgs& a, const SceneFile& sf,
             rep = estimatePolygonReflectance(solver, sf, items, *lighting, photo, ro);
         }
     }
-    if (!rep.skipped && rep.rounds == 0)
+    if (rep.skipped || rep.rounds == 0)
         std::fprintf(stderr,
-                     "warning: the reflectance was not estimated: no round fitted before %.0f %% "
+                     "warning: the reflectance was not estimated: %s did not fit before %.0f %% "
                      "of --time-budget; the scene's reflectances are kept (a larger "
                      "--time-budget estimates it)\n",
-                     100 * share);
-    else if (rep.skipped)
-        std::fprintf(stderr,
-                     "warning: the reflectance was not estimated: its set-up did not fit before "
-                     "%.0f %% of --time-budget; the scene's reflectances are kept "
-                     "(a larger --time-budget estimates it)\n",
-                     100 * share);
+                     rep.skipped ? "its set-up" : "no round", 100 * share);
     else
         std::fprintf(stderr, "  %d reflectance round(s)%s\n", rep.rounds,
                      rep.budgetReached ? ": their share of --time-budget was spent, stopped "

@@ -318,7 +318,7 @@ ReflectanceReport estimatePolygonReflectance(radiosity::HierarchicalSolver& solv
     const radiosity::Scene& scene = solver.scene();
     PhotoSums sums;
     GatherTerms terms;  // the gather points' terms, once: between rounds only B changes
-    const bool setUp = radiosity::runUntil(std::min(o.setUpUntil, o.until), [&] {
+    const bool setUp = radiosity::runUntil(o.until, [&] {
         sums = sumPhotoSamples(scene, items, lighting, photo);
         thinGatherPoints(sums.points);
         terms = gatherTerms(solver, sums, lighting);

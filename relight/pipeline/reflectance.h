@@ -68,7 +68,7 @@ struct ReflectanceReport {
     /// The rounds stopped early because their time budget (`seconds` or `until`) was spent:
     /// the solution is that of the rounds done, each of them complete.
     bool budgetReached = false;
-    /// The set-up could not end by ReflectanceOptions::setUpUntil: nothing was estimated,
+    /// The set-up could not end by ReflectanceOptions::until: nothing was estimated,
     /// every polygon keeps its reflectance and the solver its solution (rounds 0).
     bool skipped = false;
     /// surfaceOf(the solver's scene), which the estimate pooled over: later steps that pool
@@ -85,16 +85,13 @@ struct ReflectanceOptions {
     /// one as long as the last fits in what is left (at least one always runs after the
     /// set-up), and the report says when one did not.
     double seconds = 0;
-    /// The set-up (the photo's samples summed per polygon, their gather points' final
-    /// gathers) is given up when it has not ended by then: its cost is set by the links
-    /// above the gather points, which cannot be told in advance. The report then says
-    /// `skipped`. The largest time point: never given up.
-    radiosity::Clock::time_point setUpUntil = radiosity::Clock::time_point::max();
-    /// A deadline for the whole estimate, set-up, rounds and closing solve (the largest time
-    /// point: none). Unlike `seconds`, no round is owed: a round begins only when one as long
-    /// as the last fits before it, and its irradiance sums, the part whose cost cannot be
-    /// told in advance, are given up when it passes (that round then changes nothing, and
-    /// may be the first). `relight solve` sets it, whose whole run has a bound.
+    /// A deadline for the whole estimate (the largest time point: none). The set-up (the
+    /// photo's samples summed per polygon, their gather points' final gathers, whose cost is
+    /// set by the links above the points) is given up when it has not ended by then: the
+    /// report says `skipped`. Unlike `seconds`, no round is owed: a round begins only when
+    /// one as long as the last fits before it, and its irradiance sums are given up when it
+    /// passes (that round then changes nothing, and may be the first). `relight solve` sets
+    /// it, whose whole run has a bound.
     radiosity::Clock::time_point until = radiosity::Clock::time_point::max();
     /// Told each round's largest change and time (progress on the terminal); may be empty.
     std::function<void(const std::string&)> progress;

@@ -155,7 +155,7 @@ TEST(Reflectance, EachLeafTakesTheReflectanceOfItsOwnTexture) {
 
 TEST(Reflectance, ASetUpThatCannotEndInTimeIsGivenUpAndChangesNothing) {
     // The set-up (the photo's sums, the gather points' final gathers) is given up at
-    // ReflectanceOptions::setUpUntil: with a deadline already past, nothing is estimated,
+    // ReflectanceOptions::until: with a deadline already past, nothing is estimated,
     // every polygon keeps the scene's reflectance and the solver its radiosities, exactly
     // (nothing ran), and the report says so. A deadline far off changes nothing either way:
     // the estimate is the one without a deadline, exactly (the same arithmetic).
@@ -169,7 +169,7 @@ TEST(Reflectance, ASetUpThatCannotEndInTimeIsGivenUpAndChangesNothing) {
     std::vector<Rgb> B0;
     for (const auto& n : solver.hierarchy().nodes) B0.push_back(n.B);
     ReflectanceOptions late;
-    late.setUpUntil = radiosity::Clock::now() - std::chrono::milliseconds(1);
+    late.until = radiosity::Clock::now() - std::chrono::milliseconds(1);
     const ReflectanceReport rep =
         estimatePolygonReflectance(solver, sf, items, lighting, photo, late);
     EXPECT_TRUE(rep.skipped);
@@ -190,7 +190,7 @@ TEST(Reflectance, ASetUpThatCannotEndInTimeIsGivenUpAndChangesNothing) {
         return rho;
     };
     ReflectanceOptions inTime;
-    inTime.setUpUntil = radiosity::Clock::now() + std::chrono::hours(1);
+    inTime.until = radiosity::Clock::now() + std::chrono::hours(1);
     const std::vector<Rgb> a = rhoAfter(inTime), b = rhoAfter({});
     ASSERT_EQ(a.size(), b.size());
     for (size_t p = 0; p < a.size(); ++p)
