@@ -79,6 +79,12 @@ struct SampleLayout {
     /// Per node: a leaf whose corners also gather its element ancestors' links that are
     /// near them but far from it (sharedAtLeaf).
     std::vector<char> leafShares;
+    /// For such a leaf, sharedAtLeaf of each near link of its ancestors (parent first, each
+    /// in forNearLinks' order), from atLeafStart[leaf]: decided once per leaf, not at each
+    /// of its points, where reading each link's source node (a cache miss) took most of the
+    /// points' gather on a real stair hall.
+    std::vector<size_t> atLeafStart;
+    std::vector<char> atLeaf;
     int samples = 0;
     size_t shared = 0, near = 0, leafShared = 0;
 };
@@ -88,10 +94,6 @@ struct SampleLayout {
 bool nearAncestorFarLeaf(const Hierarchy& h, int leaf, int a, const Link& l) {
     if (a == leaf || h.nodes[a].isCluster()) return false;
     return !sharedLink(h, h.nodes[a], l) && sharedLink(h, h.nodes[leaf], l);
-}
-
-bool sharedAtLeaf(const Hierarchy& h, const SampleLayout& s, int leaf, int a, const Link& l) {
-    return leaf >= 0 && s.leafShares[leaf] && nearAncestorFarLeaf(h, leaf, a, l);
 }
 
 /// The links of node `node` that a point gathers itself (not at node's corners): its near
@@ -107,6 +109,22 @@ void forNearLinks(const SampleLayout& s, int node, size_t count, const F& f) {
         f(static_cast<size_t>(s.nearIndex[j]));
 }
 
+/// f(node, link, atLeaf) for each link that a point of `leaf` gathers itself along its chain
+/// (leaf first, then its ancestors: forNearLinks), atLeaf = sharedAtLeaf: the link is
+/// gathered at the leaf's corners instead.
+template <class F>
+void forChainNearLinks(const HierarchicalSolver& solver, const SampleLayout& s, int leaf,
+                       const F& f) {
+    const Hierarchy& h = solver.hierarchy();
+    const char* atLeaf = s.leafShares[leaf] ? s.atLeaf.data() + s.atLeafStart[leaf] : nullptr;
+    for (int node = leaf; node >= 0; node = h.nodes[node].parent) {
+        const bool ancestor = node != leaf && atLeaf;
+        const auto links = solver.linksOf(node);
+        forNearLinks(s, node, links.size(),
+                     [&](size_t j) { f(node, links[j], ancestor && *atLeaf++); });
+    }
+}
+
 /// Gives a leaf corners of its own for its element ancestors' links that are near them but
 /// far from it (sharedAtLeaf), where that is cheaper than gathering them at each point: when
 /// more than twice as many points lie in the leaf as it has corners. A wall that cannot be
@@ -118,6 +136,7 @@ void shareAtLeaves(const HierarchicalSolver& solver, std::span<const GatherPoint
                    SampleLayout& s) {
     const Hierarchy& h = solver.hierarchy();
     s.leafShares.assign(h.nodes.size(), 0);
+    s.atLeafStart.assign(h.nodes.size(), 0);
     std::vector<int> count(h.nodes.size(), 0);
     std::vector<int> leaves;
     for (size_t i = 0; i < points.size(); ++i)
@@ -127,14 +146,19 @@ void shareAtLeaves(const HierarchicalSolver& solver, std::span<const GatherPoint
         const Node& L = h.nodes[leaf];
         if (L.isCluster() || L.vertexCount < 3 || count[leaf] <= 2 * L.vertexCount) continue;
         size_t mid = 0;
+        const size_t start = s.atLeaf.size();
         for (int a = L.parent; a >= 0; a = h.nodes[a].parent) {
             const auto links = solver.linksOf(a);
             forNearLinks(s, a, links.size(), [&](size_t j) {
-                mid += nearAncestorFarLeaf(h, leaf, a, links[j]) ? 1 : 0;
+                const bool shared = nearAncestorFarLeaf(h, leaf, a, links[j]);
+                s.atLeaf.push_back(shared ? 1 : 0);
+                mid += shared ? 1 : 0;
             });
         }
         s.leafShares[leaf] = mid > 0;
         s.leafShared += mid;
+        if (mid == 0) s.atLeaf.resize(start);
+        s.atLeafStart[leaf] = start;
         if (mid == 0 || s.first[leaf] >= 0) continue;
         // Corners of its own (it had no far links of its own): all its links stay near.
         s.first[leaf] = s.samples;
@@ -233,14 +257,10 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                 if (detail::mayCarry(l) && sharedLink(h, r, l))
                     detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
             if (!layout.leafShares[node]) continue;
-            for (int a = r.parent; a >= 0; a = h.nodes[a].parent) {
-                const auto links = solver.linksOf(a);
-                forNearLinks(layout, a, links.size(), [&](size_t j) {
-                    const Link& l = links[j];
-                    if (detail::mayCarry(l) && sharedAtLeaf(h, layout, node, a, l))
-                        detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
-                });
-            }
+            forChainNearLinks(solver, layout, node, [&](int, const Link& l, bool atLeaf) {
+                if (atLeaf && detail::mayCarry(l))
+                    detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
+            });
         }
         rays += cast;
         meter.add(1);
@@ -263,11 +283,10 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                     detail::gatherLink(solver, p.polygon, p.x, n, l, pr, rng, cast, acc);
             };
             const int leaf = layout.leafOf[i];
+            forChainNearLinks(solver, layout, leaf, [&](int, const Link& l, bool atLeaf) {
+                if (!atLeaf) gather(l);
+            });
             for (int node = leaf; node >= 0; node = h.nodes[node].parent) {
-                const auto links = solver.linksOf(node);
-                forNearLinks(layout, node, links.size(), [&](size_t j) {
-                    if (!sharedAtLeaf(h, layout, leaf, node, links[j])) gather(links[j]);
-                });
                 if (layout.ordinal[node] < 0) continue;
                 const int first = layout.first[node];
                 const auto a = affineWeights(h.nodes[node], p.x);
