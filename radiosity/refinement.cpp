@@ -151,9 +151,7 @@ bool HierarchicalSolver::outOfTime(size_t queued, size_t pending) {
     // it (a real stair hall's second round queued 37 M links in a minute).
     const double owedSeconds = static_cast<double>(queued) * (secondsPerPop_ + secondsPerLink_) +
                                static_cast<double>(pending) * secondsPerLink_;
-    const auto owed =
-        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(owedSeconds));
-    if (now + owed >= refineDeadline_) {
+    if (secondsAfter(now, owedSeconds) >= refineDeadline_) {
         timeBudgetReached_ = true;
         report("time budget of the refinement reached: " + std::to_string(links_.size()) +
                " links accepted, " + std::to_string(queued) + " left as they are");

@@ -427,9 +427,7 @@ void HierarchicalSolver::solve() {
     // A later solve() (the reflectance rounds) refines nothing more once the time is out.
     Clock::time_point deadline = options_.refineUntil;
     if (options_.refineSeconds > 0)
-        deadline =
-            std::min(deadline, start + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(options_.refineSeconds)));
+        deadline = std::min(deadline, secondsAfter(start, options_.refineSeconds));
     if (deadline != Clock::time_point::max())
         refineDeadline_ = timeBudgetReached_ ? start : deadline;
     measureSeenBeforeRefining();

@@ -15,6 +15,18 @@ inline double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/// The time point `seconds` after t, saturated at the clock's last: the clock counts
+/// integer nanoseconds, and `--time-budget 1e300` overflowed them into the past, where every
+/// phase read as spent (a silently coarse preparation). Not finite, or past half of what
+/// the clock can still count (about 146 years), gives the last time point ("no deadline");
+/// not positive gives t.
+inline Clock::time_point secondsAfter(Clock::time_point t, double seconds) {
+    const double room = std::chrono::duration<double>(Clock::time_point::max() - t).count();
+    if (!(seconds < 0.5 * room)) return Clock::time_point::max();
+    if (!(seconds > 0)) return t;
+    return t + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+}
+
 /// A command's wall-clock budget (--time-budget), counted from its start: each phase ends
 /// when a share of the whole has passed since then, so that a phase that overran (or the
 /// loading of a large mesh) shortens the phases after it instead of lengthening the command.
@@ -33,8 +45,16 @@ struct TimeBudget {
     /// without a budget.
     Clock::time_point until(double share) const {
         if (!(seconds > 0)) return Clock::time_point::max();
-        return start + std::chrono::duration_cast<Clock::duration>(
-                           std::chrono::duration<double>(seconds * share));
+        return secondsAfter(start, seconds * share);
+    }
+    /// The end of a phase begun at `begun` that may take `share` of the budget and must
+    /// end when the cumulative share `ends` has passed: the sooner of the two. A phase with
+    /// a fallback that begins early (the phases before it left time) then leaves that time
+    /// to the phases after it, whose costs have no fallback. The largest time point
+    /// without a budget.
+    Clock::time_point phaseUntil(Clock::time_point begun, double share, double ends) const {
+        if (!(seconds > 0)) return Clock::time_point::max();
+        return std::min(until(ends), secondsAfter(begun, seconds * share));
     }
     static constexpr double kSpentSeconds = 1e-3;
 };

@@ -84,6 +84,9 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
                   "measure the direct light per pixel too (default), for render --display "
                   "pixel; --no-pixel-light for the vertex displays only (less time and "
                   "memory on large photos)");
+    app->add_flag("--pixel-gather-cut,!--no-pixel-gather-cut", p.pixelGatherCut,
+                  "under --time-budget, fewer indirect rays per vertex for the per-pixel "
+                  "display (down to 4 x 4) when its share of the budget would be overrun");
     app->add_flag("--all-photos", p.allPhotos,
                   "read the light the first photo did not hold with the reflectance merged "
                   "from all of the scene's photos (Loscos et al. 1999, Eq. (3); with the "

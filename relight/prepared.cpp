@@ -216,7 +216,7 @@ std::vector<std::string> phaseBudgetLines(int budgetReached, double seconds) {
     };
     const Phase phases[] = {
         {PreparedImage::kShadowRefinementBudget, RelightOptions::kShadowRefinementEnds,
-         "shadow-boundary refinement stopped, leaves left unexamined"},
+         "shadow-boundary refinement stopped (its own share at most), leaves left unexamined"},
         {PreparedImage::kGatherBudget, RelightOptions::kVertexGatherEnds,
          "the vertices' final gather kept the partly occluded links' mean visibility"},
         {PreparedImage::kLeafReflectanceBudget, RelightOptions::kVertexGatherEnds,

@@ -267,7 +267,13 @@ void refineAlongPhotoShadows(Relighting& r, const RelightOptions& o) {
         say(o, "texture-based refinement of shadow boundaries");
         ShadowRefinementOptions ro = o.refinement;
         ro.progress = o.progress;
-        ro.until = std::min(ro.until, r.budget.until(RelightOptions::kShadowRefinementEnds));
+        // Its own share at most, even when the reflectance left time: the phases after it
+        // (the responses, the vertices' gather without rays, the per-pixel display) cost
+        // what they cost, and on a real stair hall they overran the budget by the 7 s this
+        // phase had taken beyond its share.
+        ro.until =
+            std::min(ro.until, r.budget.phaseUntil(t0, RelightOptions::kShadowRefinementShare,
+                                                   RelightOptions::kShadowRefinementEnds));
         r.refinement = refineShadowBoundaries(*r.solver, *r.texture, ro);
         say(o, "  " + std::to_string(r.refinement.splitSameColour) + " + " +
                    std::to_string(r.refinement.splitDifferentColour) + " splits kept, " +
@@ -275,9 +281,10 @@ void refineAlongPhotoShadows(Relighting& r, const RelightOptions& o) {
                    std::to_string(r.refinement.leavesAfter) + " leaves");
         if (r.refinement.budgetReached) {
             r.phaseBudgetReached |= PreparedImage::kShadowRefinementBudget;
-            say(o, "  warning: its share of --time-budget (until " +
+            say(o, "  warning: its share of --time-budget (" +
+                       percentOfBudget(RelightOptions::kShadowRefinementShare) + ", until " +
                        percentOfBudget(RelightOptions::kShadowRefinementEnds) +
-                       ") was spent: " + std::to_string(r.refinement.waiting) +
+                       " at the latest) was spent: " + std::to_string(r.refinement.waiting) +
                        " leaves were not examined (fewer shadow boundaries refined)");
         }
     }

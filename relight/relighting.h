@@ -74,7 +74,9 @@ struct RelightOptions {
     /// a share too, ending at the cumulative sum of the shares up to its own, and a
     /// degraded but correct fallback once it is spent, announced on the terminal and
     /// flagged in PreparedImage::budgetReached (--report): the shadow-boundary refinement
-    /// examines no more leaves (kShadowRefinementShare); the vertices' final gather keeps
+    /// examines no more leaves (kShadowRefinementShare, counted from its own start when
+    /// that is sooner: TimeBudget::phaseUntil; what the phases before it left goes to the
+    /// phases after it, which have costs no fallback removes); the vertices' final gather keeps
     /// the PARTIAL links' V instead of casting rays (kVertexGatherShare); the per-pixel
     /// display's indirect gather casts fewer rays per vertex (kPixelGatherShare, at least
     /// 4 x 4; only with pixelGatherCut); real-shadow removal is skipped when the time left cannot

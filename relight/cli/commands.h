@@ -76,6 +76,8 @@ struct PrepareOptionArgs {
     /// Merge the reflectance of all of the scene's photos per pixel (default: the first).
     bool allPhotos = false;
     bool importance = false;
+    /// Cut the per-pixel display's indirect rays when its share of the time budget is spent.
+    bool pixelGatherCut = RelightOptions{}.pixelGatherCut;
 
     /// The pipeline's options, with progress lines on stderr.
     RelightOptions relightOptions() const;

@@ -44,6 +44,7 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     o.pixelLight = pixelLight;
     o.mergePhotos = allPhotos;
     o.importance = importance;
+    o.pixelGatherCut = pixelGatherCut;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     return o;
 }

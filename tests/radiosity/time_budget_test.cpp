@@ -104,6 +104,38 @@ TEST(TimeBudget, ItsPhasesEndAtSharesCountedFromTheStart) {
     EXPECT_LT(spent.until(1.0), Clock::now());
 }
 
+TEST(TimeBudget, APhaseBegunEarlyEndsAfterItsOwnShare) {
+    // TimeBudget::phaseUntil: begun before the earlier shares have passed, a phase ends after
+    // its own share; begun late, at its cumulative end; without a budget, never. Durations
+    // are exact here (no clock reading but the start's): 1e-6 s is the double's rounding.
+    const auto t0 = Clock::now();
+    const TimeBudget b{t0, 100};
+    auto at = [&](Clock::time_point t) { return std::chrono::duration<double>(t - t0).count(); };
+    EXPECT_NEAR(at(b.phaseUntil(t0 + std::chrono::seconds(30), 0.10, 0.75)), 40, 1e-6);
+    EXPECT_NEAR(at(b.phaseUntil(t0 + std::chrono::seconds(70), 0.10, 0.75)), 75, 1e-6);
+    EXPECT_NEAR(at(b.phaseUntil(t0 + std::chrono::seconds(90), 0.10, 0.75)), 75, 1e-6);
+    const TimeBudget none{t0, 0};
+    EXPECT_EQ(none.phaseUntil(t0, 0.10, 0.75), Clock::time_point::max());
+}
+
+TEST(TimeBudget, AHugeBudgetIsNoDeadlineNotOnePast) {
+    // radiosity::secondsAfter saturates: 1e300 s (or 1e12 s, past the clock's ~292 years of
+    // nanoseconds) is no deadline, where the integer ticks overflowed into the past and
+    // every phase read as spent; a small duration is exact to the nanosecond; not finite
+    // is no deadline, negative is now.
+    const auto t0 = Clock::now();
+    EXPECT_EQ(secondsAfter(t0, 1e300), Clock::time_point::max());
+    EXPECT_EQ(secondsAfter(t0, 1e12), Clock::time_point::max());
+    EXPECT_EQ(secondsAfter(t0, std::numeric_limits<double>::infinity()), Clock::time_point::max());
+    EXPECT_EQ(secondsAfter(t0, std::nan("")), Clock::time_point::max());
+    EXPECT_EQ(secondsAfter(t0, -5), t0);
+    EXPECT_EQ(secondsAfter(t0, 1.5) - t0, std::chrono::milliseconds(1500));
+    const TimeBudget huge{t0, 1e300};
+    EXPECT_EQ(huge.until(0.5), Clock::time_point::max());
+    EXPECT_EQ(huge.phaseUntil(t0, 0.1, 0.75), Clock::time_point::max());
+    EXPECT_GT(huge.secondsUntil(0.5), 1e299);
+}
+
 TEST(TimeBudget, ADeadlineAlreadyPastStopsTheRefinementAsNoTimeDoes) {
     // SolverOptions::refineUntil, a command's budget counted from its start: when the loading
     // took all of the refinement's share, the refinement stops at its first reading of the
