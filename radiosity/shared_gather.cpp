@@ -77,9 +77,9 @@ struct SampleLayout {
     std::vector<int> nearIndex;
     std::vector<int> leafOf;  ///< per point: its leaf (-1: no gather)
     /// Per node: a leaf whose corners also gather its element ancestors' links that are
-    /// near them but far from it (sharedAtLeaf).
+    /// near them but far from it (nearAncestorFarLeaf).
     std::vector<char> leafShares;
-    /// For such a leaf, sharedAtLeaf of each near link of its ancestors (parent first, each
+    /// For such a leaf, nearAncestorFarLeaf of each near link of its ancestors (parent first, each
     /// in forNearLinks' order), from atLeafStart[leaf]: decided once per leaf, not at each
     /// of its points, where reading each link's source node (a cache miss) took most of the
     /// points' gather on a real stair hall.
@@ -109,9 +109,9 @@ void forNearLinks(const SampleLayout& s, int node, size_t count, const F& f) {
         f(static_cast<size_t>(s.nearIndex[j]));
 }
 
-/// f(node, link, atLeaf) for each link that a point of `leaf` gathers itself along its chain
-/// (leaf first, then its ancestors: forNearLinks), atLeaf = sharedAtLeaf: the link is
-/// gathered at the leaf's corners instead.
+/// f(link, atLeaf) for each link that a point of `leaf` gathers itself along its chain
+/// (leaf first, then its ancestors: forNearLinks); atLeaf: the link is gathered at the
+/// leaf's corners instead (SampleLayout::atLeaf).
 template <class F>
 void forChainNearLinks(const HierarchicalSolver& solver, const SampleLayout& s, int leaf,
                        const F& f) {
@@ -120,13 +120,12 @@ void forChainNearLinks(const HierarchicalSolver& solver, const SampleLayout& s, 
     for (int node = leaf; node >= 0; node = h.nodes[node].parent) {
         const bool ancestor = node != leaf && atLeaf;
         const auto links = solver.linksOf(node);
-        forNearLinks(s, node, links.size(),
-                     [&](size_t j) { f(node, links[j], ancestor && *atLeaf++); });
+        forNearLinks(s, node, links.size(), [&](size_t j) { f(links[j], ancestor && *atLeaf++); });
     }
 }
 
 /// Gives a leaf corners of its own for its element ancestors' links that are near them but
-/// far from it (sharedAtLeaf), where that is cheaper than gathering them at each point: when
+/// far from it (nearAncestorFarLeaf), where that is cheaper than gathering them at each point: when
 /// more than twice as many points lie in the leaf as it has corners. A wall that cannot be
 /// split further can hold tens of thousands of links to the small parts of a piece of
 /// furniture beside it, all near the whole wall; each of the wall's points gathered them all
@@ -257,7 +256,7 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                 if (detail::mayCarry(l) && sharedLink(h, r, l))
                     detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
             if (!layout.leafShares[node]) continue;
-            forChainNearLinks(solver, layout, node, [&](int, const Link& l, bool atLeaf) {
+            forChainNearLinks(solver, layout, node, [&](const Link& l, bool atLeaf) {
                 if (atLeaf && detail::mayCarry(l))
                     detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
             });
@@ -283,7 +282,7 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
                     detail::gatherLink(solver, p.polygon, p.x, n, l, pr, rng, cast, acc);
             };
             const int leaf = layout.leafOf[i];
-            forChainNearLinks(solver, layout, leaf, [&](int, const Link& l, bool atLeaf) {
+            forChainNearLinks(solver, layout, leaf, [&](const Link& l, bool atLeaf) {
                 if (!atLeaf) gather(l);
             });
             for (int node = leaf; node >= 0; node = h.nodes[node].parent) {
