@@ -67,14 +67,32 @@ class CameraSamples {
         return lighting_;
     }
 
-    /// The same, given up at `deadline` (radiosity::runUntil): null when it could not be
-    /// measured by then, and nothing partial is kept for a later call.
+    /// The same, by `deadline`: null when not even a coarse sub-grid could be measured by
+    /// then. With a finite deadline a sub-grid kCoarse times coarser is measured first (1/16
+    /// of the rays); from its time the finest stride whose predicted time (rays follow the
+    /// pixels: stride^-2) fits in what is left is measured, else the coarse one is kept. The
+    /// estimate then has fewer pixels per polygon instead of none: before, a budget that
+    /// could not hold every pixel's rays kept the scene's reflectances (Cornell box,
+    /// --time-budget 1: rel_rmse 0.645; bench/RESULTS.md 2026-11-28).
     const LightingBuffer* lightingUntil(Clock::time_point deadline) {
         if (haveLighting_) return &lighting_;
+        if (deadline == Clock::time_point::max()) return &lighting();
+        const int coarse = plan_.stride * kCoarse;
         LightingBuffer b;
-        if (!radiosity::runUntil(deadline, [&] { b = measure(plan_.stride); })) {
+        const auto t0 = Clock::now();
+        if (!radiosity::runUntil(deadline, [&] { b = measure(coarse); })) {
             std::fprintf(stderr, "per-pixel lighting given up at the deadline\n");
             return nullptr;
+        }
+        const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+        const int stride = finestStrideWithin(secondsSince(t0), coarse, plan_.stride, left);
+        if (stride < coarse) {
+            LightingBuffer fine;
+            if (radiosity::runUntil(deadline, [&] { fine = measure(stride); }))
+                b = std::move(fine);
+            else
+                std::fprintf(stderr, "per-pixel lighting: stride %d given up, %d kept\n", stride,
+                             coarse);
         }
         lighting_ = std::move(b);
         haveLighting_ = true;
@@ -83,7 +101,9 @@ class CameraSamples {
 
     /// The lighting of every pixel, for the -o image.
     LightingBuffer& imageLighting() {
-        if (plan_.stride == 1) return lighting();
+        // The estimates' lighting serves when it has every pixel (a coarser sub-grid may
+        // have been measured for a short --time-budget).
+        if (plan_.stride == 1 && (!haveLighting_ || lighting_.stride == 1)) return lighting();
         if (!haveImageLighting_) imageLighting_ = measure(1);
         haveImageLighting_ = true;
         return imageLighting_;
@@ -122,6 +142,7 @@ class CameraSamples {
     LightingBuffer lighting_, imageLighting_;
     bool haveLighting_ = false, haveImageLighting_ = false;
     double seconds_ = 0;
+    static constexpr int kCoarse = 4;
 };
 
 /// Lights whose radiance is "estimate": estimated from the first photo before anything is

@@ -154,4 +154,14 @@ Image renderRadiosity(const ItemBuffer& items, const LightingBuffer& buf,
     return img;
 }
 
+int finestStrideWithin(double probeSeconds, int probeStride, int finest, double secondsLeft) {
+    if (!(secondsLeft > 0) || finest < 1 || finest >= probeStride) return probeStride;
+    const double probe = std::max(probeSeconds, 0.0);
+    for (int s = finest; s < probeStride; s *= 2) {
+        const double r = static_cast<double>(probeStride) / s;
+        if (probe * r * r <= secondsLeft) return s;
+    }
+    return probeStride;
+}
+
 }  // namespace relight

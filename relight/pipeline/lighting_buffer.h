@@ -61,6 +61,13 @@ LightingBuffer computeLightingBuffer(const ItemBuffer& items,
                                      const radiosity::HierarchicalSolver& solver,
                                      radiosity::DirectLightOptions options = {}, int stride = 1);
 
+/// The finest pixel stride (finest, 2 finest, 4 finest, ... up to probeStride) whose
+/// lighting is predicted to take at most `secondsLeft`, from the `probeSeconds` that a
+/// sub-grid of `probeStride` took: rays follow the pixels, so stride s costs
+/// probeSeconds (probeStride / s)^2. probeStride when none finer fits (also when
+/// secondsLeft <= 0 or is NaN).
+int finestStrideWithin(double probeSeconds, int probeStride, int finest, double secondsLeft);
+
 /// Re-gathers the indirect light of every gather point from the solver's current solution
 /// (the final gather, far links shared per element); `progress` hears how far it is. Points
 /// begun after `raysUntil` (a time budget's share) cast no visibility rays: their partly

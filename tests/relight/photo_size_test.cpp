@@ -77,6 +77,21 @@ TEST(LightingBuffer, SubGridSamplesAreThoseOfTheFullBuffer) {
     EXPECT_THROW(renderRadiosity(r.items, sub, r.solver->scene()), std::invalid_argument);
 }
 
+TEST(LightingBuffer, TheFinestStrideThatFitsTheTimeLeft) {
+    // A stride-4 probe took 0.1 s: stride 2 costs 0.4 s, stride 1 1.6 s (rays per pixel).
+    EXPECT_EQ(finestStrideWithin(0.1, 4, 1, 2.0), 1);
+    EXPECT_EQ(finestStrideWithin(0.1, 4, 1, 1.6), 1);  // exactly the prediction fits
+    EXPECT_EQ(finestStrideWithin(0.1, 4, 1, 1.0), 2);
+    EXPECT_EQ(finestStrideWithin(0.1, 4, 1, 0.3), 4);  // nothing finer fits: the probe
+    EXPECT_EQ(finestStrideWithin(0.1, 8, 2, 0.5), 4);  // a large photo's plan of stride 2
+    // The limits: no time left, a deadline passed, NaN, a probe of no measurable time.
+    EXPECT_EQ(finestStrideWithin(0.1, 4, 1, 0.0), 4);
+    EXPECT_EQ(finestStrideWithin(0.1, 4, 1, -1.0), 4);
+    EXPECT_EQ(finestStrideWithin(0.1, 4, 1, std::nan("")), 4);
+    EXPECT_EQ(finestStrideWithin(0.0, 4, 1, 1e-9), 1);
+    EXPECT_EQ(finestStrideWithin(0.1, 4, 4, 100.0), 4);  // the probe is the finest asked
+}
+
 TEST(DisplayMap, SameMapAndImageWithOneAndTwoThreads) {
     const Relighting& r = test::coarseRoom();
     const auto radiance = radianceOf(r, "back_off");
