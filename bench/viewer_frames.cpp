@@ -31,6 +31,7 @@
 //     then, per pixel, the window's quick frames (Session::setQuickMoves: the box's direct
 //     light and shadows per pixel, DynamicRelighting::previewLastObject) and the drag at
 //     rest (Session::settle: render's image).
+//   - point lamp drag and quad lamp insertion (per-pixel display; lampDragAndInsertion).
 // each in the ratio display with both framebuffers: float (one pass) and the paper's 8-bit
 // multipass (Loscos et al. 2000, §5.3: ratios above 1 drawn as passes added in the
 // framebuffer, n = ceil(max ratio), so the draw grows with the brightest ratio), and in the
@@ -42,6 +43,7 @@
 // that no pixel shows (D = 0) reaches ratios of 5 to 17 and made the first version of the
 // display draw 16-18 passes where the pixels need 2 or 3 (bench/RESULTS.md).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -198,6 +200,16 @@ Samples timeFrames(FrameRenderer& frame, const Display& display, int frames, Cha
     return s;
 }
 
+/// Two runs' samples, one after the other.
+Samples concat(Samples a, const Samples& b) {
+    a.frame.insert(a.frame.end(), b.frame.begin(), b.frame.end());
+    a.update.insert(a.update.end(), b.update.begin(), b.update.end());
+    a.upload.insert(a.upload.end(), b.upload.begin(), b.upload.end());
+    a.draw.insert(a.draw.end(), b.draw.begin(), b.draw.end());
+    a.passes.insert(a.passes.end(), b.passes.begin(), b.passes.end());
+    return a;
+}
+
 void printHeader() {
     std::printf("%-26s %-18s %-17s %-17s %-17s %-17s %6s %6s\n", "scenario", "display", "frame",
                 "update", "upload", "draw", "fps", "passes");
@@ -292,6 +304,56 @@ void sunDrag(Session& session, FrameRenderer& frame, int frames, int upscale) {
         printRow(quick ? "sun drag, quick" : "sun drag, each exact", display, s);
         if (session.exactPending()) printAtRest(session, frame, "drag");
     }
+}
+
+/// A point lamp dragged over the floor and quad lamps inserted, in the per-pixel display
+/// (issue 32 item 5's "lamp drag" and "lamp insertion"): the lamp is put 0.3 m above the
+/// floor at pixel `at` and follows the pointer along `step` (the box's line, one pass),
+/// each move first solved exactly, then with the window's quick frames
+/// (Session::setQuickMoves) and the drag at rest; then a virtual quad lamp inserted on the
+/// floor and taken out again, min(frames, 8) times: the frame of each insertion.
+void lampDragAndInsertion(Session& session, FrameRenderer& frame, int frames,
+                          std::array<double, 2> at, std::array<double, 2> step) {
+    const Display& display = kDisplays[2];  // per-pixel
+    frame.framebuffer = display.framebuffer;
+    frame.perPixel = display.perPixel;
+    const std::string lamp = session.addPointLampAt(session.pick(at[0], at[1]), 0.3);
+    frame.render();
+    int misses = 0;
+    bool forwards = true;
+    for (const bool quick : {false, true}) {
+        session.setQuickMoves(quick);
+        const Samples s = timeFrames(frame, display, frames, [&](int i) {
+            const double f = static_cast<double>(i + 1) / frames, t = forwards ? f : 1 - f;
+            const Pick p = session.pick(at[0] + t * step[0], at[1] + t * step[1]);
+            if (p.hit)
+                session.movePointLampTo(lamp, p, 0.3);
+            else
+                ++misses;
+        });
+        printRow(quick ? "point lamp drag, quick" : "point lamp drag, each exact", display, s);
+        if (session.exactPending()) printAtRest(session, frame, "lamp drag");
+        forwards = !forwards;
+    }
+    session.setQuickMoves(false);
+    session.removeLight(static_cast<int>(session.lights().size()) - 1);
+    frame.render();
+    const Pick floor = session.pick(at[0], at[1]);
+    Samples s;
+    for (int i = 0; i < std::min(frames, 8); ++i) {
+        if (i > 0) {  // the last one taken out, not timed
+            session.removeLight(static_cast<int>(session.lights().size()) - 1);
+            frame.render();
+        }
+        s = concat(s, timeFrames(frame, display, 1, [&](int) { session.addLightAt(floor); }));
+    }
+    printRow("quad lamp insertion", display, s);
+    if (session.exactPending()) printAtRest(session, frame, "insertion");
+    std::printf(
+        "point lamp: 0.3 m over the floor, dragged %.0f px%s; quad lamp: on the floor at "
+        "(%.1f, %.1f), inserted min(frames, 8) times (the last one taken out between, untimed)\n",
+        std::hypot(step[0], step[1]), misses ? " (some pointer positions missed)" : "", at[0],
+        at[1]);
 }
 
 int run(const Args& a) {
@@ -406,6 +468,7 @@ int run(const Args& a) {
         "from there towards (%.1f, %.1f): the box %.3f m over the floor and back%s\n",
         glm::length(Vec3(m[0][0], m[1][0], m[2][0])), u, v, session.links(), length, u1, v1,
         glm::length(end - start), misses ? " (some pointer positions missed its plane)" : "");
+    lampDragAndInsertion(session, frame, a.frames, {u, v}, {du, dv});
     return 0;
 }
 

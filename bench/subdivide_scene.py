@@ -1,0 +1,55 @@
+#!/usr/bin/python3
+"""Copy a scene package with every triangle of its OBJ files cut into 4 by its edges'
+midpoints, LEVELS times (x4^LEVELS faces). The surface is the same, so the package's
+truths still hold and are copied: the engine's cost and scores against the input's size
+with the lighting unchanged (issue 30, "the staircase subdivided once and twice").
+Midpoints are shared between the faces of an edge, so the mesh stays watertight.
+usage: subdivide_scene.py SRC DST LEVELS"""
+import json, os, shutil, sys
+
+
+def subdivide(lines):
+    verts = [tuple(map(float, l.split()[1:4])) for l in lines if l.startswith('v ')]
+    mid = {}
+
+    def midpoint(a, b):
+        key = (a, b) if a < b else (b, a)
+        if key not in mid:
+            pa, pb = verts[a], verts[b]
+            verts.append(tuple((x + y) / 2 for x, y in zip(pa, pb)))
+            mid[key] = len(verts) - 1
+        return mid[key]
+
+    body = []
+    for l in lines:
+        if l.startswith('f '):
+            idx = [int(t.split('/')[0]) for t in l.split()[1:]]
+            idx = [i - 1 if i > 0 else len(verts) + i for i in idx]
+            if len(idx) != 3:
+                raise SystemExit('only triangles are subdivided: ' + l)
+            a, b, c = idx
+            ab, bc, ca = midpoint(a, b), midpoint(b, c), midpoint(c, a)
+            for f in ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)):
+                body.append('f %d %d %d' % tuple(i + 1 for i in f))
+        elif not l.startswith('v '):
+            body.append(l)
+    return ['v %.10g %.10g %.10g' % v for v in verts] + body
+
+
+def main():
+    src, dst, levels = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    shutil.rmtree(dst, ignore_errors=True)
+    shutil.copytree(src, dst, ignore=shutil.ignore_patterns('.relight'))
+    scene = json.load(open(os.path.join(dst, 'scene.json')))
+    for g in scene['geometry']:
+        path = os.path.join(dst, g)
+        os.chmod(path, 0o644)
+        lines = open(path).read().splitlines()
+        for _ in range(levels):
+            lines = subdivide(lines)
+        open(path, 'w').write('\n'.join(lines) + '\n')
+        print('%s: %d faces' % (path, sum(1 for l in lines if l.startswith('f '))))
+
+
+if __name__ == '__main__':
+    main()
