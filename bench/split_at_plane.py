@@ -6,7 +6,9 @@ slab is one element lit on both sides until the refinement splits it.
 usage: split_at_plane.py SRC DST CUT [CUT ...]
   CUT  AXIS=VALUE[:AXIS(min|max)(<|>)LIMIT]   e.g. "y=-0.853:zmax>3.9" cuts the triangles
        that cross y = -0.853 and reach above z = 3.9; "z=3.96:ymax<-0.80"."""
-import json, os, re, shutil, sys
+import re, sys
+
+from subdivide_scene import rewrite_package
 
 AX = {'x': 0, 'y': 1, 'z': 2}
 
@@ -54,17 +56,14 @@ def cut_once(lines, a, v, cond):
 
 def main():
     src, dst, cuts = sys.argv[1], sys.argv[2], [parse(c) for c in sys.argv[3:]]
-    shutil.rmtree(dst, ignore_errors=True)
-    shutil.copytree(src, dst, ignore=shutil.ignore_patterns('.relight'))
-    scene = json.load(open(os.path.join(dst, 'scene.json')))
-    for g in scene['geometry']:
-        path = os.path.join(dst, g)
-        os.chmod(path, 0o644)
-        lines = open(path).read().splitlines()
+
+    def rewrite(name, lines):
         for (a, v, cond), text in zip(cuts, sys.argv[3:]):
             lines, count = cut_once(lines, a, v, cond)
-            print('%s: %s cut %d triangles' % (g, text, count))
-        open(path, 'w').write('\n'.join(lines) + '\n')
+            print('%s: %s cut %d triangles' % (name, text, count))
+        return lines
+
+    rewrite_package(src, dst, rewrite)
 
 
 if __name__ == '__main__':

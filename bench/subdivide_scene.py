@@ -36,19 +36,30 @@ def subdivide(lines):
     return ['v %.10g %.10g %.10g' % v for v in verts] + body
 
 
-def main():
-    src, dst, levels = sys.argv[1], sys.argv[2], int(sys.argv[3])
+def rewrite_package(src, dst, rewrite):
+    """Copies package src to dst (its .relight cache left out) and replaces the lines of each
+    of its OBJ files by rewrite(name, lines). The truths are copied: the engine never reads
+    them, and a rewrite that keeps the surface keeps them valid."""
     shutil.rmtree(dst, ignore_errors=True)
     shutil.copytree(src, dst, ignore=shutil.ignore_patterns('.relight'))
     scene = json.load(open(os.path.join(dst, 'scene.json')))
     for g in scene['geometry']:
         path = os.path.join(dst, g)
         os.chmod(path, 0o644)
-        lines = open(path).read().splitlines()
+        lines = rewrite(g, open(path).read().splitlines())
+        open(path, 'w').write('\n'.join(lines) + '\n')
+
+
+def main():
+    src, dst, levels = sys.argv[1], sys.argv[2], int(sys.argv[3])
+
+    def rewrite(name, lines):
         for _ in range(levels):
             lines = subdivide(lines)
-        open(path, 'w').write('\n'.join(lines) + '\n')
-        print('%s: %d faces' % (path, sum(1 for l in lines if l.startswith('f '))))
+        print('%s: %d faces' % (name, sum(1 for l in lines if l.startswith('f '))))
+        return lines
+
+    rewrite_package(src, dst, rewrite)
 
 
 if __name__ == '__main__':
