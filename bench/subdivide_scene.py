@@ -8,6 +8,13 @@ usage: subdivide_scene.py SRC DST LEVELS"""
 import json, os, shutil, sys
 
 
+def face_indices(line, vertex_count):
+    """The 0-based vertex indices of OBJ face line `line` (negative indices count back from
+    the vertices read so far, `vertex_count`; texture and normal indices dropped)."""
+    idx = [int(t.split('/')[0]) for t in line.split()[1:]]
+    return [i - 1 if i > 0 else vertex_count + i for i in idx]
+
+
 def subdivide(lines):
     verts = [tuple(map(float, l.split()[1:4])) for l in lines if l.startswith('v ')]
     mid = {}
@@ -23,8 +30,7 @@ def subdivide(lines):
     body = []
     for l in lines:
         if l.startswith('f '):
-            idx = [int(t.split('/')[0]) for t in l.split()[1:]]
-            idx = [i - 1 if i > 0 else len(verts) + i for i in idx]
+            idx = face_indices(l, len(verts))
             if len(idx) != 3:
                 raise SystemExit('only triangles are subdivided: ' + l)
             a, b, c = idx
