@@ -6,9 +6,10 @@
 // DynamicRelighting, as relight/cli/render.cpp does), and scores each with the format's
 // metric (`relight eval`'s rel_rmse and changed_rel_rmse).
 //
-//   ./build/bench/all_edits <scene_dir> [--out DIR] [--cache FILE]
+//   ./build/bench/all_edits <scene_dir> [--out DIR] [--cache FILE] [--only EDIT,EDIT...]
 // --out: the relit images, EDIT.exr; --cache: also writes the prepared cache there (for
-// bench/light_shares). Run large scenes under `flock /tmp/relight-heavy.lock`.
+// bench/light_shares); --only: these edits alone. Run large scenes under `flock
+// /tmp/relight-heavy.lock`.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -31,14 +32,17 @@ using namespace relight;
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s <scene_dir> [--out DIR] [--cache FILE]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s <scene_dir> [--out DIR] [--cache FILE] [--only EDIT,...]\n",
+                     argv[0]);
         return 2;
     }
     const fs::path dir = argv[1];
     fs::path out, cache;
+    std::string only;  // ",a,b,": the edits to render, empty: all
     for (int i = 2; i + 1 < argc; i += 2) {
         if (std::strcmp(argv[i], "--out") == 0) out = argv[i + 1];
         if (std::strcmp(argv[i], "--cache") == 0) cache = argv[i + 1];
+        if (std::strcmp(argv[i], "--only") == 0) only.append(",").append(argv[i + 1]).append(",");
     }
     std::printf("command:");
     for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
@@ -56,7 +60,10 @@ int main(int argc, char** argv) {
     if (!cache.empty()) writePreparedCache(cache, r->prepared, preparationKey(sf, o));
     std::vector<std::string> edits;
     for (const auto& e : fs::directory_iterator(dir / "edits"))
-        if (fs::exists(dir / "truth" / (e.path().stem().string() + ".exr")))
+        if (fs::exists(dir / "truth" / (e.path().stem().string() + ".exr")) &&
+            (only.empty() ||
+             only.find(std::string(",").append(e.path().stem().string()).append(",")) !=
+                 std::string::npos))
             edits.push_back(e.path().stem().string());
     std::sort(edits.begin(), edits.end());
     const Image photo =

@@ -106,6 +106,8 @@ int runPrepare(const PrepareArgs& a) {
     std::fprintf(stderr, "relight prepare %s\n", a.scene.c_str());
     const SceneFile sf = loadScene(a.scene);
     for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    if (const std::string c = contactSplitLine(sf); !c.empty())
+        std::fprintf(stderr, "%s\n", c.c_str());
     CacheArgs cache = a.cache;
     cache.use = true;
     const PreparedState s = loadOrPrepare(sf, o, cache, /*writeMustSucceed=*/true);

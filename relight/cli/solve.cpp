@@ -357,6 +357,8 @@ int runSolve(const SolveArgs& a) {
     const radiosity::TimeBudget budget{tAll, a.timeBudget};
     SceneFile sf = loadScene(a.scene);
     for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    if (const std::string c = contactSplitLine(sf); !c.empty())
+        std::fprintf(stderr, "%s\n", c.c_str());
     std::fprintf(stderr, "relight solve %s: %zu polygons, %zu lights, epsilon %g\n",
                  a.scene.c_str(), sf.scene.polygons.size(), sf.scene.lights.size(), a.epsilon);
     radiosity::HierarchicalSolver solver(sf.scene, solverOptions(a, budget));

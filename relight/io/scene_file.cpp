@@ -9,7 +9,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -314,6 +316,12 @@ SceneFile readScene(const json& root, const fs::path& dir) {
     sf.averageReflectance = readAverageReflectance(r, root);
     readObjects(r, root, sf);
     readGeometry(r, root, sf);
+    // Before the lights: their faces are neither cut nor cut along, and stay after the
+    // geometry's polygons and their pieces.
+    const auto t0 = std::chrono::steady_clock::now();
+    sf.contactSplit = radiosity::splitAtContacts(sf.scene.polygons, sf.scene.polygons.size());
+    sf.contactSplitSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     readLights(r, root, sf);
     readPhotos(r, root, sf);
     sf.setPhotoLightState();
@@ -321,6 +329,19 @@ SceneFile readScene(const json& root, const fs::path& dir) {
 }
 
 }  // namespace
+
+std::string contactSplitLine(const SceneFile& sf) {
+    const radiosity::ContactSplitReport& c = sf.contactSplit;
+    if (c.polygonsCut == 0) return {};
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "geometry: %d polygons cut along %d lines where other surfaces meet them "
+                  "(%d pieces added%s), %.2f s",
+                  c.polygonsCut, c.lines, c.piecesAdded,
+                  c.piecesLimited > 0 ? ", some at the most pieces a polygon may have" : "",
+                  sf.contactSplitSeconds);
+    return line;
+}
 
 PhotoSpec::Encoding encodingFromExtension(const fs::path& file, bool& known) {
     std::string ext = file.extension().string();

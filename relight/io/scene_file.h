@@ -11,6 +11,10 @@
 //     keeps both halves convex;
 //   - a convex planar face with more than 4 vertices is split into a fan of triangles;
 //   - a degenerate face (zero area, repeated vertices) is dropped.
+// Then the geometry's polygons are cut where another surface stands across them (a wall on
+// a slab that runs on beneath it: radiosity/contact_split.h), so that no element of the
+// solution straddles a wall and leaks light through it; the count is a line of the commands'
+// progress (contactSplitLine()), not a warning: the surfaces stay as the file has them.
 // Non-finite coordinates, faces with fewer than 3 vertices, bad indices, zero-area or
 // non-planar lights, negative radiance, unknown JSON keys and missing files are errors.
 #pragma once
@@ -23,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "radiosity/contact_split.h"
 #include "radiosity/scene.h"
 #include "relight/errors.h"
 #include "relight/pipeline/camera.h"
@@ -56,6 +61,10 @@ struct SceneFile {
     /// a sun's "irradiance", each of a sky's 9 components for its "sh9").
     std::vector<bool> estimateRadiance;
     std::vector<std::string> warnings;  ///< documented repairs, with file and line
+    /// The geometry's polygons cut where other surfaces meet them (radiosity/contact_split.h),
+    /// and the seconds it took: a line of the commands' progress (contactSplitLine()).
+    radiosity::ContactSplitReport contactSplit;
+    double contactSplitSeconds = 0;
     /// The geometry files of "geometry", in scene.json's order (dir / name), each followed
     /// by the files it drew on (a .gltf's buffers): with scene.json and the photos, the
     /// files the scene's content comes from (relight/io/prepared_cache.h).
@@ -69,6 +78,10 @@ struct SceneFile {
     /// when there is no photo).
     bool lightOnInPhoto(size_t i) const;
 };
+
+/// "geometry: N polygons cut along M lines where other surfaces meet them (K pieces added),
+/// T s"; empty when nothing was cut.
+std::string contactSplitLine(const SceneFile& sf);
 
 /// A photo's encoding from its file's extension: .exr, .hdr, .pfm linear; .png, .jpg, .jpeg
 /// sRGB; `known` false (and linear) for any other.

@@ -281,6 +281,26 @@ TEST_F(LoadScene, BaseSceneLoads) {
     EXPECT_EQ(sf.scene.lights[0].radiance, radiosity::Rgb(1, 2, 3));
 }
 
+TEST_F(LoadScene, AFloorRunningUnderAWallIsCutAlongItAndTheLightStaysLast) {
+    // A wall standing across the 1 m floor at x = 0.3 (facing -x): the floor is cut in two
+    // along it (radiosity/contact_split.h), before the light's face is added.
+    obj = std::string(kFloorObj) +
+          "o wall\nv 0.3 0 0\nv 0.3 0 0.5\nv 0.3 1 0.5\nv 0.3 1 0\nf 5 6 7 8\n";
+    const SceneFile sf = load();
+    EXPECT_TRUE(sf.warnings.empty()) << allWarnings(sf);
+    EXPECT_EQ(sf.contactSplit.polygonsCut, 1);
+    EXPECT_EQ(sf.contactSplit.piecesAdded, 1);
+    ASSERT_EQ(sf.scene.polygons.size(), 4u);  // floor's pieces, wall, light
+    const int floor = sf.scene.findObject("floor");
+    EXPECT_EQ(sf.scene.polygons[0].object, floor);
+    EXPECT_EQ(sf.scene.polygons[2].object, floor);
+    EXPECT_NEAR(sf.scene.polygons[0].area + sf.scene.polygons[2].area, 1.0, 1e-12);
+    EXPECT_EQ(sf.scene.lights[0].polygons, std::vector<int>{3});
+    EXPECT_EQ(sf.scene.polygons[3].light, 0);
+    EXPECT_TRUE(contains(relight::contactSplitLine(sf), "1 polygons cut along 1 lines"))
+        << relight::contactSplitLine(sf);
+}
+
 TEST_F(LoadScene, LightsOffInPhotoAreOff) {
     scene["lights"].push_back({{"name", "M"},
                                {"type", "quad"},
