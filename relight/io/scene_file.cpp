@@ -9,12 +9,12 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "radiosity/stopwatch.h"
 #include "relight/io/face_repair.h"
 #include "relight/io/json_reader.h"
 #include "relight/io/light_reader.h"
@@ -318,10 +318,9 @@ SceneFile readScene(const json& root, const fs::path& dir) {
     readGeometry(r, root, sf);
     // Before the lights: their faces are neither cut nor cut along, and stay after the
     // geometry's polygons and their pieces.
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = radiosity::Clock::now();
     sf.contactSplit = radiosity::splitAtContacts(sf.scene.polygons, sf.scene.polygons.size());
-    sf.contactSplitSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    sf.contactSplitSeconds = radiosity::secondsSince(t0);
     readLights(r, root, sf);
     readPhotos(r, root, sf);
     sf.setPhotoLightState();
