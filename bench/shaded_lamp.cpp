@@ -9,7 +9,9 @@
 // The shaded lamp is the weak one: the room's ceiling lamp gives 18 times its radiance x
 // area (1.78 m^2 at 10 against 0.01 m^2 at 100), as the stair hall's ceiling lamp gives 21
 // times its shaded table lamp's. Each case runs with the BF criterion on the total light and
-// with the per-light oracle (SolverOptions::perLightOracle, issue 30 "light round corners").
+// with the per-light oracle (SolverOptions::perLightOracle, issue 30 "light round corners"),
+// and with the links' cluster sources narrowed to what their rays reached (the default,
+// SolverOptions::narrowClusterSources) and, for the first ones, without.
 //
 //   ./build/bench/shaded_lamp [PER_LIGHT_GAIN]     (default 100)
 // prints, with no budget, a budget of links, and none at all (the coarsest links), the lamp's
@@ -38,21 +40,26 @@ int main(int argc, char** argv) {
         double seconds;
         size_t maxLinks;
         double perLight;
+        bool narrow = true;
     };
-    for (const Case c : {Case{0, 0, 0}, Case{0, 0, gain}, Case{0, 30000, 0}, Case{0, 30000, gain},
-                         Case{1e-9, 0, 0}, Case{1e-9, 0, gain}}) {
+    for (const Case c : {Case{0, 0, 0, false}, Case{0, 0, 0}, Case{0, 0, gain, false},
+                         Case{0, 0, gain}, Case{0, 30000, 0, false}, Case{0, 30000, 0},
+                         Case{0, 30000, gain}, Case{1e-9, 0, 0}, Case{1e-9, 0, gain}}) {
         SolverOptions o;
         o.epsilon = 1e-4;
         o.refineSeconds = c.seconds;
         o.maxLinks = c.maxLinks;
         o.perLightOracle = c.perLight;
+        o.narrowClusterSources = c.narrow;
         const auto t0 = std::chrono::steady_clock::now();
         HierarchicalSolver solver(scene, o);
         solver.solve();
         const double solveSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::printf("refineSeconds %g, maxLinks %zu, perLightOracle %g: solve %.3f s\n", c.seconds,
-                    c.maxLinks, c.perLight, solveSeconds);
+        std::printf(
+            "refineSeconds %g, maxLinks %zu, perLightOracle %g, narrowed sources %s: "
+            "solve %.3f s\n",
+            c.seconds, c.maxLinks, c.perLight, c.narrow ? "on" : "off", solveSeconds);
         const LightResponses R(solver);
         const auto& nodes = solver.hierarchy().nodes;
         double inside = 0, outside = 0, areaIn = 0, areaOut = 0;

@@ -462,10 +462,12 @@ void Hierarchy::clustersAndRoots(std::vector<int>& clusters, std::vector<int>& r
     }
 }
 
-Vec3 Hierarchy::samplePoint(int node, double u, double v, double w, Vec3* normal) const {
+Vec3 Hierarchy::samplePoint(int node, double u, double v, double w, Vec3* normal,
+                            int* order) const {
     const Node& n = nodes[node];
     if (!n.isCluster()) {
         if (normal) *normal = n.normal;
+        if (order) *order = -1;
         return pointOnElement(n, u, v);
     }
     // Choose a polygon of the cluster by area (binary search in the prefix sums).
@@ -477,7 +479,27 @@ Vec3 Hierarchy::samplePoint(int node, double u, double v, double w, Vec3* normal
     idx = std::clamp(idx, n.polyBegin, n.polyEnd - 1);
     const SampleCorners& p = ordered_[idx];
     if (normal) *normal = p.normal;
+    if (order) *order = idx;
     return pointOnCorners(p.v, p.vertexCount, u, v);
+}
+
+int Hierarchy::narrowestCovering(int node, int lo, int hi) const {
+    for (;;) {
+        const Node& n = nodes[node];
+        if (!n.isCluster()) return node;
+        int next = -1;
+        for (int k = 0; k < n.childCount && next < 0; ++k) {
+            const int c = n.firstChild + k;
+            const Node& child = nodes[c];
+            const bool covers =
+                child.isCluster()
+                    ? child.polyBegin <= lo && hi < child.polyEnd
+                    : lo == hi && polygonOrder[static_cast<size_t>(lo)] == child.polygon;
+            if (covers) next = c;
+        }
+        if (next < 0) return node;
+        node = next;
+    }
 }
 
 std::array<std::array<Vec3, 4>, 4> childCorners(const std::array<Vec3, 4>& v, int count) {

@@ -143,8 +143,14 @@ class Hierarchy {
 
     /// A point on the node's surfaces for uniform random numbers (u, v, w) in [0, 1):
     /// uniform by area on an element; for a cluster, a polygon is chosen with probability
-    /// proportional to its area (w), then a point on it (u, v).
-    Vec3 samplePoint(int node, double u, double v, double w, Vec3* normal = nullptr) const;
+    /// proportional to its area (w), then a point on it (u, v). `order`, when given, gets
+    /// the chosen polygon's position in polygonOrder (-1 for an element).
+    Vec3 samplePoint(int node, double u, double v, double w, Vec3* normal = nullptr,
+                     int* order = nullptr) const;
+    /// The deepest node under `node` (itself included) whose polygons include every
+    /// polygon of polygonOrder[lo, hi] (positions within node's range): a cluster, or the
+    /// root element of a single polygon.
+    int narrowestCovering(int node, int lo, int hi) const;
 
     /// The leaf element of `polygon` that contains x (a point on the polygon).
     int locateLeaf(int polygon, const Vec3& x) const;

@@ -178,10 +178,13 @@ Link HierarchicalSolver::childLink(const Link& parent, int parentIndex, int r, i
 
 void HierarchicalSolver::evaluateVisibility(const std::vector<size_t>& pending) {
     // Each link's rays come from a generator seeded by its two nodes: evaluating them in
-    // parallel gives the same result as one by one.
+    // parallel gives the same result as one by one. Only solve()'s rounds narrow a partial
+    // cluster source: a dynamic update measures the links it keeps as they are.
+    const bool narrow = options_.narrowClusterSources && deferSelf_;
     const auto t0 = Clock::now();
-    parallelFor(pending.size(), 16,
-                [&](size_t i) { transfer_->visibility(links_.mutableAt(pending[i])); });
+    parallelFor(pending.size(), 16, [&](size_t i) {
+        transfer_->visibility(links_.mutableAt(pending[i]), false, narrow);
+    });
     if (pending.size() >= kLinksTimed)  // the time budget's estimate of what a link costs
         secondsPerLink_ = secondsSince(t0) / static_cast<double>(pending.size());
 }

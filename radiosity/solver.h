@@ -145,6 +145,10 @@ struct SolverOptions {
     /// relative accuracy of the strong one's. 0: off (the BF criterion on the total light).
     /// See updateLightShares().
     double perLightOracle = 0;
+    /// A VISIBLE link from a cluster gathers from the part of the cluster that its rays
+    /// reached, F V kept (transfer.h, "Narrowed sources"), in solve()'s refinement. false:
+    /// the cluster's mean radiosity, as before.
+    bool narrowClusterSources = true;
     size_t maxLinks = 0;   ///< refinement budget in links (0: what fits in maxMemory)
     size_t maxMemory = 0;  ///< refinement budget in bytes (0: defaultMemoryBudget())
     /// Time budget of solve()'s refinement, seconds from solve()'s start (0: none). When it

@@ -143,7 +143,7 @@ bool TransferEvaluator::shaftIsEmpty(int r, int s) const {
     return !shaftQuery(shaft, Hierarchy::kRoot, skipA, skipB, shaft.bounds());
 }
 
-void TransferEvaluator::visibility(Link& link, bool thorough) const {
+void TransferEvaluator::visibility(Link& link, bool thorough, bool narrow) const {
     const int r = link.receiver, s = link.source;
     if (options_.useShafts && shaftIsEmpty(r, s)) {
         counters.shaftEmpty.fetch_add(1, std::memory_order_relaxed);
@@ -160,7 +160,7 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     // set is a uniform sample of both ends: the first minRays rays decide, and in
     // penumbra the rest of the set follows.
     const int k = strataSide(maxRays);
-    int permR[256], permS[256];
+    int permR[256], permS[256], orderS[256];
     shuffledStrata(rng, k, permR);
     shuffledStrata(rng, k, permS);
     // Mutually facing pairs, compacted to the front in draw order. They are drawn only as
@@ -182,7 +182,7 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
                 const double u1 = ((b % k) + rng.uniform()) / k, v1 = ((b / k) + rng.uniform()) / k;
                 Vec3 n0, n1;
                 from[m] = h_.samplePoint(r, u0, v0, rng.uniform(), &n0);
-                to[m] = h_.samplePoint(s, u1, v1, rng.uniform(), &n1);
+                to[m] = h_.samplePoint(s, u1, v1, rng.uniform(), &n1, &orderS[m]);
                 const Vec3 d = to[m] - from[m];
                 if (glm::dot(n0, d) > 0 && glm::dot(n1, d) < 0) {
                     ++m;
@@ -221,6 +221,40 @@ void TransferEvaluator::visibility(Link& link, bool thorough) const {
     link.type = visible == 0      ? VisibilityType::invisible
                 : visible == cast ? VisibilityType::visible
                                   : VisibilityType::partial;
+    // Only VISIBLE links are narrowed: a PARTIAL one's free rays are often a few, and the
+    // node that holds them stands for the whole visible part by a sample of one to three
+    // points (tried: the stair hall's lamp-off edits went 1.5-2.5 times worse).
+    if (narrow && link.type == VisibilityType::visible && h_.nodes[s].isCluster() &&
+        !h_.nodes[s].emitting) {
+        int lo = std::numeric_limits<int>::max(), hi = -1;
+        for (int i = 0; i < cast; ++i) lo = std::min(lo, orderS[i]), hi = std::max(hi, orderS[i]);
+        narrowSource(link, lo, hi);
+    }
+}
+
+void TransferEvaluator::narrowSource(Link& link, int lo, int hi) const {
+    if (hi < lo) return;
+    const int s = link.source;
+    // F V is the transfer from the part of the source that faces the receiver; with one
+    // radiosity for the whole source it carries the mean of all of it, the turned-away
+    // parts' too: a lamp shade's bright inside would light the room through its dark
+    // outside. The rays (cast between mutually facing points only, all free) ended in
+    // polygonOrder[lo, hi]: the link gathers from the narrowest node that holds them, with
+    // the same F V (unchanged when the radiosity is uniform). The node is widened again
+    // towards s while V would exceed 1: a node smaller than what the receiver sees of s
+    // (the rays' ends are a sample of it) would lose light.
+    const double FV = link.F * static_cast<double>(link.V);
+    int d = h_.narrowestCovering(s, lo, hi);
+    double Fd = 0;
+    while (d != s) {
+        Fd = formFactor(link.receiver, d);
+        if (Fd >= FV && Fd > 0) break;
+        d = h_.nodes[d].parent;
+    }
+    if (d == s) return;
+    link.source = d;
+    link.F = Fd;
+    link.V = static_cast<float>(std::min(1.0, FV / Fd));
 }
 
 }  // namespace radiosity
