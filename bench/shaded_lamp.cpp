@@ -10,8 +10,8 @@
 // area (1.78 m^2 at 10 against 0.01 m^2 at 100), as the stair hall's ceiling lamp gives 21
 // times its shaded table lamp's. Each case runs with the BF criterion on the total light and
 // with the per-light oracle (SolverOptions::perLightOracle, issue 30 "light round corners"),
-// and with the links' cluster sources narrowed to what their rays reached (the default,
-// SolverOptions::narrowClusterSources) and, for the first ones, without.
+// and with the links' cluster sources narrowed to what their rays reached
+// (SolverOptions::narrowClusterSources, off by default) and, for the first ones, without.
 //
 //   ./build/bench/shaded_lamp [PER_LIGHT_GAIN]     (default 100)
 // prints, with no budget, a budget of links, and none at all (the coarsest links), the lamp's

@@ -146,9 +146,11 @@ struct SolverOptions {
     /// See updateLightShares().
     double perLightOracle = 0;
     /// A VISIBLE link from a cluster gathers from the part of the cluster that its rays
-    /// reached, F V kept (transfer.h, "Narrowed sources"), in solve()'s refinement. false:
-    /// the cluster's mean radiosity, as before.
-    bool narrowClusterSources = true;
+    /// reached, F V kept (transfer.h, "Narrowed sources"), in solve()'s refinement. Off by
+    /// default: a closed room refined to epsilon 1e-5 then absorbs 97.9 % of the light
+    /// instead of 99.99 % (the part of a cluster that no ray reached is not always turned
+    /// away from the receiver; bench/RESULTS.md, 2026-11-28, thirteenth session).
+    bool narrowClusterSources = false;
     size_t maxLinks = 0;   ///< refinement budget in links (0: what fits in maxMemory)
     size_t maxMemory = 0;  ///< refinement budget in bytes (0: defaultMemoryBudget())
     /// Time budget of solve()'s refinement, seconds from solve()'s start (0: none). When it

@@ -47,7 +47,8 @@
 // Sample points come from a generator seeded by the two node ids, so results do not
 // depend on the order in which links are evaluated or on the thread count.
 //
-// Narrowed sources (solve()'s rounds): a cluster sends the area mean of its surfaces'
+// Narrowed sources (solve()'s rounds, SolverOptions::narrowClusterSources, off by default:
+// solver.h says why): a cluster sends the area mean of its surfaces'
 // radiosity, the turned-away ones' too. A lamp shade of thin sheets, its inside bright and
 // its outside dark, then lights the room through its outside: the rays end on the outer
 // faces that face the receiver, yet the link carries the inner faces' mean as well (8.4 %
