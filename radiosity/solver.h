@@ -146,10 +146,10 @@ struct SolverOptions {
     /// See updateLightShares().
     double perLightOracle = 0;
     /// A VISIBLE link from a cluster gathers from the part of the cluster that its rays
-    /// reached, F V kept (transfer.h, "Narrowed sources"), in solve()'s refinement. Off by
-    /// default: a closed room refined to epsilon 1e-5 then absorbs 97.9 % of the light
-    /// instead of 99.99 % (the part of a cluster that no ray reached is not always turned
-    /// away from the receiver; bench/RESULTS.md, 2026-11-28, thirteenth session).
+    /// reached and every part not turned away from the receiver, F V kept (transfer.h,
+    /// "Narrowed sources"), in solve()'s refinement. Off by default: measured on the stair
+    /// hall and the bundled scenes only in a form that lost 2 % of a closed room's light
+    /// (bench/RESULTS.md, 2026-11-28, thirteenth session).
     bool narrowClusterSources = false;
     size_t maxLinks = 0;   ///< refinement budget in links (0: what fits in maxMemory)
     size_t maxMemory = 0;  ///< refinement budget in bytes (0: defaultMemoryBudget())

@@ -232,6 +232,25 @@ void TransferEvaluator::visibility(Link& link, bool thorough, bool narrow) const
     }
 }
 
+bool TransferEvaluator::turnedAway(int r, int c) const {
+    const Node& R = h_.nodes[r];
+    const Node& C = h_.nodes[c];
+    // Every normal n of c lies within t of its cone's axis a; every direction d from a point
+    // of c to one of R lies in the box R.bounds - C.bounds. max over n of n.d is convex in d,
+    // so its largest value over the box is at a corner; at a corner it is at most 0 when
+    // the angle between a and d is at least t + 90 degrees: a.d / |d| <= -sin t.
+    if (!(C.coneAngle < kPi / 2)) return false;
+    const double sinT = std::sin(C.coneAngle);
+    for (int k = 0; k < 8; ++k) {
+        const Vec3 d{((k & 1) ? R.bounds.hi.x - C.bounds.lo.x : R.bounds.lo.x - C.bounds.hi.x),
+                     ((k & 2) ? R.bounds.hi.y - C.bounds.lo.y : R.bounds.lo.y - C.bounds.hi.y),
+                     ((k & 4) ? R.bounds.hi.z - C.bounds.lo.z : R.bounds.lo.z - C.bounds.hi.z)};
+        const double len = glm::length(d);
+        if (!(len > 0) || glm::dot(C.coneAxis, d) / len > -sinT) return false;
+    }
+    return true;
+}
+
 void TransferEvaluator::narrowSource(Link& link, int lo, int hi) const {
     if (hi < lo) return;
     const int s = link.source;
@@ -245,6 +264,19 @@ void TransferEvaluator::narrowSource(Link& link, int lo, int hi) const {
     // (the rays' ends are a sample of it) would lose light.
     const double FV = link.F * static_cast<double>(link.V);
     int d = h_.narrowestCovering(s, lo, hi);
+    // What is left out must send nothing to the receiver: a sibling on the way up from the
+    // node that is not provably turned away from it (a few rays can miss a part that faces
+    // it) keeps its parent in. (Narrowed to the rays' ends alone, a closed room refined to
+    // epsilon 1e-5 absorbed 97.9 % of its light.)
+    for (int a = d; a != s;) {
+        const int up = h_.nodes[a].parent;
+        const Node& A = h_.nodes[up];
+        for (int k = 0; k < A.childCount; ++k) {
+            const int c = A.firstChild + k;
+            if (c != a && !turnedAway(link.receiver, c)) d = up;
+        }
+        a = up;
+    }
     double Fd = 0;
     while (d != s) {
         Fd = formFactor(link.receiver, d);

@@ -6,6 +6,7 @@
 
 #include "radiosity/detail/transfer.h"
 #include "radiosity/solver.h"
+#include "tests/support/cut_room.h"
 #include "tests/support/shaded_lamp_room.h"
 
 using namespace radiosity;
@@ -26,10 +27,11 @@ TEST(NarrowedSources, AClosedShadeSendsLessOfItsInsideOut) {
     // light went out through the dark outer ones, 8.4 % of the lamp's power
     // (bench/shaded_lamp). Most of it went through VISIBLE links: the inner faces that
     // face the receiver are few or none, yet their radiosity is in the cluster's mean. The
-    // rays end on outer faces only, so a link narrowed to what they reached sends the
-    // outside's light: 4.6 % measured (what is left goes through PARTIAL links, which are
-    // not narrowed, and receivers' clusters). Asserted: below 0.6 of it, with no more than
-    // 10 % more links (measured 0.99x).
+    // rays end on outer faces only, so a link narrowed to what they reached, and to no less
+    // than every part not turned away from its receiver, sends the outside's light: 6.2 %
+    // measured (what is left goes through PARTIAL links, which are not narrowed, parts of
+    // clusters whose normal cones cannot prove them turned away, and receivers' clusters).
+    // Asserted: below 0.85 of it, with no more than 10 % more links (measured 0.99x).
     SolverOptions plain;
     plain.epsilon = 1e-4;
     plain.narrowClusterSources = false;
@@ -39,8 +41,26 @@ TEST(NarrowedSources, AClosedShadeSendsLessOfItsInsideOut) {
     const double leakPlain = test::shadedLampLeak(plain, &linksPlain);
     const double leakNarrowed = test::shadedLampLeak(narrowed, &linksNarrowed);
     EXPECT_GT(leakPlain, 0.04);  // the failure this fixes is there to begin with
-    EXPECT_LT(leakNarrowed, 0.6 * leakPlain);
+    EXPECT_LT(leakNarrowed, 0.85 * leakPlain);
     EXPECT_LT(linksNarrowed, 1.1 * linksPlain);
+}
+
+TEST(NarrowedSources, AClosedRoomStillAbsorbsAllItsLight) {
+    // What a narrowed link leaves out of its source must send nothing to its receiver:
+    // only parts whose normal cone faces away from the receiver's box are left out. Narrowed
+    // to the rays' ends alone, the closed cut room refined to epsilon 1e-5 absorbed 97.9 %
+    // of its light (the parts no ray happened to reach lost theirs); it must absorb all of
+    // it, to the 1 % that the unnarrowed solution is held to (time_budget_test.cpp).
+    SolverOptions o;
+    o.epsilon = 1e-5;
+    o.narrowClusterSources = true;
+    HierarchicalSolver solver(test::cutRoom(8, 0.5), o);
+    solver.solve();
+    const SolverStats s = solver.stats();
+    for (int c = 0; c < 3; ++c) {
+        ASSERT_GT(s.emittedPower[c], 0);
+        EXPECT_NEAR(s.absorbedPower[c] / s.emittedPower[c], 1.0, 0.01) << c;
+    }
 }
 
 TEST(NarrowedSources, ALinkKeepsItsTransferAndGathersFromPartOfItsSource) {
