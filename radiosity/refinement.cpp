@@ -178,8 +178,8 @@ Link HierarchicalSolver::childLink(const Link& parent, int parentIndex, int r, i
 
 void HierarchicalSolver::evaluateVisibility(const std::vector<size_t>& pending) {
     // Each link's rays come from a generator seeded by its two nodes: evaluating them in
-    // parallel gives the same result as one by one. Only solve()'s rounds narrow a partial
-    // cluster source: a dynamic update measures the links it keeps as they are.
+    // parallel gives the same result as one by one. Only solve()'s rounds narrow a visible
+    // link's cluster source (an option): a dynamic update measures its links as they are.
     const bool narrow = options_.narrowClusterSources && deferSelf_;
     const auto t0 = Clock::now();
     parallelFor(pending.size(), 16, [&](size_t i) {

@@ -18,8 +18,8 @@ TEST(PerLightOracle, WeakShadedLampLeaksLessOutOfItsShade) {
     // power, bench/shaded_lamp); weighed by each lamp's own light they are refined down to
     // elements, whose cosines carry none (1.8 %). Asserted: less than half the plain
     // criterion's leak, at most 1.5x the links (measured 1.34x). The links' sources as they
-    // were refined (not narrowed to what their rays reached, which removes most of the leak
-    // by itself: narrowed_source_test.cpp), so that this measures the oracle alone.
+    // were refined (not narrowed to what their rays reached, which lowers the leak by
+    // itself: narrowed_source_test.cpp), so that this measures the oracle alone.
     SolverOptions plain;
     plain.epsilon = 1e-4;
     plain.narrowClusterSources = false;
