@@ -7,6 +7,7 @@
 // metric (`relight eval`'s rel_rmse and changed_rel_rmse).
 //
 //   ./build/bench/all_edits <scene_dir> [--out DIR] [--cache FILE] [--only EDIT,EDIT...]
+//                           [--narrow-sources]
 // --out: the relit images, EDIT.exr; --cache: also writes the prepared cache there (for
 // bench/light_shares); --only: these edits alone. Run large scenes under `flock
 // /tmp/relight-heavy.lock`.
@@ -32,17 +33,26 @@ using namespace relight;
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s <scene_dir> [--out DIR] [--cache FILE] [--only EDIT,...]\n",
+        std::fprintf(stderr,
+                     "usage: %s <scene_dir> [--out DIR] [--cache FILE] [--only EDIT,...] "
+                     "[--narrow-sources]\n",
                      argv[0]);
         return 2;
     }
     const fs::path dir = argv[1];
     fs::path out, cache;
     std::string only;  // ",a,b,": the edits to render, empty: all
-    for (int i = 2; i + 1 < argc; i += 2) {
+    bool narrow = false;
+    for (int i = 2; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--narrow-sources") == 0) {
+            narrow = true;
+            continue;
+        }
+        if (i + 1 >= argc) break;
         if (std::strcmp(argv[i], "--out") == 0) out = argv[i + 1];
         if (std::strcmp(argv[i], "--cache") == 0) cache = argv[i + 1];
         if (std::strcmp(argv[i], "--only") == 0) only.append(",").append(argv[i + 1]).append(",");
+        ++i;
     }
     std::printf("command:");
     for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
@@ -51,6 +61,7 @@ int main(int argc, char** argv) {
     const SceneFile sf = loadScene(dir);
     RelightOptions o;  // relight render's defaults (relight/cli/commands.h)
     o.pixelLight = true;
+    o.narrowSources = narrow;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     const auto t0 = std::chrono::steady_clock::now();
     auto r = prepareRelighting(sf, o);

@@ -67,6 +67,9 @@ void addPrepareOptions(CLI::App* app, cli::PrepareOptionArgs& p) {
                     "to all lamps' power, by at most this factor (0: off, the total light only)")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1e6));
+    app->add_flag("--narrow-sources", p.narrowSources,
+                  "a visible link from a cluster gathers from the part of it that faces the "
+                  "receiver (a lamp's shade sends its outside's light, not its inside's)");
     addBudgetOptions(app, p.maxLinks, p.maxMemoryMB, p.timeBudget);
     app->add_option("--spp", p.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
     app->add_flag("!--no-refinement", p.shadowRefinement,

@@ -151,6 +151,7 @@ void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     so.epsilon = o.epsilon;
     so.darkFloor = o.darkFloor;
     so.perLightOracle = o.perLightOracle;
+    so.narrowClusterSources = o.narrowSources;
     so.maxLinks = o.maxLinks;
     so.maxMemory = o.maxMemory;
     so.refineUntil = r.budget.until(RelightOptions::kRefineShare);

@@ -64,6 +64,9 @@ struct RelightOptions {
     /// The solver's perLightOracle (radiosity/solver.h): each light's own light refined to
     /// comparable relative accuracy, a light's weight raised at most by this factor; 0: off.
     double perLightOracle = 0;
+    /// The solver's narrowClusterSources (radiosity/solver.h): a visible link from a cluster
+    /// gathers from the part of it that faces the receiver. Off by default.
+    bool narrowSources = false;
     /// The solver's refinement budget (radiosity/solver.h); 0: from the machine's memory.
     size_t maxLinks = 0, maxMemory = 0;
     /// Time budget of the preparation, seconds (0: none), counted from its start

@@ -63,6 +63,7 @@ struct PrepareOptionArgs {
     double epsilon = RelightOptions{}.epsilon;
     double darkFloor = RelightOptions{}.darkFloor;
     double perLightOracle = RelightOptions{}.perLightOracle;
+    bool narrowSources = RelightOptions{}.narrowSources;
     size_t maxLinks = 0;
     double maxMemoryMB = 0;
     double timeBudget = RelightOptions{}.timeBudget;  ///< seconds (0: none)

@@ -34,6 +34,7 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     o.epsilon = epsilon;
     o.darkFloor = darkFloor;
     o.perLightOracle = perLightOracle;
+    o.narrowSources = narrowSources;
     o.maxLinks = maxLinks;
     o.maxMemory = static_cast<size_t>(maxMemoryMB * 1048576.0);
     o.timeBudget = timeBudget;

@@ -153,6 +153,7 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
         {"epsilon", a.prep.epsilon},
         {"dark_floor", a.prep.darkFloor},
         {"per_light_oracle", a.prep.perLightOracle},
+        {"narrow_sources", a.prep.narrowSources},
         {"shadow_refinement", a.prep.shadowRefinement},
         {"shadow_removal", a.prep.shadowRemoval},
         {"display", a.display},

@@ -94,6 +94,7 @@ void hashOptions(Fnv1a& h, const RelightOptions& o) {
     h.f64(o.darkFloor);
     // Only when on: the caches prepared before the option existed keep their keys.
     if (o.perLightOracle > 0) h.f64(o.perLightOracle);
+    if (o.narrowSources) h.text("narrow-sources");
     // The budget in force, not the option: a default that comes from the machine's memory
     // gives the same state on machines of the same memory only.
     h.i64(static_cast<int64_t>(o.maxLinks));

@@ -128,7 +128,7 @@ void estimateObjectReflectance(std::vector<PixelData>& px, const LightingBuffer&
 /// The least squares of the pixels on the estimated components' columns, the rest of the
 /// irradiance (known direct light, indirect light) taken off each pixel's radiance.
 SkyFitResult fitOnce(const std::vector<PixelData>& px, const LightingBuffer& buf, const Target& sky,
-                     const Target& sun, double ridge, double rankTolerance) {
+                     const Target& sun, const SkyEstimateOptions& o) {
     constexpr double pi = std::numbers::pi;
     std::vector<SkyFitPixel> fit;
     fit.reserve(px.size());
@@ -146,8 +146,9 @@ SkyFitResult fitOnce(const std::vector<PixelData>& px, const LightingBuffer& buf
     if (sky.first >= 0) {
         SkyFitOptions fo;
         fo.fitSun = sun.first >= 0;
-        fo.ridge = ridge;
-        fo.rankTolerance = rankTolerance;
+        fo.ridge = o.ridge;
+        fo.rankTolerance = o.rankTolerance;
+        fo.nonNegative = o.nonNegative;
         return fitSky(fit, fo);
     }
     // The sun alone: one unknown per channel, s = sum(a I) / sum(a^2), a = rho f / pi.
@@ -203,8 +204,10 @@ std::vector<std::string> SkyEstimateReport::summary() const {
             out.push_back("  L" + std::to_string(k) + " " + rgbText(sky.c[static_cast<size_t>(k)]));
     }
     if (!sunName.empty()) out.push_back("sun \"" + sunName + "\" irradiance " + rgbText(sun));
-    std::snprintf(s, sizeof s, "from %d photo pixels, %d fits; rank %d of %d%s; rms residual %s",
-                  pixels, rounds, rank, unknowns, regularised ? " (ridge)" : "",
+    std::snprintf(s, sizeof s,
+                  "from %d photo pixels, %d fits; rank %d of %d%s; %d directions held at radiance "
+                  "0; rms residual %s",
+                  pixels, rounds, rank, unknowns, regularised ? " (ridge)" : "", activeConstraints,
                   rgbText(rmsResidual).c_str());
     out.push_back(s);
     return out;
@@ -231,10 +234,10 @@ SkyEstimateReport estimateSkyFromPhoto(SceneFile& sf, radiosity::HierarchicalSol
     // Lights and the objects' reflectance in turn (alternating least squares of the
     // bilinear I = rho H(L) / pi), the indirect light held.
     auto alternate = [&] {
-        f = fitOnce(px, buf, sky, sun, o.ridge, o.rankTolerance);
+        f = fitOnce(px, buf, sky, sun, o);
         for (int a = 0; a < o.alternations; ++a) {
             estimateObjectReflectance(px, buf, f, solver.scene().objects.size());
-            f = fitOnce(px, buf, sky, sun, o.ridge, o.rankTolerance);
+            f = fitOnce(px, buf, sky, sun, o);
         }
     };
     try {
@@ -267,6 +270,7 @@ SkyEstimateReport estimateSkyFromPhoto(SceneFile& sf, radiosity::HierarchicalSol
     rep.rank = f.rank;
     rep.unknowns = f.unknowns;
     rep.regularised = f.regularised;
+    rep.activeConstraints = f.activeConstraints;
     rep.rmsResidual = f.rmsResidual;
     return rep;
 }

@@ -63,6 +63,11 @@ struct SkyEstimateOptions {
     /// while moving the well determined ones by about 1e-3 of themselves.
     double rankTolerance = 1e-4;
     double ridge = 1e-3;
+    /// SkyFitOptions::nonNegative: the fitted sky's radiance at or above 0 in every
+    /// direction, the sun's irradiance too. The ridge alone left the courtyard's
+    /// undetermined coefficients at 0.2-0.6 where the true ones are below 0.06, a sky of
+    /// radiance -0.53 in places (bench/RESULTS.md, 2026-11-28, fourteenth session).
+    bool nonNegative = true;
     /// The pixel stride of the photo's sub-grid (SamplingPlan::stride).
     int stride = 1;
     radiosity::DirectLightOptions direct;
@@ -77,6 +82,7 @@ struct SkyEstimateReport {
     int rounds = 0;                ///< fits done (1 + rounds of indirect light)
     int rank = 0, unknowns = 0;    ///< of the last fit (SkyFitResult)
     bool regularised = false;
+    int activeConstraints = 0;   ///< SkyFitResult::activeConstraints of the last fit
     radiosity::Rgb rmsResidual;  ///< of the last fit, photo radiance units
     std::vector<std::string> warnings;
 

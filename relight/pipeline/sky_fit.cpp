@@ -46,7 +46,56 @@ struct ChannelFit {
     Vector x;
     int rank = 0;
     bool regularised = false;
+    int active = 0;  ///< constraints held at 0 (SkyFitOptions::nonNegative)
 };
+
+// The rows g_i of the constraints G x >= 0 on the unscaled unknowns: the sky's radiance in
+// kNonNegativeDirections directions of a Fibonacci sphere (even spacing, no pole cluster),
+// then the sun's irradiance when it is an unknown.
+Matrix nonNegativeRows(int unknowns) {
+    const int directions = kNonNegativeDirections;
+    Matrix G = Matrix::Zero(directions + (unknowns > kSh9Count ? 1 : 0), unknowns);
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < directions; ++i) {
+        const double z = 1.0 - 2.0 * (i + 0.5) / directions;
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = golden * i;
+        const radiosity::Sh9 y = radiosity::sh9Basis({r * std::cos(phi), r * std::sin(phi), z});
+        for (int k = 0; k < kSh9Count; ++k) G(i, k) = y[static_cast<size_t>(k)];
+    }
+    if (unknowns > kSh9Count) G(directions, kSh9Count) = 1.0;
+    return G;
+}
+
+// min 1/2 y'Qy - r'y subject to G y >= 0, from y = Q^-1 r, Q positive definite. The dual in
+// the multipliers lambda >= 0 is min 1/2 lambda' M lambda + lambda' G y0, M = G Q^-1 G', with
+// y = y0 + Q^-1 G' lambda: projected Gauss-Seidel minimises it over one multiplier at a
+// time exactly and clamps it at 0, which converges for M positive semi-definite (Cottle,
+// Pang & Stone 1992, the linear complementarity problem, §5.2). A step d of multiplier i
+// moves y by d Q^-1 g_i, whose Q-norm is |d| sqrt(M_ii): the sweeps end when the largest
+// move is 1e-12 of y0's own Q-norm. Returns the number of constraints held at 0.
+int holdNonNegative(const Matrix& Q, const Eigen::LDLT<Matrix>& ldlt, const Matrix& G, Vector& y) {
+    if ((G * y).minCoeff() >= 0) return 0;       // the least squares already holds them
+    const Matrix W = ldlt.solve(G.transpose());  // column i: Q^-1 g_i
+    const Vector Mii = (G.array() * W.transpose().array()).rowwise().sum();
+    const double size = std::sqrt(std::max(0.0, y.dot(Q * y)));
+    const double tolerance = 1e-12 * std::max(size, 1e-300);
+    Vector lambda = Vector::Zero(G.rows());
+    constexpr int kMaxSweeps = 20000;
+    for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+        double largest = 0;
+        for (Eigen::Index i = 0; i < G.rows(); ++i) {
+            if (!(Mii[i] > 0)) continue;  // a row Q^-1 cannot move: nothing to hold
+            const double next = std::max(0.0, lambda[i] - G.row(i).dot(y) / Mii[i]);
+            const double d = next - lambda[i];
+            if (d == 0) continue;
+            lambda[i] = next;
+            y += d * W.col(i);
+            largest = std::max(largest, std::abs(d) * std::sqrt(Mii[i]));
+        }
+        if (largest <= tolerance) break;
+    }
+    return static_cast<int>((lambda.array() > 0).count());
+}
 
 // Solves one channel's normal equations A^T A x = A^T b. The columns are scaled to unit
 // norm first (D^-1 A^T A D^-1), so that the rank test and the ridge do not depend on the
@@ -80,7 +129,12 @@ ChannelFit solveChannel(std::span<const SkyFitPixel> pixels, int ch, int unknown
         system += options.ridge * Matrix::Identity(unknowns, unknowns);
         fit.regularised = true;
     }
-    fit.x = system.ldlt().solve(r).cwiseQuotient(scale);
+    const Eigen::LDLT<Matrix> ldlt(system);
+    Vector y = ldlt.solve(r);
+    if (options.nonNegative)
+        fit.active = holdNonNegative(
+            system, ldlt, nonNegativeRows(unknowns) * scale.cwiseInverse().asDiagonal(), y);
+    fit.x = y.cwiseQuotient(scale);
     return fit;
 }
 
@@ -105,6 +159,7 @@ SkyFitResult fitSky(std::span<const SkyFitPixel> pixels, const SkyFitOptions& op
             throw SkyFitError(refusal(fit.rank, result.unknowns, ch));
         result.rank = std::min(result.rank, fit.rank);
         result.regularised = result.regularised || fit.regularised;
+        result.activeConstraints += fit.active;
         for (int k = 0; k < kSh9Count; ++k) result.sky.c[static_cast<size_t>(k)][ch] = fit.x[k];
         if (options.fitSun) result.sunIrradiance[ch] = fit.x[kSh9Count];
     }

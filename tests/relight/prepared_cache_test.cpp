@@ -349,7 +349,8 @@ TEST(PreparedCache, KeyFollowsTheInputsAndOptions) {
     RelightOptions noRemoval = o;
     noRemoval.shadowRemoval = !o.shadowRemoval;
     EXPECT_NE(preparationKey(loadScene(dir.path()), noRemoval), key);
-    for (bool RelightOptions::*flag : {&RelightOptions::pixelLight, &RelightOptions::mergePhotos}) {
+    for (bool RelightOptions::*flag : {&RelightOptions::pixelLight, &RelightOptions::mergePhotos,
+                                       &RelightOptions::narrowSources}) {
         RelightOptions changed = o;
         changed.*flag = !(o.*flag);
         EXPECT_NE(preparationKey(loadScene(dir.path()), changed), key);
@@ -439,8 +440,8 @@ TEST(PreparedCache, LayoutGuard) {
     EXPECT_EQ(sizeof(ShadowRemovalOptions), 64u)
         << "ShadowRemovalOptions changed: hash the new option in hashOptions()";
     // Its ShadowRefinementOptions' until; pixelGatherCut (hashed) in padding; perLightOracle
-    // is hashed when on (0, the default, keeps the caches' keys).
-    EXPECT_EQ(sizeof(RelightOptions), 296u)
+    // is hashed when on (0, the default, keeps the caches' keys); so is narrowSources.
+    EXPECT_EQ(sizeof(RelightOptions), 304u)
         << "RelightOptions changed: hash the new option in hashOptions()";
 #else
     GTEST_SKIP() << "sizes known for libstdc++ on 64-bit targets only";
