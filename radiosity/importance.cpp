@@ -9,6 +9,7 @@
 // most rho^2 of the first; the floor (HierarchicalSolver::kImportanceFloor) keeps every surface
 // refined at least at a tenth of the plain criterion for what the bounces miss.
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -26,6 +27,45 @@ void HierarchicalSolver::setCameraImportance(std::vector<double> seen) {
     polygonImportance_.clear();
     clusterImportance_.clear();
     if (!seenImportance_.empty()) updateImportance(/*bounce=*/false);
+}
+
+void HierarchicalSolver::setCameraSeen(std::vector<double> seen) {
+    if (!seen.empty() && seen.size() != scene_.polygons.size())
+        throw std::invalid_argument("setCameraSeen: " + std::to_string(seen.size()) +
+                                    " values for " + std::to_string(scene_.polygons.size()) +
+                                    " polygons");
+    cameraSeen_ = std::move(seen);
+}
+
+double HierarchicalSolver::seenPowerShare() const {
+    if (cameraSeen_.empty() || !(options_.seenPowerFloor < 1)) return 1.0;
+    // The emitters' direct light on the leaves (updateDirectIrradiance), by channel: a
+    // sky's coefficient may light with either sign, the sum over its components does not.
+    Rgb seen, all;
+    for (const Node& e : h_.nodes) {
+        if (e.isCluster() || !e.isLeaf() || e.polygon < 0) continue;
+        const Rgb p = e.Hx * e.area;
+        all += p;
+        const auto i = static_cast<size_t>(e.polygon);
+        if (i >= cameraSeen_.size() || cameraSeen_[i] > 0) seen += p;  // an inserted polygon: seen
+    }
+    const Rgb lamps = scene_.emittedPower();
+    const double denominator = (all + lamps).maxComponent();
+    if (!(denominator > 0)) return 1.0;  // no light: nothing to refine for
+    return std::clamp((seen + lamps).maxComponent() / denominator, options_.seenPowerFloor, 1.0);
+}
+
+void HierarchicalSolver::setPowerThreshold() {
+    const double share = seenPowerShare();
+    powerThreshold_ = options_.epsilon * sourcePower() * share;
+    if (share < 1) {
+        char msg[160];
+        std::snprintf(msg, sizeof msg,
+                      "  refinement threshold: epsilon times %.1f %% of the emitted power (what "
+                      "reaches the surfaces the camera sees)",
+                      100 * share);
+        report(msg);
+    }
 }
 
 double HierarchicalSolver::importanceOf(int node) const {

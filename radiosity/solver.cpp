@@ -404,7 +404,7 @@ int HierarchicalSolver::gatherPushPull() {
 void HierarchicalSolver::solve() {
     updateDirectIrradiance();
     const double emitted = sourcePower();
-    if (powerThreshold_ <= 0) powerThreshold_ = options_.epsilon * emitted;
+    if (powerThreshold_ <= 0) setPowerThreshold();
     if (!started_) {
         links_.clear();
         Link root;
@@ -521,7 +521,7 @@ bool HierarchicalSolver::addMissingLightLinks() {
         if (!(light.radiance.maxComponent() > 0)) continue;
         for (int p : light.polygons) {
             if (linked[p]) continue;
-            if (powerThreshold_ <= 0) powerThreshold_ = options_.epsilon * sourcePower();
+            if (powerThreshold_ <= 0) setPowerThreshold();
             addLinksFromSource(h_.polygonRoot[p]);
             added = true;
         }

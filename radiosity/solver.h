@@ -151,6 +151,9 @@ struct SolverOptions {
     /// hall and the bundled scenes only in a form that lost 2 % of a closed room's light
     /// (bench/RESULTS.md, 2026-11-28, thirteenth session).
     bool narrowClusterSources = false;
+    /// With setCameraSeen: the lowest share of the emitted power that the threshold
+    /// follows (seenPowerShare()); 1: the plain criterion on all of it.
+    double seenPowerFloor = 0.01;
     size_t maxLinks = 0;   ///< refinement budget in links (0: what fits in maxMemory)
     size_t maxMemory = 0;  ///< refinement budget in bytes (0: defaultMemoryBudget())
     /// Time budget of solve()'s refinement, seconds from solve()'s start (0: none). When it
@@ -380,6 +383,19 @@ class HierarchicalSolver {
     /// receiver counts fully. Call before solve().
     void setCameraImportance(std::vector<double> seen);
     static constexpr double kImportanceFloor = 0.1;
+    /// What the photo's camera sees, per input polygon (1 seen, 0 not; relight's item
+    /// buffer), for the refinement threshold: epsilon times the power that reaches what the
+    /// camera sees, not all the emitted power (seenPowerShare()). A room lit through a
+    /// window receives a few percent of the sun and sky's power, the walls' and roof's
+    /// outsides the rest: the plain threshold, epsilon times all of it, left the inside
+    /// coarse. Empty (the default): all of it. Call before solve().
+    void setCameraSeen(std::vector<double> seen);
+    /// The share of the emitted power the threshold follows, in [seenPowerFloor, 1]: the
+    /// emitters' direct power on the leaves of seen polygons, plus the lamps' emitted power
+    /// (their light is not known to land anywhere before their links are refined, by this
+    /// very threshold: it counts in full, so rooms lit by lamps keep the plain criterion),
+    /// over the emitters' direct power on all leaves plus the lamps'. 1 without a camera.
+    double seenPowerShare() const;
     /// The importance of a node's receiving surfaces (1 without camera importance).
     double importanceOf(int node) const;
 
@@ -643,7 +659,9 @@ class HierarchicalSolver {
     bool deferSelf_ = false;  ///< only solve()'s rounds defer; dynamic updates split
     double ambientIrradiance_ = 0;
     double minArea_ = 0;
-    double powerThreshold_ = 0;       ///< epsilon * emitted power (max channel)
+    double powerThreshold_ = 0;  ///< epsilon * emitted power * seenPowerShare() (max channel)
+    /// Sets powerThreshold_ from the emitted power now (and reports a seen share below 1).
+    void setPowerThreshold();
     std::vector<int> emitterLights_;  ///< lights with an emitter
     std::vector<double> Hunit_;       ///< [node * emitterLights + j], leaves only
     /// Hx of every leaf from Hunit_ and the lights' radiances; directPower_.
@@ -659,6 +677,7 @@ class HierarchicalSolver {
     /// Camera importance (setCameraImportance): direct, per polygon; the total per polygon
     /// and per cluster node (the largest of its polygons'); whether the bounce was taken.
     std::vector<double> seenImportance_, polygonImportance_;
+    std::vector<double> cameraSeen_;  ///< setCameraSeen, per polygon
     std::vector<float> clusterImportance_;
     bool importanceBounced_ = false;
     /// Sets polygonImportance_ and clusterImportance_ from seenImportance_, plus one

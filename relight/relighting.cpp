@@ -167,7 +167,9 @@ void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     r.sampling = planSampling(r.scene.camera.width, r.scene.camera.height, o.spp, o.sampleBudget);
     r.items =
         castItemBuffer(r.scene.camera, r.solver->scene(), r.solver->visibility(), r.sampling.spp);
-    if (o.importance) r.solver->setCameraImportance(seenPolygons(r.items, r.solver->scene()));
+    std::vector<double> seen = seenPolygons(r.items, r.solver->scene());
+    if (o.importance) r.solver->setCameraImportance(seen);
+    r.solver->setCameraSeen(std::move(seen));
     P.times.itemBuffer = since(t0);
 }
 

@@ -3,6 +3,9 @@
 // the surfaces that light what it sees above the floor.
 #include <gtest/gtest.h>
 
+#include <numbers>
+#include <stdexcept>
+
 #include "furnace.h"
 #include "radiosity/solver.h"
 
@@ -62,4 +65,62 @@ TEST(CameraImportance, TheWallBehindTheCameraCostsLessAndKeepsItsBounce) {
     const double I = weighed.importanceOf(wallElement);
     EXPECT_GE(I, 0.6 * 0.99);
     EXPECT_LE(I, 0.6 + 1e-12);
+}
+
+namespace {
+
+/// Two 1 x 1 m squares on z = 0, 3 m apart, facing up (reflectance 0.5), and a 0.5 m lamp
+/// facing down 2 m above the first, of radiance `lamp` (0: no lamp).
+Scene twoSquares(double lamp) {
+    Scene s;
+    s.objects = {"ground", "lamp"};
+    s.polygons.push_back(
+        makePolygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, 0, Rgb::gray(0.5)));
+    s.polygons.push_back(
+        makePolygon({{3, 0, 0}, {4, 0, 0}, {4, 1, 0}, {3, 1, 0}}, 0, Rgb::gray(0.5)));
+    if (lamp > 0) {
+        Polygon p = makePolygon(
+            {{0.25, 0.25, 2}, {0.25, 0.75, 2}, {0.75, 0.75, 2}, {0.75, 0.25, 2}}, 1, Rgb{});
+        p.light = 0;
+        s.lights.push_back({"lamp", {2}, Rgb::gray(lamp)});
+        s.polygons.push_back(p);
+    }
+    return s;
+}
+
+}  // namespace
+
+TEST(SeenPower, TheThresholdFollowsThePowerThatReachesWhatTheCameraSees) {
+    // A sun straight overhead with a hard disc lights both squares fully: every point of
+    // each receives E exactly, so the seen share is exact.
+    const double E = 4;
+    HierarchicalSolver solver(twoSquares(0), SolverOptions{});
+    solver.addEmitter(makeSun("sun", {0, 0, 1}, 0, Rgb::gray(E)));
+    EXPECT_EQ(solver.seenPowerShare(), 1.0);  // no camera: all of the power
+    solver.setCameraSeen({1, 0});
+    EXPECT_NEAR(solver.seenPowerShare(), 0.5, 1e-12);
+    solver.setCameraSeen({1, 1});
+    EXPECT_NEAR(solver.seenPowerShare(), 1.0, 1e-12);
+    // Nothing lit is seen: the floor, not 0 (a threshold of 0 would refine without end).
+    solver.setCameraSeen({0, 0});
+    EXPECT_EQ(solver.seenPowerShare(), SolverOptions{}.seenPowerFloor);
+    EXPECT_THROW(solver.setCameraSeen({1}), std::invalid_argument);
+}
+
+TEST(SeenPower, ALampsPowerCountsInFullAndAFloorOfOneIsThePlainCriterion) {
+    // The lamp's emitted power pi L A, against the sun's E on each square (1 m^2): the share
+    // (E + pi L A) / (2 E + pi L A).
+    const double E = 4, L = 10, lampPower = std::numbers::pi * L * 0.25;
+    HierarchicalSolver solver(twoSquares(L), SolverOptions{});
+    solver.addEmitter(makeSun("sun", {0, 0, 1}, 0, Rgb::gray(E)));
+    solver.setCameraSeen({1, 0, 0});
+    // The lamp's square, the first, is shaded from the sun by the lamp (0.25 m^2 of it).
+    const double firstSun = E * 0.75;
+    EXPECT_NEAR(solver.seenPowerShare(), (firstSun + lampPower) / (firstSun + E + lampPower), 1e-9);
+    SolverOptions plain;
+    plain.seenPowerFloor = 1;
+    HierarchicalSolver off(twoSquares(L), plain);
+    off.addEmitter(makeSun("sun", {0, 0, 1}, 0, Rgb::gray(E)));
+    off.setCameraSeen({1, 0, 0});
+    EXPECT_EQ(off.seenPowerShare(), 1.0);
 }
