@@ -17,11 +17,19 @@
 
 namespace radiosity {
 
+namespace {
+
+// A value per polygon, or none.
+void checkPerPolygon(const char* what, const std::vector<double>& values, size_t polygons) {
+    if (!values.empty() && values.size() != polygons)
+        throw std::invalid_argument(std::string(what) + ": " + std::to_string(values.size()) +
+                                    " values for " + std::to_string(polygons) + " polygons");
+}
+
+}  // namespace
+
 void HierarchicalSolver::setCameraImportance(std::vector<double> seen) {
-    if (!seen.empty() && seen.size() != scene_.polygons.size())
-        throw std::invalid_argument("setCameraImportance: " + std::to_string(seen.size()) +
-                                    " values for " + std::to_string(scene_.polygons.size()) +
-                                    " polygons");
+    checkPerPolygon("setCameraImportance", seen, scene_.polygons.size());
     seenImportance_ = std::move(seen);
     importanceBounced_ = false;
     polygonImportance_.clear();
@@ -30,10 +38,7 @@ void HierarchicalSolver::setCameraImportance(std::vector<double> seen) {
 }
 
 void HierarchicalSolver::setCameraSeen(std::vector<double> seen) {
-    if (!seen.empty() && seen.size() != scene_.polygons.size())
-        throw std::invalid_argument("setCameraSeen: " + std::to_string(seen.size()) +
-                                    " values for " + std::to_string(scene_.polygons.size()) +
-                                    " polygons");
+    checkPerPolygon("setCameraSeen", seen, scene_.polygons.size());
     cameraSeen_ = std::move(seen);
 }
 
