@@ -147,9 +147,10 @@ struct SolverOptions {
     double perLightOracle = 0;
     /// A VISIBLE link from a cluster gathers from the part of the cluster that its rays
     /// reached and every part not turned away from the receiver, F V kept (transfer.h,
-    /// "Narrowed sources"), in solve()'s refinement. Off by default: measured on the stair
-    /// hall and the bundled scenes only in a form that lost 2 % of a closed room's light
-    /// (bench/RESULTS.md, 2026-11-28, thirteenth session).
+    /// "Narrowed sources"), in solve()'s refinement. Off by default: on the stair hall it
+    /// moved no edit beyond the spread of repeated runs and cost a few percent of the
+    /// preparation (bench/RESULTS.md, 2026-11-28, fourteenth session); it lowers a shaded
+    /// lamp's leak only (8.4 -> 6.2 %).
     bool narrowClusterSources = false;
     /// With setCameraSeen: the lowest share of the emitted power that the threshold
     /// follows (seenPowerShare()); 1: the plain criterion on all of it.

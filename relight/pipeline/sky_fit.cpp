@@ -100,9 +100,10 @@ int holdNonNegative(const Matrix& Q, const Eigen::LDLT<Matrix>& ldlt, const Matr
 // Solves one channel's normal equations A^T A x = A^T b. The columns are scaled to unit
 // norm first (D^-1 A^T A D^-1), so that the rank test and the ridge do not depend on the
 // units of T and f; a column that is zero (no pixel constrains that unknown) keeps scale 1
-// and shows as a zero eigenvalue.
+// and shows as a zero eigenvalue. `nonNegative`: the rows G of SkyFitOptions::nonNegative
+// (unscaled unknowns), or none.
 ChannelFit solveChannel(std::span<const SkyFitPixel> pixels, int ch, int unknowns,
-                        const SkyFitOptions& options) {
+                        const SkyFitOptions& options, const Matrix& nonNegative) {
     Matrix N = Matrix::Zero(unknowns, unknowns);
     Vector rhs = Vector::Zero(unknowns);
     for (const SkyFitPixel& px : pixels) {
@@ -131,9 +132,9 @@ ChannelFit solveChannel(std::span<const SkyFitPixel> pixels, int ch, int unknown
     }
     const Eigen::LDLT<Matrix> ldlt(system);
     Vector y = ldlt.solve(r);
-    if (options.nonNegative)
-        fit.active = holdNonNegative(
-            system, ldlt, nonNegativeRows(unknowns) * scale.cwiseInverse().asDiagonal(), y);
+    if (nonNegative.rows() > 0)
+        fit.active =
+            holdNonNegative(system, ldlt, nonNegative * scale.cwiseInverse().asDiagonal(), y);
     fit.x = y.cwiseQuotient(scale);
     return fit;
 }
@@ -153,8 +154,10 @@ SkyFitResult fitSky(std::span<const SkyFitPixel> pixels, const SkyFitOptions& op
     SkyFitResult result;
     result.unknowns = kSh9Count + (options.fitSun ? 1 : 0);
     result.rank = result.unknowns;
+    // The constraints' rows, the same for every channel (none without nonNegative).
+    const Matrix rows = options.nonNegative ? nonNegativeRows(result.unknowns) : Matrix();
     for (int ch = 0; ch < 3; ++ch) {
-        const ChannelFit fit = solveChannel(pixels, ch, result.unknowns, options);
+        const ChannelFit fit = solveChannel(pixels, ch, result.unknowns, options, rows);
         if (fit.rank < result.unknowns && !fit.regularised)
             throw SkyFitError(refusal(fit.rank, result.unknowns, ch));
         result.rank = std::min(result.rank, fit.rank);
