@@ -41,6 +41,13 @@ struct TimeBudget {
         if (!(seconds > 0)) return 0;
         return std::max(kSpentSeconds, seconds * share - secondsSince(start));
     }
+    /// Seconds a phase has until `ends` (cumulative) of the budget has passed, but at least
+    /// its own `share` of the budget, for a phase that must not be cut below it when the
+    /// phases before it overran theirs (0 without a budget).
+    double secondsUntilAtLeast(double ends, double share) const {
+        if (!(seconds > 0)) return 0;
+        return std::max(secondsUntil(ends), seconds * share);
+    }
     /// The time point at which `share` of the budget has passed; the largest time point
     /// without a budget.
     Clock::time_point until(double share) const {

@@ -240,8 +240,12 @@ void solveAndEstimateReflectance(Relighting& r, const RelightOptions& o) {
         computeLightingBuffer(r.items, *r.solver, directLightOptions(o), r.sampling.stride);
     ReflectanceOptions ro;
     ro.rounds = o.reflectanceRounds;
-    ro.seconds =
-        r.budget.secondsUntil(RelightOptions::kRefineShare + RelightOptions::kReflectanceShare);
+    // Until their end of the budget, and at least their own share of it when the phases
+    // before overran theirs (a contended machine): the rounds set the photo's colours, and
+    // cut to one they leave the indirect light coloured by the first guess.
+    ro.seconds = r.budget.secondsUntilAtLeast(
+        RelightOptions::kRefineShare + RelightOptions::kReflectanceShare,
+        RelightOptions::kReflectanceShare);
     ro.progress = [&o](const std::string& m) { say(o, m); };
     const ReflectanceReport rep =
         estimatePolygonReflectance(*r.solver, r.scene, r.items, lighting, P.photo, ro);

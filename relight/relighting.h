@@ -73,7 +73,10 @@ struct RelightOptions {
     /// (radiosity::TimeBudget) and split over its phases: the solver's refinement ends when
     /// kRefineShare of it has passed (SolverOptions::refineUntil), having refined the links
     /// of largest error first; the reflectance rounds when kRefineShare + kReflectanceShare
-    /// has (estimatePolygonReflectance: fewer complete rounds). Each phase after them has
+    /// has (estimatePolygonReflectance: fewer complete rounds), or after their own share
+    /// kReflectanceShare when the phases before them overran theirs (the rounds set the
+    /// photo's colours: cut to one on window_room under 5 s, the sky's light came in the
+    /// first guess's colour, sun_off 0.08 -> 0.19). Each phase after them has
     /// a share too, ending at the cumulative sum of the shares up to its own, and a
     /// degraded but correct fallback once it is spent, announced on the terminal and
     /// flagged in PreparedImage::budgetReached (--report): the shadow-boundary refinement

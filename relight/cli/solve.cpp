@@ -365,6 +365,9 @@ int runSolve(const SolveArgs& a) {
     for (const auto& w : lightReachWarnings(sf, solver.scene(), solver.visibility()))
         std::fprintf(stderr, "warning: %s\n", w.c_str());
     CameraSamples camera(a, sf, solver);
+    // The threshold follows the power that reaches what the camera sees, as in a preparation
+    // (solver.h, setCameraSeen): the sunlit outsides of a room's walls do not set it.
+    solver.setCameraSeen(seenPolygons(camera.items(), solver.scene()));
     if (std::find(sf.estimateRadiance.begin(), sf.estimateRadiance.end(), true) !=
         sf.estimateRadiance.end())
         estimateLightRadiances(sf, solver, camera);

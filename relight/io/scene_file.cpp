@@ -14,7 +14,9 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "radiosity/buried.h"
 #include "radiosity/stopwatch.h"
+#include "radiosity/visibility.h"
 #include "relight/io/face_repair.h"
 #include "relight/io/json_reader.h"
 #include "relight/io/light_reader.h"
@@ -306,6 +308,28 @@ bool SceneFile::lightOnInPhoto(size_t i) const {
 
 namespace {
 
+/// The geometry's faces inside closed solids (radiosity/buried.h) taken out of the scene, with
+/// the lights' faces renumbered: after the lights, whose faces count as seeing out.
+void leaveOutBuried(SceneFile& sf) {
+    const auto t0 = radiosity::Clock::now();
+    size_t geometry = 0;
+    while (geometry < sf.scene.polygons.size() && sf.scene.polygons[geometry].light < 0) ++geometry;
+    radiosity::BuriedContext context;
+    context.eye = sf.camera.position();
+    for (const std::string& name : sf.scene.objects) {
+        const auto it = sf.objectSettings.find(name);
+        context.mayVanish.push_back(it != sf.objectSettings.end() && it->second.removable);
+    }
+    std::vector<int> buried;
+    {
+        const radiosity::Visibility vis(sf.scene);
+        buried = radiosity::findBuriedPolygons(sf.scene, geometry, vis, context);
+    }
+    sf.buriedPolygons = static_cast<int>(buried.size());
+    sf.buriedArea = radiosity::removeBuriedPolygons(sf.scene, buried);
+    sf.buriedSeconds = radiosity::secondsSince(t0);
+}
+
 /// loadScene() after parsing: `root` is <dir>/scene.json's document.
 SceneFile readScene(const json& root, const fs::path& dir) {
     SceneFile sf;
@@ -322,6 +346,7 @@ SceneFile readScene(const json& root, const fs::path& dir) {
     sf.contactSplit = radiosity::splitAtContacts(sf.scene.polygons, sf.scene.polygons.size());
     sf.contactSplitSeconds = radiosity::secondsSince(t0);
     readLights(r, root, sf);
+    leaveOutBuried(sf);
     readPhotos(r, root, sf);
     sf.setPhotoLightState();
     return sf;
@@ -331,15 +356,25 @@ SceneFile readScene(const json& root, const fs::path& dir) {
 
 std::string contactSplitLine(const SceneFile& sf) {
     const radiosity::ContactSplitReport& c = sf.contactSplit;
-    if (c.polygonsCut == 0) return {};
-    char line[256];
-    std::snprintf(line, sizeof line,
-                  "geometry: %d polygons cut along %d lines where other surfaces meet them "
-                  "(%d pieces added%s), %.2f s",
-                  c.polygonsCut, c.lines, c.piecesAdded,
-                  c.piecesLimited > 0 ? ", some at the most pieces a polygon may have" : "",
-                  sf.contactSplitSeconds);
-    return line;
+    if (c.polygonsCut == 0 && sf.buriedPolygons == 0) return {};
+    std::string out = "geometry: ";
+    char part[256];
+    if (c.polygonsCut > 0) {
+        std::snprintf(part, sizeof part,
+                      "%d polygons cut along %d lines where other surfaces meet them (%d pieces "
+                      "added%s), %.2f s",
+                      c.polygonsCut, c.lines, c.piecesAdded,
+                      c.piecesLimited > 0 ? ", some at the most pieces a polygon may have" : "",
+                      sf.contactSplitSeconds);
+        out += part;
+    }
+    if (sf.buriedPolygons > 0) {
+        std::snprintf(part, sizeof part, "%s%d faces inside solids left out (%.3g m^2), %.2f s",
+                      c.polygonsCut > 0 ? "; " : "", sf.buriedPolygons, sf.buriedArea,
+                      sf.buriedSeconds);
+        out += part;
+    }
+    return out;
 }
 
 PhotoSpec::Encoding encodingFromExtension(const fs::path& file, bool& known) {

@@ -13,8 +13,10 @@
 //   - a degenerate face (zero area, repeated vertices) is dropped.
 // Then the geometry's polygons are cut where another surface stands across them (a wall on
 // a slab that runs on beneath it: radiosity/contact_split.h), so that no element of the
-// solution straddles a wall and leaks light through it; the count is a line of the commands'
-// progress (contactSplitLine()), not a warning: the surfaces stay as the file has them.
+// solution straddles a wall and leaks light through it; the faces then wholly inside closed
+// solids (a slab's piece under a wall, the walls' touching ends: radiosity/buried.h) are left
+// out. The counts are a line of the commands' progress (contactSplitLine()), not a warning:
+// every surface light can reach or the camera can see stays as the file has it.
 // Non-finite coordinates, faces with fewer than 3 vertices, bad indices, zero-area or
 // non-planar lights, negative radiance, unknown JSON keys and missing files are errors.
 #pragma once
@@ -65,6 +67,11 @@ struct SceneFile {
     /// and the seconds it took: a line of the commands' progress (contactSplitLine()).
     radiosity::ContactSplitReport contactSplit;
     double contactSplitSeconds = 0;
+    /// The geometry's faces inside closed solids, left out after the cut (radiosity/buried.h):
+    /// how many, their area (m^2) and the seconds the search took (contactSplitLine()).
+    int buriedPolygons = 0;
+    double buriedArea = 0;
+    double buriedSeconds = 0;
     /// The geometry files of "geometry", in scene.json's order (dir / name), each followed
     /// by the files it drew on (a .gltf's buffers): with scene.json and the photos, the
     /// files the scene's content comes from (relight/io/prepared_cache.h).
@@ -80,7 +87,8 @@ struct SceneFile {
 };
 
 /// "geometry: N polygons cut along M lines where other surfaces meet them (K pieces added),
-/// T s"; empty when nothing was cut.
+/// T s", followed by "; F faces inside solids left out (A m^2), T s" when some were; empty
+/// when nothing was cut or left out.
 std::string contactSplitLine(const SceneFile& sf);
 
 /// A photo's encoding from its file's extension: .exr, .hdr, .pfm linear; .png, .jpg, .jpeg

@@ -104,6 +104,18 @@ TEST(TimeBudget, ItsPhasesEndAtSharesCountedFromTheStart) {
     EXPECT_LT(spent.until(1.0), Clock::now());
 }
 
+TEST(TimeBudget, APhaseThatMustNotBeCutKeepsItsOwnShareWhenTheOnesBeforeOverran) {
+    // TimeBudget::secondsUntilAtLeast (the reflectance rounds): on time, the seconds until its
+    // cumulative end; past it, its own share of the budget, not the smallest limit; without a
+    // budget, no limit (0). Tolerance 1 s as above.
+    const TimeBudget fresh{Clock::now(), 10};
+    EXPECT_NEAR(fresh.secondsUntilAtLeast(0.65, 0.15), 6.5, 1);
+    const TimeBudget spent{Clock::now() - std::chrono::seconds(100), 10};
+    EXPECT_DOUBLE_EQ(spent.secondsUntilAtLeast(0.65, 0.15), 1.5);
+    const TimeBudget none{Clock::now(), 0};
+    EXPECT_EQ(none.secondsUntilAtLeast(0.65, 0.15), 0);
+}
+
 TEST(TimeBudget, APhaseBegunEarlyEndsAfterItsOwnShare) {
     // TimeBudget::phaseUntil: begun before the earlier shares have passed, a phase ends after
     // its own share; begun late, at its cumulative end; without a budget, never. Durations

@@ -601,7 +601,8 @@ TEST(RoomFormats, PlyPerObjectGivesTheSamePolygonsAsObj) {
     writeRoomScene(plyBinary, files);
 
     const SceneFile fromObj = relight::loadScene(objDir.path());
-    ASSERT_EQ(fromObj.scene.polygons.size(), 43u + 4u);  // 43 quads, 4 lamps
+    // 43 quads less the 4 table legs' tops inside the table top (radiosity/buried.h), 4 lamps.
+    ASSERT_EQ(fromObj.scene.polygons.size(), 43u - 4u + 4u);
     // The float-rounded room is the bundled room within float precision.
     const SceneFile bundled = relight::loadScene(kRoom);
     ASSERT_EQ(bundled.scene.polygons.size(), fromObj.scene.polygons.size());
@@ -635,7 +636,7 @@ TEST(RoomFormats, GltfAndGlbGiveTheSamePolygonsAsTheObjTriangulatedAlike) {
     writeRoomScene(glbDir, {"room.glb"});
 
     const SceneFile fromObj = relight::loadScene(objDir.path());
-    ASSERT_EQ(fromObj.scene.polygons.size(), 2u * 43u + 4u);
+    ASSERT_EQ(fromObj.scene.polygons.size(), 2u * (43u - 4u) + 4u);  // as above, in triangles
     const SceneFile fromGltf = relight::loadScene(gltfDir.path());
     expectSamePolygons(fromObj, fromGltf);
     EXPECT_TRUE(fromGltf.warnings.empty());

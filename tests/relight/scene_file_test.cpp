@@ -119,8 +119,11 @@ TEST_F(LoadScene, RoomCountsAreasAndSettings) {
     EXPECT_EQ(sf.scene.objects[0], "floor");
     EXPECT_EQ(sf.scene.objects[8], "cabinet");
     EXPECT_EQ(sf.scene.objects[9], "light:A");
-    // 6 room faces + poster + table (5 boxes x 6) + cabinet (6) = 43, then 4 light quads.
-    ASSERT_EQ(sf.scene.polygons.size(), 47u);
+    // 6 room faces + poster + table (5 boxes x 6) + cabinet (6) = 43, less the 4 legs' tops
+    // inside the table top (radiosity/buried.h), then 4 light quads.
+    EXPECT_EQ(sf.buriedPolygons, 4);
+    EXPECT_NEAR(sf.buriedArea, 4 * 0.05 * 0.05, 1e-12);
+    ASSERT_EQ(sf.scene.polygons.size(), 43u);
     const auto& floor = sf.scene.polygons[0];
     EXPECT_EQ(floor.object, sf.scene.findObject("floor"));
     EXPECT_EQ(floor.vertexCount, 4);
@@ -145,7 +148,7 @@ TEST_F(LoadScene, RoomCountsAreasAndSettings) {
         EXPECT_EQ(light.name, names[i]);
         ASSERT_EQ(light.polygons.size(), 1u);
         const auto& p = sf.scene.polygons[static_cast<size_t>(light.polygons[0])];
-        EXPECT_EQ(light.polygons[0], 43 + i);
+        EXPECT_EQ(light.polygons[0], 39 + i);
         EXPECT_EQ(p.light, i);
         EXPECT_EQ(p.rho, radiosity::Rgb{});
         EXPECT_EQ(sf.scene.objects[static_cast<size_t>(p.object)],
@@ -298,6 +301,43 @@ TEST_F(LoadScene, AFloorRunningUnderAWallIsCutAlongItAndTheLightStaysLast) {
     EXPECT_EQ(sf.scene.lights[0].polygons, std::vector<int>{3});
     EXPECT_EQ(sf.scene.polygons[3].light, 0);
     EXPECT_TRUE(contains(relight::contactSplitLine(sf), "1 polygons cut along 1 lines"))
+        << relight::contactSplitLine(sf);
+}
+
+/// OBJ text of a box (object `name`, its 8 vertices numbered from first + 1), faces
+/// counter-clockwise seen from outside.
+std::string objBox(const std::string& name, double x0, double y0, double z0, double x1, double y1,
+                   double z1, int first) {
+    std::string out = "o " + name + "\n";
+    const double xs[2] = {x0, x1}, ys[2] = {y0, y1}, zs[2] = {z0, z1};
+    const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                              {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    for (const auto& c : corner)
+        out += "v " + std::to_string(xs[c[0]]) + " " + std::to_string(ys[c[1]]) + " " +
+               std::to_string(zs[c[2]]) + "\n";
+    const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                             {2, 3, 7, 6}, {1, 2, 6, 5}, {3, 0, 4, 7}};
+    for (const auto& q : quads)
+        out += "f " + std::to_string(first + q[0] + 1) + " " + std::to_string(first + q[1] + 1) +
+               " " + std::to_string(first + q[2] + 1) + " " + std::to_string(first + q[3] + 1) +
+               "\n";
+    return out;
+}
+
+TEST_F(LoadScene, FacesInsideSolidsAreLeftOutAndTheLightStaysLast) {
+    // A slab box and a wall box standing on it across its width: after the cut, the slab's
+    // piece under the wall and the wall's foot lie inside solid matter (radiosity/buried.h).
+    // The camera above sees the slab's top on both sides of the wall, not under it.
+    obj = objBox("floor", 0, 0, -0.1, 1, 1, 0, 0) + objBox("wall", 0.3, 0, 0, 0.4, 1, 0.5, 8);
+    const SceneFile sf = load();
+    EXPECT_TRUE(sf.warnings.empty()) << allWarnings(sf);
+    EXPECT_EQ(sf.buriedPolygons, 2);
+    EXPECT_NEAR(sf.buriedArea, 2 * 0.1, 1e-9);
+    // 12 faces, the slab's top cut in 3 (2 pieces added), 2 left out, then the light.
+    ASSERT_EQ(sf.scene.polygons.size(), 12u + 2 - 2 + 1);
+    EXPECT_EQ(sf.scene.lights[0].polygons, std::vector<int>{12});
+    EXPECT_EQ(sf.scene.polygons[12].light, 0);
+    EXPECT_TRUE(contains(relight::contactSplitLine(sf), "2 faces inside solids left out"))
         << relight::contactSplitLine(sf);
 }
 
