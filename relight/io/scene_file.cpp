@@ -308,12 +308,11 @@ bool SceneFile::lightOnInPhoto(size_t i) const {
 
 namespace {
 
-/// The geometry's faces inside closed solids (radiosity/buried.h) taken out of the scene, with
-/// the lights' faces renumbered: after the lights, whose faces count as seeing out.
-void leaveOutBuried(SceneFile& sf) {
+/// The geometry's faces inside closed solids (radiosity/buried.h), polygons [0, geometry),
+/// taken out of the scene, with the lights' faces renumbered: after the lights, whose faces
+/// count as seeing out.
+void leaveOutBuried(SceneFile& sf, size_t geometry) {
     const auto t0 = radiosity::Clock::now();
-    size_t geometry = 0;
-    while (geometry < sf.scene.polygons.size() && sf.scene.polygons[geometry].light < 0) ++geometry;
     radiosity::BuriedContext context;
     context.eye = sf.camera.position();
     for (const std::string& name : sf.scene.objects) {
@@ -345,8 +344,9 @@ SceneFile readScene(const json& root, const fs::path& dir) {
     const auto t0 = radiosity::Clock::now();
     sf.contactSplit = radiosity::splitAtContacts(sf.scene.polygons, sf.scene.polygons.size());
     sf.contactSplitSeconds = radiosity::secondsSince(t0);
+    const size_t geometry = sf.scene.polygons.size();
     readLights(r, root, sf);
-    leaveOutBuried(sf);
+    leaveOutBuried(sf, geometry);
     readPhotos(r, root, sf);
     sf.setPhotoLightState();
     return sf;

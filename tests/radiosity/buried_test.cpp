@@ -8,23 +8,14 @@
 #include <algorithm>
 
 #include "radiosity/contact_split.h"
+#include "tests/support/boxes.h"
 
 using namespace radiosity;
 
 namespace {
 
-/// A box's 6 faces, counter-clockwise seen from outside (fronts outward): -z, +z, -y, +y,
-/// +x, -x.
 std::vector<Polygon> box(Vec3 lo, Vec3 hi, int object) {
-    const Vec3 v[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z},
-                       {lo.x, hi.y, lo.z}, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z},
-                       {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
-    const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                             {2, 3, 7, 6}, {1, 2, 6, 5}, {3, 0, 4, 7}};
-    std::vector<Polygon> out;
-    for (const auto& q : quads)
-        out.push_back(makePolygon({v[q[0]], v[q[1]], v[q[2]], v[q[3]]}, object, Rgb::gray(0.5)));
-    return out;
+    return radiosity::test::box(lo, hi, object, Rgb::gray(0.5));  // tests/support/boxes.h
 }
 
 /// A 4 x 4 m slab 0.2 m thick (object 0), its top at z = 0, and a 0.2 m thick wall box
