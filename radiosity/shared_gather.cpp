@@ -203,19 +203,6 @@ SampleLayout layOutSamples(const HierarchicalSolver& solver, std::span<const Gat
     return s;
 }
 
-/// Concatenates per-item term lists into (start, terms), freeing them on the way.
-template <class T>
-void flatten(std::vector<std::vector<T>>& lists, std::vector<size_t>& start, std::vector<T>& out) {
-    start.assign(lists.size() + 1, 0);
-    for (size_t i = 0; i < lists.size(); ++i) start[i + 1] = start[i] + lists[i].size();
-    out.clear();
-    out.reserve(start.back());
-    for (auto& t : lists) {
-        out.insert(out.end(), t.begin(), t.end());
-        t = {};
-    }
-}
-
 }  // namespace
 
 SharedGather sharedFinalGather(const HierarchicalSolver& solver,
@@ -240,64 +227,71 @@ SharedGather sharedFinalGather(const HierarchicalSolver& solver,
     auto record = [](std::vector<GatherWeight>& v) {
         return [&v](int s, double w) { v.push_back({s, static_cast<float>(w)}); };
     };
-    // The corners' gathers over the far links.
-    std::vector<std::vector<GatherWeight>> sampleTerms(static_cast<size_t>(layout.samples));
+    // The corners' gathers over the far links: a block per element, its corners in order.
+    out.sampleTerms.items.resize(static_cast<size_t>(layout.samples));
+    out.sampleTerms.blocks.resize(layout.nodes.size());
     parallelFor(layout.nodes.size(), 1, [&](size_t i) {
         const int node = layout.nodes[i];
         const Node& r = h.nodes[node];
         const Vec3& n = solver.scene().polygons[r.polygon].normal;
         const int pr = raysNow(static_cast<size_t>(r.vertexCount));
         uint64_t cast = 0;
-        for (int c = 0; c < r.vertexCount; ++c) {
-            const Vec3 x = samplePoint(r, c);
-            Rng rng(static_cast<uint64_t>(node) * 4 + c + 0x5A3Dull);
-            auto acc = record(sampleTerms[static_cast<size_t>(layout.first[node] + c)]);
-            for (const Link& l : solver.linksOf(node))
-                if (detail::mayCarry(l) && sharedLink(h, r, l))
-                    detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
-            if (!layout.leafShares[node]) continue;
-            forChainNearLinks(solver, layout, node, [&](const Link& l, bool atLeaf) {
-                if (atLeaf && detail::mayCarry(l))
-                    detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
+        const size_t first = static_cast<size_t>(layout.first[node]);
+        out.sampleTerms.fillBlock(
+            i, first, first + static_cast<size_t>(r.vertexCount),
+            [&](size_t sample, std::vector<GatherWeight>& terms) {
+                const int c = static_cast<int>(sample - first);
+                const Vec3 x = samplePoint(r, c);
+                Rng rng(static_cast<uint64_t>(node) * 4 + c + 0x5A3Dull);
+                auto acc = record(terms);
+                for (const Link& l : solver.linksOf(node))
+                    if (detail::mayCarry(l) && sharedLink(h, r, l))
+                        detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
+                if (!layout.leafShares[node]) return;
+                forChainNearLinks(solver, layout, node, [&](const Link& l, bool atLeaf) {
+                    if (atLeaf && detail::mayCarry(l))
+                        detail::gatherLink(solver, r.polygon, x, n, l, pr, rng, cast, acc);
+                });
             });
-        }
         rays += cast;
         meter.add(1);
     });
-    flatten(sampleTerms, out.sampleStart, out.sampleTerms);
-    // Each point's near links, and its references to the corners above it.
-    std::vector<std::vector<GatherWeight>> pointTerms(points.size());
-    std::vector<std::vector<SharedGather::SampleRef>> refs(points.size());
-    parallelForChunks(points.size(), 64, [&](size_t from, size_t to) {
+    // Each point's near links, and its references to the corners above it: a block per run
+    // of kPointBlock points.
+    constexpr size_t kPointBlock = 64;
+    const size_t blocks = (points.size() + kPointBlock - 1) / kPointBlock;
+    out.pointTerms.items.resize(points.size());
+    out.pointTerms.blocks.resize(blocks);
+    out.refs.items.resize(points.size());
+    out.refs.blocks.resize(blocks);
+    parallelFor(blocks, 1, [&](size_t b) {
+        const size_t from = b * kPointBlock, to = std::min(points.size(), from + kPointBlock);
         uint64_t cast = 0;
         const int pr = raysNow(to - from);
-        for (size_t i = from; i != to; ++i) {
+        out.pointTerms.fillBlock(b, from, to, [&](size_t i, std::vector<GatherWeight>& terms) {
             const GatherPoint& p = points[i];
-            if (layout.leafOf[i] < 0) continue;
+            if (layout.leafOf[i] < 0) return;
             const Vec3& n = solver.scene().polygons[p.polygon].normal;
             Rng rng = detail::gatherRng(p.seed);
-            auto acc = record(pointTerms[i]);
-            auto gather = [&](const Link& l) {
-                if (detail::mayCarry(l))
+            auto acc = record(terms);
+            forChainNearLinks(solver, layout, layout.leafOf[i], [&](const Link& l, bool atLeaf) {
+                if (!atLeaf && detail::mayCarry(l))
                     detail::gatherLink(solver, p.polygon, p.x, n, l, pr, rng, cast, acc);
-            };
-            const int leaf = layout.leafOf[i];
-            forChainNearLinks(solver, layout, leaf, [&](const Link& l, bool atLeaf) {
-                if (!atLeaf) gather(l);
             });
-            for (int node = leaf; node >= 0; node = h.nodes[node].parent) {
+        });
+        out.refs.fillBlock(b, from, to, [&](size_t i, std::vector<SharedGather::SampleRef>& refs) {
+            if (layout.leafOf[i] < 0) return;
+            for (int node = layout.leafOf[i]; node >= 0; node = h.nodes[node].parent) {
                 if (layout.ordinal[node] < 0) continue;
                 const int first = layout.first[node];
-                const auto a = affineWeights(h.nodes[node], p.x);
+                const auto a = affineWeights(h.nodes[node], points[i].x);
                 for (int c = 0; c < h.nodes[node].vertexCount; ++c)
-                    refs[i].push_back({first + c, static_cast<float>(a[c])});
+                    refs.push_back({first + c, static_cast<float>(a[c])});
             }
-        }
+        });
         rays += cast;
         meter.add(to - from);
     });
-    flatten(pointTerms, out.pointStart, out.pointTerms);
-    flatten(refs, out.refStart, out.refs);
     out.rays = rays.load();
     out.withoutRays = withoutRays.load();
     return out;
@@ -312,20 +306,20 @@ void addGather(const SharedGather& g, int L, const Values& values, Rgb* out) {
     std::vector<Rgb> S(g.samples() * static_cast<size_t>(L));
     parallelFor(g.samples(), 256, [&](size_t s) {
         Rgb* v = S.data() + s * L;
-        for (size_t t = g.sampleStart[s]; t != g.sampleStart[s + 1]; ++t) {
-            const auto R = values(g.sampleTerms[t].node);
-            for (int l = 0; l < L; ++l) v[l] += R[l] * g.sampleTerms[t].w;
+        for (const GatherWeight& t : g.sampleTerms[s]) {
+            const auto R = values(t.node);
+            for (int l = 0; l < L; ++l) v[l] += R[l] * t.w;
         }
     });
     parallelFor(g.points(), 256, [&](size_t i) {
         Rgb* h = out + i * L;
-        for (size_t t = g.pointStart[i]; t != g.pointStart[i + 1]; ++t) {
-            const auto R = values(g.pointTerms[t].node);
-            for (int l = 0; l < L; ++l) h[l] += R[l] * g.pointTerms[t].w;
+        for (const GatherWeight& t : g.pointTerms[i]) {
+            const auto R = values(t.node);
+            for (int l = 0; l < L; ++l) h[l] += R[l] * t.w;
         }
-        for (size_t t = g.refStart[i]; t != g.refStart[i + 1]; ++t) {
-            const Rgb* v = S.data() + static_cast<size_t>(g.refs[t].sample) * L;
-            for (int l = 0; l < L; ++l) h[l] += v[l] * g.refs[t].weight;
+        for (const SharedGather::SampleRef& r : g.refs[i]) {
+            const Rgb* v = S.data() + static_cast<size_t>(r.sample) * L;
+            for (int l = 0; l < L; ++l) h[l] += v[l] * r.weight;
         }
     });
 }

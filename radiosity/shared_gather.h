@@ -50,6 +50,45 @@ struct GatherPoint {
     uint64_t seed = 0;
 };
 
+/// Lists of items (an item: a point or a corner) stored in blocks of consecutive items,
+/// each block allocated at its exact size once its items are gathered. A flat array built
+/// from one growing vector per item held the terms twice, with the vectors' slack, at its
+/// peak: 1 GB of the stair hall's 2.4 GB (bench/RESULTS.md, 2026-11-28, sixteenth session).
+template <class T>
+struct BlockedLists {
+    struct Range {
+        uint32_t block = 0, begin = 0, count = 0;
+    };
+    std::vector<std::vector<T>> blocks;
+    std::vector<Range> items;
+
+    size_t size() const { return items.size(); }
+    std::span<const T> operator[](size_t i) const {
+        const Range& r = items[i];
+        return {blocks[r.block].data() + r.begin, r.count};
+    }
+    /// The entries of every item.
+    size_t entries() const {
+        size_t n = 0;
+        for (const auto& b : blocks) n += b.size();
+        return n;
+    }
+    /// Fills block b with items [from, to) in order: `fill(i, out)` appends item i's entries
+    /// to out. Blocks are filled independently (in parallel), each exactly its size.
+    template <class Fill>
+    void fillBlock(size_t b, size_t from, size_t to, Fill&& fill) {
+        std::vector<T> out;
+        for (size_t i = from; i != to; ++i) {
+            const size_t begin = out.size();
+            fill(i, out);
+            items[i] = {static_cast<uint32_t>(b), static_cast<uint32_t>(begin),
+                        static_cast<uint32_t>(out.size() - begin)};
+        }
+        out.shrink_to_fit();
+        blocks[b] = std::move(out);
+    }
+};
+
 /// The gather terms of many points (links and subdivision fixed): the indirect irradiance
 /// at point i is
 ///   H_i = sum over point terms t of w_t R(node_t)
@@ -60,13 +99,10 @@ struct SharedGather {
         int sample;
         float weight;  ///< affine weight of the sample (a corner of an element) at the point
     };
-    std::vector<size_t> sampleStart;  ///< sample s's terms: [sampleStart[s], sampleStart[s+1])
-    std::vector<GatherWeight> sampleTerms;
-    std::vector<size_t> pointStart;  ///< point i's near terms
-    std::vector<GatherWeight> pointTerms;
-    std::vector<size_t> refStart;  ///< point i's sample references
-    std::vector<SampleRef> refs;
-    uint64_t rays = 0;       ///< visibility rays cast
+    BlockedLists<GatherWeight> sampleTerms;  ///< per sample (an element's corner)
+    BlockedLists<GatherWeight> pointTerms;   ///< per point: its near terms
+    BlockedLists<SampleRef> refs;            ///< per point: its sample references
+    uint64_t rays = 0;                       ///< visibility rays cast
     size_t sharedLinks = 0;  ///< links gathered per corner (counted once per element)
     size_t nearLinks = 0;    ///< links gathered per point (counted once per element)
     /// Of those, the links gathered at the corners of a leaf below their receiver instead,
@@ -76,10 +112,10 @@ struct SharedGather {
     /// their own V (the link's mean over its receiver) instead of rays from the point.
     size_t withoutRays = 0;
 
-    size_t points() const { return pointStart.empty() ? 0 : pointStart.size() - 1; }
-    size_t samples() const { return sampleStart.empty() ? 0 : sampleStart.size() - 1; }
-    size_t terms() const { return sampleTerms.size() + pointTerms.size() + refs.size(); }
-    bool empty() const { return pointStart.empty(); }
+    size_t points() const { return pointTerms.size(); }
+    size_t samples() const { return sampleTerms.size(); }
+    size_t terms() const { return sampleTerms.entries() + pointTerms.entries() + refs.entries(); }
+    bool empty() const { return pointTerms.size() == 0; }
     /// out[i * lights + l] += indirect irradiance at point i per unit radiance of light l
     /// (responses built on the same solver and links).
     void addResponses(const LightResponses& responses, Rgb* out) const;
