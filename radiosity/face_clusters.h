@@ -44,6 +44,10 @@ struct FaceClusterOptions {
     /// and shape only breaks ties between equally flat merges (Garland et al. weigh it
     /// likewise below the fit terms).
     double shapeWeight = 0.05;
+    /// The merges' heap drops its stale candidates all at once when they outnumber the live
+    /// ones and it holds more than this many (buildFaceClusters). It changes the time, never
+    /// the merges; tests set 0 (drop as often as that) and SIZE_MAX (never) to compare.
+    size_t dropStaleAbove = 4096;
 };
 
 /// The merge forest over n polygons. Tree node t < n is polygon t; node n + k is the k-th

@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <set>
 
 #include "radiosity/face_clusters.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/solver.h"
+#include "tests/support/grids.h"
 
 using namespace radiosity;
 
@@ -21,13 +23,7 @@ void addGrid(Scene& s, const std::array<Vec3, 4>& q, int n, int object, double r
         const double u = static_cast<double>(i) / n, v = static_cast<double>(j) / n;
         return (1 - u) * (1 - v) * q[0] + u * (1 - v) * q[1] + u * v * q[2] + (1 - u) * v * q[3];
     };
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            s.polygons.push_back(
-                makePolygon({at(i, j), at(i + 1, j), at(i + 1, j + 1)}, object, Rgb::gray(rho)));
-            s.polygons.push_back(
-                makePolygon({at(i, j), at(i + 1, j + 1), at(i, j + 1)}, object, Rgb::gray(rho)));
-        }
+    test::addTriangleGrid(s, n, at, object, Rgb::gray(rho));
 }
 
 /// The inside of a closed 1 m box, every face cut into an n x n grid, facing in.
@@ -107,6 +103,29 @@ TEST(FaceClusters, ACurvedSurfaceSplitsIntoPatchesWithinTheCone) {
             EXPECT_LE(std::acos(std::clamp(glm::dot(mean, s.polygons[q].normal), -1.0, 1.0)),
                       options.maxConeAngle + 1e-9);
     }
+}
+
+TEST(FaceClusters, DroppingStaleCandidatesChangesNoMerge) {
+    // A jittered dome of 2 x 40 x 40 triangles, as a reconstruction cuts a curved surface:
+    // the heap's stale candidates dropped at every chance, and never, must give the same
+    // forest, merge for merge (the live candidates decide each merge).
+    Scene s;
+    s.objects = {"dome"};
+    const int n = 40;
+    const auto at = [&](int i, int j) {
+        const double u = 2.0 * i / n - 1, v = 2.0 * j / n - 1;
+        const double jitter = 0.004 * std::sin(12.9898 * i + 78.233 * j);
+        return Vec3{u + jitter, v - jitter, 1 - 0.4 * (u * u + v * v) + jitter};
+    };
+    test::addTriangleGrid(s, n, at, 0, Rgb::gray(0.5));
+    FaceClusterOptions often, never;
+    often.dropStaleAbove = 0;
+    never.dropStaleAbove = std::numeric_limits<size_t>::max();
+    const FaceClusterForest a = buildFaceClusters(s.polygons, often);
+    const FaceClusterForest b = buildFaceClusters(s.polygons, never);
+    ASSERT_GT(a.merges.size(), 100u);  // the dome does cluster
+    EXPECT_EQ(a.merges, b.merges);
+    EXPECT_EQ(a.roots, b.roots);
 }
 
 TEST(FaceClusters, NeverJoinsObjectsLampsOrTheTwoSidesOfASheet) {

@@ -9,6 +9,7 @@
 #include "radiosity/detail/transfer.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/visibility.h"
+#include "tests/support/grids.h"
 
 using namespace radiosity;
 
@@ -26,13 +27,7 @@ Scene bumpyFloor(int n, double bump, uint64_t seed) {
     };
     Scene s;
     s.objects = {"floor"};
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            s.polygons.push_back(
-                makePolygon({at(i, j), at(i + 1, j), at(i + 1, j + 1)}, 0, Rgb::gray(0.5)));
-            s.polygons.push_back(
-                makePolygon({at(i, j), at(i + 1, j + 1), at(i, j + 1)}, 0, Rgb::gray(0.5)));
-        }
+    test::addTriangleGrid(s, n, at, 0, Rgb::gray(0.5));
     return s;
 }
 
