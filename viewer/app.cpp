@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <functional>
 
+#include "viewer/background_work.h"
+
 namespace relight::viewer {
 
 namespace {
@@ -57,6 +59,7 @@ class App {
 
   private:
     void panel();
+    void beginPanel();  ///< the panel's window, right of the photo, the window's height
     void lightsPanel();
     void emitterControls(LightControl& l);
     void skyControls(const LightControl& l, const radiosity::EmitterField& sh9);
@@ -68,6 +71,13 @@ class App {
     void statsOverlay(const PhotoRect& r);
     void mouse(const PhotoRect& r);
     void act(const char* what, const std::function<void()>& f);
+    /// Runs `work` on the worker thread (BackgroundWork) and returns at once; the next
+    /// frames show the last image and busyPanel() until it ends. `work` must capture what
+    /// it uses by value: the caller's frame is gone when it runs.
+    void inBackground(const char* what, std::function<void()> work);
+    /// The panel and overlay while work runs: what is being done, for how long, and what
+    /// the image shows meanwhile. Reads nothing of the session.
+    void busyPanel(const PhotoRect& r);
 
     GlWindow& window_;
     Session& session_;
@@ -92,6 +102,10 @@ class App {
     float sliders_[2] = {0, 0};  ///< the sun's azimuth and elevation while a slider is held
     float skyTurn_ = 15.0f;      ///< degrees the sky's "turn about z" button turns it
     bool pointDrag_ = false;     ///< Tool::movePoint: the button is down
+    BackgroundWork work_;
+    std::string busyFrom_;    ///< what the image showed when the work began
+    int busyFrames_ = 0;      ///< frames drawn while the work ran
+    double busyLongest_ = 0;  ///< the longest of them (seconds)
 };
 
 /// The window's back buffer (sRGB-encoded bytes) as a linear image, rows from the top.
@@ -118,6 +132,42 @@ void App::act(const char* what, const std::function<void()>& f) {
         status_ = std::string(what) + " failed: " + e.what();
         std::fprintf(stderr, "relight-viewer: %s\n", status_.c_str());
     }
+}
+
+void App::beginPanel() {
+    int winW = 0, winH = 0;
+    glfwGetWindowSize(window_.handle(), &winW, &winH);
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(winW) - kPanelWidth, 0));
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(winH)));
+    ImGui::Begin("relight", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+}
+
+void App::inBackground(const char* what, std::function<void()> work) {
+    busyFrom_ = session_.exactPending() ? session_.stage() : "exact";
+    busyFrames_ = 0;
+    busyLongest_ = 0;
+    work_.start(what, std::move(work));
+}
+
+void App::busyPanel(const PhotoRect& r) {
+    beginPanel();
+    ImGui::TextWrapped("Catching up in the background: %s (%.1f s).", work_.what().c_str(),
+                       work_.seconds());
+    ImGui::TextWrapped(
+        "The window stays live; the controls wait until the exact image is ready, which is "
+        "what `relight render` draws of the edit.");
+    ImGui::End();
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(r.x) + 8, static_cast<float>(r.y) + 8));
+    ImGui::SetNextWindowBgAlpha(0.55f);
+    ImGui::Begin("stats", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings);
+    ImGui::Text("frame %.1f ms (%.0f fps)", 1e3 * frameSeconds_,
+                static_cast<double>(ImGui::GetIO().Framerate));
+    ImGui::TextWrapped("shown meanwhile: the last image (%s)", busyFrom_.c_str());
+    ImGui::Text("being made: the exact image, %.1f s", work_.seconds());
+    ImGui::End();
 }
 
 void App::lightsPanel() {
@@ -458,12 +508,7 @@ void App::displayPanel() {
 }
 
 void App::panel() {
-    int winW = 0, winH = 0;
-    glfwGetWindowSize(window_.handle(), &winW, &winH);
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(winW) - kPanelWidth, 0));
-    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(winH)));
-    ImGui::Begin("relight", nullptr,
-                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    beginPanel();
     lightsPanel();
     objectsPanel();
     lampsPanel();
@@ -563,9 +608,9 @@ void App::mouse(const PhotoRect& r) {
         if (!pick.hit)
             status_ = "nothing there to click on";
         else if (tool_ == Tool::light)
-            act("adding a light", [&] { session_.addLightAt(pick); });
+            inBackground("adding a light", [this, pick] { session_.addLightAt(pick); });
         else if (tool_ == Tool::box)
-            act("adding a box", [&] { session_.addBoxAt(pick); });
+            inBackground("adding a box", [this, pick] { session_.addBoxAt(pick); });
         else if (tool_ == Tool::point)
             act("adding a point lamp", [&] {
                 point_ = session_.addPointLampAt(pick);
@@ -583,13 +628,16 @@ void App::mouse(const PhotoRect& r) {
         else if (tool_ == Tool::remove && pick.realObject.empty())
             status_ = "no removable object there (scene.json marks which are)";
         else if (tool_ == Tool::remove)
-            act("removing the object", [&] { session_.removeRealObject(pick.realObject); });
+            inBackground("removing the object",
+                         [this, name = pick.realObject] { session_.removeRealObject(name); });
         else if (pick.object >= 0)
             act("picking the object", [&] { session_.beginDrag(pick.object, pick); });
     }
-    if (down && session_.dragging() >= 0 && (mx != lastMx_ || my != lastMy_))
+    // Nothing more of the session this frame once work was started in the background.
+    if (!work_.busy() && down && session_.dragging() >= 0 && (mx != lastMx_ || my != lastMy_))
         act("moving the object", [&] { session_.dragTo(u, v); });
-    if (!down && session_.dragging() >= 0) session_.endDrag();
+    if (!work_.busy() && !down && session_.dragging() >= 0)
+        inBackground("letting the object go", [this] { session_.endDrag(); });
     wasDown_ = down;
     lastMx_ = mx;
     lastMy_ = my;
@@ -614,22 +662,37 @@ void App::run() {
         glfwGetWindowSize(window_.handle(), &winW, &winH);
         glfwGetFramebufferSize(window_.handle(), &fbW, &fbH);
         const PhotoRect r = photoRect(winW, winH, p.photo.width, p.photo.height);
-        // Quick frames of a moved sun or lamp in the per-pixel displays only (their direct
-        // light per pixel; the ratio display's vertices are solved at each move).
-        session_.setQuickMoves(frame_.view == ViewKind::relit && frame_.perPixel);
-        panel();
-        mouse(r);
-        statsOverlay(r);
-        drawLamps(r);
-        if (session_.generation() != lastGeneration) {
-            lastUpdate_ = session_.updateSeconds();
-            lastGeneration = session_.generation();
-            lastChange_ = glfwGetTime();
+        // Work in the background ended: its result is drawn below (its error in the panel).
+        if (work_.busy())
+            act(work_.what().c_str(), [&] {
+                if (work_.finish())
+                    std::printf(
+                        "%s: done in %.2f s, in the background (%d frames drawn meanwhile, the "
+                        "longest %.1f ms)\n",
+                        work_.what().c_str(), work_.seconds(), busyFrames_, 1e3 * busyLongest_);
+            });
+        if (work_.busy()) {
+            busyPanel(r);  // the last image stays in the display's target
+        } else {
+            // Quick frames of a moved sun or lamp in the per-pixel displays only (their
+            // direct light per pixel; the ratio display's vertices are solved at each move).
+            session_.setQuickMoves(frame_.view == ViewKind::relit && frame_.perPixel);
+            panel();
+            mouse(r);
         }
-        // A slider's quick image (Session::update) made exact once the hand rests on it.
-        if (session_.exactPending() && glfwGetTime() - lastChange_ > kSettleSeconds)
-            act("settling", [&] { session_.settle(); });
-        act("drawing", [&] { stats_ = frame_.render(); });
+        if (!work_.busy()) {
+            statsOverlay(r);
+            drawLamps(r);
+            if (session_.generation() != lastGeneration) {
+                lastUpdate_ = session_.updateSeconds();
+                lastGeneration = session_.generation();
+                lastChange_ = glfwGetTime();
+            }
+            // A slider's quick image (Session::update) made exact once the hand rests on it.
+            if (session_.canSettle() && glfwGetTime() - lastChange_ > kSettleSeconds)
+                inBackground("making the image exact", [this] { session_.settle(); });
+        }
+        if (!work_.busy()) act("drawing", [&] { stats_ = frame_.render(); });
         ImGui::Render();
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, fbW, fbH);
@@ -644,13 +707,22 @@ void App::run() {
                        static_cast<int>(std::lround(r.h * sy)));
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         // A few frames first: ImGui lays its windows out over the first ones.
-        if (!windowShot_.empty() && ++frames >= 4) {
+        // (The shot waits for the exact image: no work running, nothing left to settle.)
+        if (!windowShot_.empty() && !work_.busy() && !session_.canSettle() && ++frames >= 4) {
             writeImage(windowShot_, readWindow(fbW, fbH));
             std::printf("wrote %s (%dx%d)\n", windowShot_.c_str(), fbW, fbH);
             break;
         }
         glfwSwapBuffers(window_.handle());
         frameSeconds_ = glfwGetTime() - t0;
+        if (work_.busy()) {
+            ++busyFrames_;
+            busyLongest_ = std::max(busyLongest_, frameSeconds_);
+        }
+    }
+    if (work_.busy()) {
+        std::printf("waiting for the background work to end: %s\n", work_.what().c_str());
+        act(work_.what().c_str(), [&] { work_.wait(); });
     }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

@@ -13,8 +13,9 @@ namespace relight::viewer {
 
 struct AppOptions {
     std::string saveFile = "viewer-edit.json";  ///< where "Save edit" writes by default
-    /// When set: the whole window (panel included) is written here after a few frames, and
-    /// the viewer exits (documentation, and a test that the interface runs).
+    /// When set: the whole window (panel included) is written here after a few frames, once
+    /// the image is exact (no work in the background, nothing left to settle), and the
+    /// viewer exits (documentation, and a test that the interface runs).
     std::string windowShot;
 };
 

@@ -279,7 +279,7 @@ void Session::sunAngles(const Vec3& direction, double& azimuth, double& elevatio
 bool Session::settle() {
     // During a drag only the moved object's quick image settles (the pointer rests); the
     // next move shows it quickly again.
-    if (!exactPending_ || (dragging_ >= 0 && !(dyn_ && dyn_->previewingObject()))) return false;
+    if (!canSettle()) return false;
     stale_ = true;
     update();
     return true;

@@ -122,6 +122,11 @@ class Session {
     /// slider rests; a screenshot before it is taken); the shadow rays come from the
     /// GeometryCache. Returns whether it did anything (not during a drag).
     bool settle();
+    /// Whether settle() would do anything now (the window runs it in the background only
+    /// then: viewer/background_work.h).
+    bool canSettle() const {
+        return exactPending_ && (dragging_ < 0 || (dyn_ && dyn_->previewingObject()));
+    }
     /// Sets object i's reflectance (inserted again).
     void setReflectance(int i, const Rgb& reflectance);
     /// Sets object i's specular term (none: Lambertian; relight/dynamic/specular.h). It

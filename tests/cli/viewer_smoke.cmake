@@ -10,6 +10,7 @@
 #    removed;
 #  - data/courtyard, per pixel and in the ratio display: the sun turned by its sliders and by a
 #    drag, the sky turned, scaled and a coefficient set, a point lamp added and moved;
+#  - data/courtyard in the window itself: the sun turned, made exact in the background;
 #  - a real lamp placed by a click and saved into a copy of the room's scene.json.
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=data/room
 #   -DCOURTYARD=data/courtyard -DWORK=... -P this (and -DVIEWER_PRELOAD=... under the
@@ -56,6 +57,14 @@ file(READ "${WORK}/courtyard_ratio/edit.json" json)
 foreach(key direction sh9 intensity)
   expect("${json}" "\"${key}\"" "courtyard session saved")
 endforeach()
+
+# The window's own loop: the sun turned leaves a quick image, which the window makes exact on
+# its worker thread (viewer/background_work.h) while it keeps drawing; its screenshot waits
+# for that.
+viewer(o 0 "${COURTYARD}" ${coarse} --do sun:sun:-60,25 --window-screenshot "${WORK}/busy.png")
+expect("${o}" "making the image exact: done in [0-9.]+ s, in the background"
+       "the exact image made in the background")
+expect("${o}" "wrote .*busy.png \\([0-9]+x[0-9]+\\)" "window screenshot after the background work")
 
 copy_room("${WORK}/lamps")
 viewer(o 0 "${WORK}/lamps" ${coarse} --display ratio --do lamp:160,20:0.3,0.2 --save-lamps

@@ -16,11 +16,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "../relight/temp_dir.h"
 #include "relight/display/debug_views.h"
@@ -29,6 +32,7 @@
 #include "relight/io/edit_file.h"
 #include "relight/io/scene_file.h"
 #include "relight/relighting.h"
+#include "viewer/background_work.h"
 #include "viewer/frame.h"
 #include "viewer/gl_window.h"
 #include "viewer/gpu_display.h"
@@ -75,6 +79,17 @@ Image cpuDisplay(Session& session) {
                             P.photoRadiance);
     applyOverlay(img, session.overlay());
     return img;
+}
+
+/// The room prepared coarsely (what the sessions' tests compare holds at any setting), with
+/// the per-pixel display.
+std::unique_ptr<Relighting> preparePerPixelRoom() {
+    RelightOptions o;
+    o.epsilon = 1e-3;
+    o.spp = 4;
+    o.reflectanceRounds = 3;
+    o.pixelLight = true;
+    return prepareRelighting(loadScene(kRoom), o);
 }
 
 class ViewerGpu : public ::testing::Test {
@@ -324,12 +339,7 @@ TEST_F(ViewerGpu, RealLampPlacedOnTheSurfaceUnderTheClickAndSaved) {
 // `relight render` draws it (a session started from the saved edit: it inserts the parts as
 // render does).
 TEST(ViewerSession, ADraggedBoxsQuickFramesSettleToTheEditsImage) {
-    RelightOptions o;  // coarse: what is compared holds at any setting
-    o.epsilon = 1e-3;
-    o.spp = 4;
-    o.reflectanceRounds = 3;
-    o.pixelLight = true;
-    const std::unique_ptr<Relighting> r = prepareRelighting(loadScene(kRoom), o);
+    const std::unique_ptr<Relighting> r = preparePerPixelRoom();
     namespace fs = std::filesystem;
     const test::TempDir tmp("viewer_boxdrag");
     const fs::path& dir = tmp.path();
@@ -388,6 +398,67 @@ TEST(ViewerSession, ADraggedBoxsQuickFramesSettleToTheEditsImage) {
         Session fresh(*r, loadEdit(dir / name, r->scene));
         EXPECT_EQ(maxStepDifference(*shown, fresh.relitPerPixel(), kAllPixels), 0) << name;
     }
+}
+
+TEST(BackgroundWork, RunsOffTheWindowsThreadAndSaysWhenItHasEnded) {
+    BackgroundWork work;
+    EXPECT_FALSE(work.busy());
+    EXPECT_FALSE(work.finish());  // nothing started
+    std::atomic<bool> go{false};
+    std::thread::id ranOn;
+    int result = 0;
+    work.start("counting", [&] {
+        while (!go.load()) std::this_thread::yield();
+        ranOn = std::this_thread::get_id();
+        result = 42;
+    });
+    EXPECT_TRUE(work.busy());
+    EXPECT_EQ(work.what(), "counting");
+    EXPECT_FALSE(work.finish());  // it waits for `go`: not ended
+    EXPECT_THROW(work.start("again", [] {}), std::logic_error);
+    go = true;
+    // Polled as the window does, once a frame; bounded so that a hang fails, not stalls.
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!work.finish() && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    EXPECT_FALSE(work.busy());
+    EXPECT_EQ(result, 42);
+    EXPECT_NE(ranOn, std::this_thread::get_id());
+    // Its exception comes back through finish() (the window shows it), once.
+    work.start("failing", [] { throw std::runtime_error("no light there"); });
+    EXPECT_THROW(work.wait(), std::runtime_error);
+    EXPECT_FALSE(work.busy());
+    EXPECT_FALSE(work.finish());
+}
+
+TEST(ViewerSession, AnImageMadeExactInTheBackgroundIsTheOneMadeAtOnce) {
+    // The window makes a quick image exact on its worker thread (viewer/background_work.h):
+    // the session's solver, with TBB inside, runs there. The image must be the same, pixel
+    // for pixel, as the same settle on the calling thread.
+    const std::unique_ptr<Relighting> r = preparePerPixelRoom();
+    Image images[2];
+    for (int background = 0; background < 2; ++background) {
+        Session session(*r, loadEdit(kRoom + "/edits/virtual_box.json", r->scene));
+        session.setQuickMoves(true);
+        // A real lamp's slider moved with the box in: the quick path, exact on settle().
+        LightControl& lamp = session.lights()[0];
+        lamp.setRadiance(lamp.radiance() * 0.4);
+        session.update();
+        ASSERT_TRUE(session.exactPending());
+        ASSERT_TRUE(session.canSettle());
+        if (background) {
+            BackgroundWork work;
+            work.start("making the image exact", [&session] { session.settle(); });
+            work.wait();
+        } else {
+            EXPECT_TRUE(session.settle());
+        }
+        EXPECT_FALSE(session.exactPending());
+        EXPECT_FALSE(session.canSettle());
+        images[background] = session.relitPerPixel();
+    }
+    EXPECT_EQ(maxStepDifference(images[0], images[1], kAllPixels), 0);
+    EXPECT_EQ(images[0].rgb, images[1].rgb);
 }
 
 }  // namespace
