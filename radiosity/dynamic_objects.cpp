@@ -226,16 +226,16 @@ HierarchicalSolver::Insertion HierarchicalSolver::snapshot() const {
     rec.Bsent.reserve(h_.nodes.size());
     rec.scales.reserve(h_.nodes.size());
     rec.H.reserve(h_.nodes.size());
-    rec.Hv.reserve(h_.nodes.size());
     rec.Hd.reserve(h_.nodes.size());
     for (const Node& n : h_.nodes) {
         rec.B.push_back(n.B);
         rec.Bsent.push_back(n.Bsent);
         rec.scales.push_back({n.gatherScale, n.sendScale});
         rec.H.push_back(n.H);
-        rec.Hv.push_back(n.Hv);
         rec.Hd.push_back(n.Hd);
     }
+    rec.Hv.reserve(h_.clusterFields.size());
+    for (const ClusterFields& c : h_.clusterFields) rec.Hv.push_back(c.Hv);
     rec.frozenNodes = frozenNodes_;
     return rec;
 }
@@ -479,9 +479,9 @@ void HierarchicalSolver::removeLastObject(DynamicUpdate* report) {
         h_.nodes[n].gatherScale = rec.scales[n][0];
         h_.nodes[n].sendScale = rec.scales[n][1];
         h_.nodes[n].H = rec.H[n];
-        h_.nodes[n].Hv = rec.Hv[n];
         h_.nodes[n].Hd = rec.Hd[n];
     }
+    for (size_t c = 0; c < rec.Hv.size(); ++c) h_.clusterFields[c].Hv = rec.Hv[c];
     for (const auto& [leaf, seen, seenError] : rec.reseen) {
         h_.nodes[leaf].seen = seen;
         h_.nodes[leaf].seenError = seenError;

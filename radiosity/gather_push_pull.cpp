@@ -20,7 +20,7 @@ void HierarchicalSolver::gatherInto(const Link& l) {
     const Node& S = h_.nodes[l.source];
     const Rgb H = S.Bsent * (l.F * static_cast<double>(l.V));
     if (R.isCluster())
-        R.Hv.add(H, toFrame(R, linkDirection(R, S)));
+        h_.Hv(R).add(H, h_.toFrame(R, linkDirection(R, S)));
     else if (reflects(S))
         R.H += H;
     else
@@ -32,9 +32,10 @@ void HierarchicalSolver::gatherRun(size_t i) {
     const int first = links_.start(i), last = links_.start(i + 1);
     if (R.isCluster()) {
         const Vec3* dir = layout_.dir.data() + layout_.dirStart[i] - first;
+        DirectionalIrradiance& Hv = h_.Hv(R);
         for (int k = first; k < last; ++k) {
             const Link& l = links_[k];
-            R.Hv.add(h_.nodes[l.source].Bsent * (l.F * static_cast<double>(l.V)), dir[k]);
+            Hv.add(h_.nodes[l.source].Bsent * (l.F * static_cast<double>(l.V)), dir[k]);
         }
         return;
     }
@@ -63,12 +64,12 @@ void HierarchicalSolver::buildPushPullLayout() {
         const int r = links_.receiver(i);
         if (!nodes[r].isCluster()) continue;
         L.slot[r] = static_cast<int>(L.frame.size());
-        L.frame.push_back(nodes[r].frame);
+        L.frame.push_back(h_.frame(nodes[r]));
         // The direction of each link's source in the receiving cluster's frame, which the
         // gather bins by (it was a tenth of the gather's time, recomputed every sweep).
         L.dirStart[i] = static_cast<int>(L.dir.size());
         for (int k = links_.start(i); k < links_.start(i + 1); ++k)
-            L.dir.push_back(toFrame(nodes[r], linkDirection(nodes[r], nodes[links_[k].source])));
+            L.dir.push_back(h_.toFrame(nodes[r], linkDirection(nodes[r], nodes[links_[k].source])));
     }
     h_.clustersAndRoots(L.clusters, L.roots);
     L.nodes = nodes.size();
@@ -91,7 +92,7 @@ Rgb HierarchicalSolver::fromClusterAncestors(int element) const {
         for (int a = layout_.parent[element]; a >= 0; a = layout_.parent[a]) {
             const int s = layout_.slot[a];
             if (s < 0) continue;
-            const DirectionalIrradiance& d = h_.nodes[a].Hv;
+            const DirectionalIrradiance& d = h_.Hv(h_.nodes[a]);
             if (d.isZero()) continue;
             const auto& f = layout_.frame[s];
             H += d.onto(
@@ -101,7 +102,7 @@ Rgb HierarchicalSolver::fromClusterAncestors(int element) const {
     }
     // No layout (an object being linked): the walk over the nodes.
     return fromClusters(h_, element,
-                        [&](int a) -> const DirectionalIrradiance& { return h_.nodes[a].Hv; });
+                        [&](int a) -> const DirectionalIrradiance& { return h_.Hv(h_.nodes[a]); });
 }
 
 double HierarchicalSolver::sweep() {
@@ -112,7 +113,7 @@ double HierarchicalSolver::sweep() {
     // changed, a node that stopped receiving still holds its last sum).
     const auto clear = [&](Node& n) {
         n.H = n.Hd = Rgb{};
-        if (n.isCluster()) n.Hv = DirectionalIrradiance{};
+        if (n.isCluster()) h_.Hv(n) = DirectionalIrradiance{};
     };
     if (sweptGeneration_ != links_.generation()) {
         parallelFor(h_.nodes.size(), 4096, [&](size_t i) { clear(h_.nodes[i]); });

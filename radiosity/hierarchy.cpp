@@ -46,7 +46,7 @@ void finishGeometry(Node& e) {
 }
 
 /// A cluster's box, area, orientation moments and bounding sphere from its children.
-void aggregateChildren(std::vector<Node>& nodes, int node) {
+void aggregateChildren(std::vector<Node>& nodes, std::vector<ClusterFields>& fields, int node) {
     Node& c = nodes[node];
     c.bounds = Bounds3{};
     c.area = 0;
@@ -69,7 +69,7 @@ void aggregateChildren(std::vector<Node>& nodes, int node) {
     if (eig.info() == Eigen::Success && std::isfinite(eig.eigenvectors().sum())) {
         for (int a = 0; a < 3; ++a) {
             const auto col = eig.eigenvectors().col(a);
-            c.frame[a] = glm::normalize(Vec3{col(0), col(1), col(2)});
+            fields[c.clusterSlot].frame[a] = glm::normalize(Vec3{col(0), col(1), col(2)});
         }
     }
 }
@@ -125,9 +125,7 @@ Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) : polygons_(
     polygonRoot.assign(n, -1);
     polygonPatch.assign(n, -1);
     nodes.reserve(4 * n + 16);
-    nodes.emplace_back();
-    nodes[0].kind = NodeKind::cluster;
-    clusterCount_ = 1;
+    nodes.push_back(newCluster(-1, 0));
     buildOverPatches(kRoot, scene.polygons, 0, std::max(1, maxPolygonsPerCluster));
 
     areaPrefix.assign(n + 1, 0.0);
@@ -209,7 +207,7 @@ void Hierarchy::buildPatchLevel(int node, PatchSet& set, int pb, int pe, int beg
     const int first = addClusterChildren(node);
     buildPatchLevel(first, set, pb, mid, begin, maxPerCluster, centroids);
     buildPatchLevel(first + 1, set, mid, pe, begin + left, maxPerCluster, centroids);
-    aggregateChildren(nodes, node);
+    aggregateChildren(nodes, clusterFields, node);
     fitNormalCone(node);
 }
 
@@ -217,15 +215,18 @@ int Hierarchy::addClusterChildren(int node) {
     const int first = static_cast<int>(nodes.size());
     nodes[node].firstChild = first;
     nodes[node].childCount = 2;
-    for (int c = 0; c < 2; ++c) {
-        Node child;
-        child.kind = NodeKind::cluster;
-        child.parent = node;
-        child.level = nodes[node].level + 1;
-        nodes.push_back(child);
-        ++clusterCount_;
-    }
+    for (int c = 0; c < 2; ++c) nodes.push_back(newCluster(node, nodes[node].level + 1));
     return first;
+}
+
+Node Hierarchy::newCluster(int parent, int level) {
+    Node c;
+    c.kind = NodeKind::cluster;
+    c.parent = parent;
+    c.level = level;
+    c.clusterSlot = static_cast<int>(clusterFields.size());
+    clusterFields.emplace_back();
+    return c;
 }
 
 void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
@@ -264,7 +265,7 @@ void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
         buildCluster(first, begin, mid, maxPerCluster, centroids, base);
         buildCluster(first + 1, mid, end, maxPerCluster, centroids, base);
     }
-    aggregateChildren(nodes, node);
+    aggregateChildren(nodes, clusterFields, node);
     fitNormalCone(node);
 }
 
@@ -350,22 +351,20 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
         throw std::invalid_argument("attachObject: polygons must follow the existing ones");
     Attached rec;
     rec.root = nodes[kRoot];
+    rec.rootFields = clusterFields[nodes[kRoot].clusterSlot];
     rec.nodes = nodes.size();
     rec.polygons = polygons_.size();
-    rec.clusters = clusterCount_;
+    rec.clusters = clusterFields.size();
     const int n0 = static_cast<int>(nodes.size());
     // The old root's copy takes its children; every node below it is one level deeper.
     for (Node& n : nodes) ++n.level;
     Node copy = nodes[kRoot];
     copy.parent = kRoot;
+    copy.clusterSlot = static_cast<int>(clusterFields.size());
+    clusterFields.push_back(rec.rootFields);
     nodes.push_back(copy);
     for (int k = 0; k < copy.childCount; ++k) nodes[copy.firstChild + k].parent = n0;
-    Node cluster;
-    cluster.kind = NodeKind::cluster;
-    cluster.parent = kRoot;
-    cluster.level = 1;
-    nodes.push_back(cluster);
-    clusterCount_ += 2;
+    nodes.push_back(newCluster(kRoot, 1));
 
     const int begin = static_cast<int>(polygonOrder.size());
     const int total = firstPolygon + static_cast<int>(polygons.size());
@@ -392,7 +391,7 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
     root.childCount = 2;
     root.polyBegin = 0;
     root.polyEnd = total;
-    aggregateChildren(nodes, kRoot);
+    aggregateChildren(nodes, clusterFields, kRoot);
     fitNormalCone(kRoot);
     root.level = 0;
     // The root's averages, from its two children only (the rest is unchanged).
@@ -419,7 +418,8 @@ void Hierarchy::detachLastObject() {
     for (int k = 0; k < rec.root.childCount; ++k) nodes[rec.root.firstChild + k].parent = kRoot;
     for (Node& n : nodes) --n.level;
     nodes[kRoot].level = 0;  // it was not raised: restore its saved level
-    clusterCount_ = rec.clusters;
+    clusterFields.resize(rec.clusters);
+    clusterFields[nodes[kRoot].clusterSlot] = rec.rootFields;
     polygons_.resize(rec.polygons);
     polygonOrder.resize(rec.polygons);
     polygonRoot.resize(rec.polygons);

@@ -35,9 +35,12 @@ struct Node {
 
     std::array<Vec3, 4> v{};  ///< element corners, counter-clockwise (metres)
     int vertexCount = 0;      ///< element: 3 or 4; cluster: 0
-    Vec3 normal{0, 0, 1};     ///< element: unit front normal
-    Vec3 centre{0, 0, 0};     ///< element: centroid; cluster: box centre (metres)
-    double radius = 0;        ///< bounding-sphere radius about `centre` (metres)
+    /// Cluster: its index in Hierarchy::clusterFields (what only clusters have); -1 for an
+    /// element.
+    int clusterSlot = -1;
+    Vec3 normal{0, 0, 1};  ///< element: unit front normal
+    Vec3 centre{0, 0, 0};  ///< element: centroid; cluster: box centre (metres)
+    double radius = 0;     ///< bounding-sphere radius about `centre` (metres)
     Bounds3 bounds;
     double area = 0;  ///< element: its area; cluster: total area of its polygons (m^2)
     /// Orientation of the node's surfaces, for projectedArea(): the vector area
@@ -45,9 +48,6 @@ struct Node {
     /// yz) over its polygons (one term for an element).
     Vec3 vectorArea{0, 0, 0};
     std::array<double, 6> normalMoment{};
-    /// Cluster: its principal frame of orientation, the eigenvectors of normalMoment
-    /// (rows: unit axes), in which its directional irradiance is binned.
-    std::array<Vec3, 3> frame{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
     /// Normal cone: every surface's front normal in the node lies within coneAngle
     /// (radians) of coneAxis (an element: its normal, angle 0; pi: no bound).
     Vec3 coneAxis{0, 0, 1};
@@ -59,7 +59,6 @@ struct Node {
     /// Element: irradiance gathered through its own links in the last gather from sources
     /// that reflect (Hd: from those that do not, the lamps' emitting faces).
     Rgb H, Hd;
-    DirectionalIrradiance Hv;  ///< cluster: irradiance gathered through its own links
     /// Leaf element: factor on what it gathers from sources that reflect, seen / G
     /// (HierarchicalSolver, "energy bound"); 1 until measured.
     double gatherScale = 1;
@@ -92,6 +91,16 @@ struct Node {
     bool isLeaf() const { return childCount == 0; }
 };
 
+/// What only a cluster has, kept beside the nodes (Hierarchy::clusterFields) rather than in
+/// every Node: elements outnumber clusters, and these 216 bytes were more than a quarter of
+/// each node (a 1.6 M-face model holds 5 M nodes).
+struct ClusterFields {
+    /// The cluster's principal frame of orientation, the eigenvectors of its normalMoment
+    /// (rows: unit axes), in which its directional irradiance is binned.
+    std::array<Vec3, 3> frame{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+    DirectionalIrradiance Hv;  ///< irradiance gathered through the cluster's own links
+};
+
 class Hierarchy {
   public:
     /// Builds the cluster hierarchy over `scene` and one root element per polygon: the
@@ -111,6 +120,20 @@ class Hierarchy {
     /// measured per surface rather than per polygon (the leaves' `seen`) is measured there.
     std::vector<int> polygonPatch;
     std::vector<double> areaPrefix;  ///< areaPrefix[i] = sum of areas of polygonOrder[0, i)
+    /// One per cluster, at its Node::clusterSlot; slots follow the clusters' creation, so
+    /// detachLastObject() drops the newest ones.
+    std::vector<ClusterFields> clusterFields;
+
+    /// A cluster's directional irradiance and frame (`cluster` must be a cluster).
+    DirectionalIrradiance& Hv(const Node& cluster) { return clusterFields[cluster.clusterSlot].Hv; }
+    const DirectionalIrradiance& Hv(const Node& cluster) const {
+        return clusterFields[cluster.clusterSlot].Hv;
+    }
+    const std::array<Vec3, 3>& frame(const Node& cluster) const {
+        return clusterFields[cluster.clusterSlot].frame;
+    }
+    /// Direction v (world) in the cluster's principal frame.
+    Vec3 toFrame(const Node& cluster, const Vec3& v) const;
 
     /// Splits a leaf element into 4 children (returns false for clusters and non-leaves).
     bool subdivide(int node);
@@ -172,8 +195,8 @@ class Hierarchy {
     /// The clusters in top-down order (each after its parent) and the polygons' root
     /// elements (the element children of clusters), from a walk down from the root.
     void clustersAndRoots(std::vector<int>& clusters, std::vector<int>& roots) const;
-    int clusterCount() const { return clusterCount_; }
-    int elementCount() const { return static_cast<int>(nodes.size()) - clusterCount_; }
+    int clusterCount() const { return static_cast<int>(clusterFields.size()); }
+    int elementCount() const { return static_cast<int>(nodes.size()) - clusterCount(); }
 
   private:
     /// The input polygons' face clusters (face_clusters.h), as runs of polygon indices, with
@@ -200,7 +223,8 @@ class Hierarchy {
     /// A cluster's normal cone from its polygons' normals (Node::coneAxis, coneAngle).
     void fitNormalCone(int cluster);
     void initElement(Node& e, const Polygon& p, int polygonIndex);
-    int clusterCount_ = 0;
+    /// A new cluster node (not yet in `nodes`) with its slot in clusterFields.
+    Node newCluster(int parent, int level);
     std::vector<Polygon> polygons_;  // the input polygons, by index
     /// What samplePoint reads of a polygon, in polygonOrder's order: a cluster's polygons
     /// lie together, and a sample reads one 128-byte record (not the polygon's index,
@@ -213,9 +237,9 @@ class Hierarchy {
     std::vector<SampleCorners> ordered_;
     void orderSampleCorners(size_t from);  // ordered_[from, end) from polygonOrder
     struct Attached {
-        Node root;  // the root before the attachment
-        size_t nodes = 0, polygons = 0;
-        int clusters = 0;
+        Node root;                 // the root before the attachment
+        ClusterFields rootFields;  // and its cluster fields
+        size_t nodes = 0, polygons = 0, clusters = 0;
     };
     std::vector<Attached> attached_;  // a stack: detachLastObject() pops
 };
@@ -242,10 +266,13 @@ inline bool reflects(const Node& source) {
     return source.isCluster() || source.rho.maxComponent() > 0;
 }
 
-/// Direction v (world) in the cluster's principal frame.
-inline Vec3 toFrame(const Node& cluster, const Vec3& v) {
-    return {glm::dot(cluster.frame[0], v), glm::dot(cluster.frame[1], v),
-            glm::dot(cluster.frame[2], v)};
+/// Direction v (world) in a principal frame (ClusterFields::frame).
+inline Vec3 toFrame(const std::array<Vec3, 3>& frame, const Vec3& v) {
+    return {glm::dot(frame[0], v), glm::dot(frame[1], v), glm::dot(frame[2], v)};
+}
+
+inline Vec3 Hierarchy::toFrame(const Node& cluster, const Vec3& v) const {
+    return radiosity::toFrame(frame(cluster), v);
 }
 
 /// Whether point x (on the element's plane) lies in element e, edges included to within

@@ -55,7 +55,7 @@ struct SweepLayout {
             if (!R.isCluster()) continue;
             dirStart[run] = static_cast<int>(dir.size());
             for (int k = runStart[run]; k < runStart[run + 1]; ++k)
-                dir.push_back(toFrame(R, linkDirection(R, nodes[links[k].source])));
+                dir.push_back(h.toFrame(R, linkDirection(R, nodes[links[k].source])));
         }
         h.clustersAndRoots(clustersTopDown, roots);
         ancestorStart.reserve(roots.size() + 1);
@@ -65,7 +65,7 @@ struct SweepLayout {
             for (int a = nodes[root].parent; a >= 0; a = nodes[a].parent)
                 if (clusterSlot[a] >= 0) {
                     ancestorSlot.push_back(clusterSlot[a]);
-                    ancestorNormal.push_back(toFrame(nodes[a], normal));
+                    ancestorNormal.push_back(h.toFrame(nodes[a], normal));
                 }
         }
         ancestorStart.push_back(static_cast<int>(ancestorSlot.size()));

@@ -82,7 +82,7 @@ BalanceTopology readTopology(const Hierarchy& h, const std::vector<Link>& links)
         h.clustersAndRoots(all, t.roots);
     }
     t.frame.resize(t.clusters.size());
-    for (size_t i = 0; i < t.clusters.size(); ++i) t.frame[i] = nodes[t.clusters[i]].frame;
+    for (size_t i = 0; i < t.clusters.size(); ++i) t.frame[i] = h.frame(nodes[t.clusters[i]]);
     t.ancestorStart.reserve(t.roots.size() + 1);
     t.ancestorStart.push_back(0);
     {

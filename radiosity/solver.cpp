@@ -297,7 +297,7 @@ std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& v
                                                 bool uncorrected) const {
     const auto& nodes = h_.nodes;
     std::vector<Rgb> H(nodes.size()), Hd(nodes.size());
-    std::vector<DirectionalIrradiance> Hv(nodes.size());
+    std::vector<DirectionalIrradiance> Hv(h_.clusterFields.size());  // by cluster slot
     parallelFor(links_.receiverCount(), 64, [&](size_t i) {
         const int r = links_.receiver(i);
         const Node& R = nodes[r];
@@ -308,7 +308,7 @@ std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& v
             if (uncorrected && l.corrected && R.lightCorrection > 0) V /= R.lightCorrection;
             const Rgb h = value(l.source) * (l.F * V);
             if (R.isCluster())
-                Hv[r].add(h, toFrame(R, linkDirection(R, S)));
+                Hv[R.clusterSlot].add(h, h_.toFrame(R, linkDirection(R, S)));
             else if (reflects(S))
                 H[r] += h;
             else
@@ -317,7 +317,7 @@ std::vector<Rgb> HierarchicalSolver::gatherDown(const std::function<Rgb(int)>& v
     });
     std::vector<Rgb> out = pushDown(
         h_, [&](int n) -> const Rgb& { return H[n]; },
-        [&](int n) -> const DirectionalIrradiance& { return Hv[n]; });
+        [&](int n) -> const DirectionalIrradiance& { return Hv[nodes[n].clusterSlot]; });
     const std::vector<Rgb> direct = pushDown(
         h_, [&](int n) -> const Rgb& { return Hd[n]; },
         [](int) -> const DirectionalIrradiance& {
@@ -372,10 +372,8 @@ int HierarchicalSolver::gatherPushPull() {
     if (!(sourcePower() > 0)) {
         // No light on: the solution is B = 0 (E = 0 everywhere). Sweeps would only decay
         // towards it geometrically, never meeting a relative tolerance.
-        for (Node& n : h_.nodes) {
-            n.H = n.Hd = Rgb{};
-            n.Hv = DirectionalIrradiance{};
-        }
+        for (Node& n : h_.nodes) n.H = n.Hd = Rgb{};
+        for (ClusterFields& c : h_.clusterFields) c.Hv = DirectionalIrradiance{};
         pushPullAll();
         return 1;
     }
@@ -414,10 +412,8 @@ void HierarchicalSolver::solve() {
     }
     if (!(emitted > 0)) {
         // No light: every radiosity is zero. Nothing to refine.
-        for (Node& n : h_.nodes) {
-            n.H = n.Hd = Rgb{};
-            n.Hv = DirectionalIrradiance{};
-        }
+        for (Node& n : h_.nodes) n.H = n.Hd = Rgb{};
+        for (ClusterFields& c : h_.clusterFields) c.Hv = DirectionalIrradiance{};
         pushPullAll();
         return;
     }
@@ -562,7 +558,7 @@ Rgb HierarchicalSolver::irradianceAt(int polygon, const Vec3& x) const {
     Rgb H, Hd;
     for (int n = leaf; n >= 0; n = h_.nodes[n].parent) {
         const Node& a = h_.nodes[n];
-        H += a.isCluster() ? a.Hv.onto(toFrame(a, normal)) : a.H;
+        H += a.isCluster() ? h_.Hv(a).onto(h_.toFrame(a, normal)) : a.H;
         Hd += a.isCluster() ? Rgb{} : a.Hd;
     }
     return Hd + H * h_.nodes[leaf].gatherScale;
@@ -599,7 +595,7 @@ SolverStats HierarchicalSolver::stats() const {
     // Energy balance: what each leaf gathered in the last sweep.
     const std::vector<Rgb> H = pushDown(
         h_, [&](int n) -> const Rgb& { return h_.nodes[n].H; },
-        [&](int n) -> const DirectionalIrradiance& { return h_.nodes[n].Hv; });
+        [&](int n) -> const DirectionalIrradiance& { return h_.Hv(h_.nodes[n]); });
     const std::vector<Rgb> Hd = pushDown(
         h_, [&](int n) -> const Rgb& { return h_.nodes[n].Hd; },
         [](int) -> const DirectionalIrradiance& {

@@ -260,14 +260,14 @@ class HierarchicalSolver {
     /// Removes the lights from `first` on, which must all have an emitter (added by
     /// addEmitter after every inserted object is removed), and their direct light.
     void removeEmitterLights(int first);
-    /// The solution's light: per node B, Bsent, H, Hd, Hx and Hv, and the lights'
-    /// radiances (what a relighting session changes without changing the nodes).
+    /// The solution's light: per node B, Bsent, H, Hd and Hx, per cluster Hv, and the
+    /// lights' radiances (what a relighting session changes without changing the nodes).
     struct LightState {
         struct NodeLight {
             Rgb B, Bsent, H, Hd, Hx;
-            DirectionalIrradiance Hv;
         };
         std::vector<NodeLight> nodes;
+        std::vector<DirectionalIrradiance> Hv;  ///< by cluster slot
         std::vector<Rgb> radiance;
     };
     LightState lightState() const;
@@ -751,7 +751,7 @@ class HierarchicalSolver {
         std::vector<std::array<double, 2>> scales;  ///< per node before: gather, send
         /// Leaves whose `seen` the insertion measured again: (leaf, seen, seenError) before.
         std::vector<std::tuple<int, double, double>> reseen;
-        std::vector<DirectionalIrradiance> Hv;
+        std::vector<DirectionalIrradiance> Hv;  ///< per cluster slot before
         std::vector<Rgb> Hd;
         std::vector<int> retired;       ///< passive links retired by this insertion
         std::vector<int> shadowLeaves;  ///< DynamicUpdate::shadowLeaves of the insertion

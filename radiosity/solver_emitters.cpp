@@ -41,13 +41,16 @@ void HierarchicalSolver::removeEmitterLights(int first) {
 HierarchicalSolver::LightState HierarchicalSolver::lightState() const {
     LightState s;
     s.nodes.reserve(h_.nodes.size());
-    for (const Node& n : h_.nodes) s.nodes.push_back({n.B, n.Bsent, n.H, n.Hd, n.Hx, n.Hv});
+    for (const Node& n : h_.nodes) s.nodes.push_back({n.B, n.Bsent, n.H, n.Hd, n.Hx});
+    s.Hv.reserve(h_.clusterFields.size());
+    for (const ClusterFields& c : h_.clusterFields) s.Hv.push_back(c.Hv);
     for (const Light& l : scene_.lights) s.radiance.push_back(l.radiance);
     return s;
 }
 
 void HierarchicalSolver::restoreLightState(const LightState& state) {
-    if (state.nodes.size() != h_.nodes.size() || state.radiance.size() != scene_.lights.size())
+    if (state.nodes.size() != h_.nodes.size() || state.Hv.size() != h_.clusterFields.size() ||
+        state.radiance.size() != scene_.lights.size())
         throw std::logic_error("restoreLightState: the solver's nodes or lights changed since");
     for (size_t l = 0; l < state.radiance.size(); ++l)
         scene_.lights[l].radiance = state.radiance[l];
@@ -61,8 +64,8 @@ void HierarchicalSolver::restoreLightState(const LightState& state) {
         n.H = b.H;
         n.Hd = b.Hd;
         n.Hx = b.Hx;
-        n.Hv = b.Hv;
     }
+    for (size_t c = 0; c < state.Hv.size(); ++c) h_.clusterFields[c].Hv = state.Hv[c];
 }
 
 void HierarchicalSolver::editEmitter(int light, const EmitterEdit& edit) {

@@ -47,7 +47,7 @@ Rgb fromClusters(const Hierarchy& h, int element, const OwnHv& ownHv) {
     Rgb H;
     for (int a = e.parent; a >= 0; a = h.nodes[a].parent) {
         const DirectionalIrradiance& d = ownHv(a);
-        if (!d.isZero()) H += d.onto(toFrame(h.nodes[a], e.normal));
+        if (!d.isZero()) H += d.onto(h.toFrame(h.nodes[a], e.normal));
     }
     return H;
 }
