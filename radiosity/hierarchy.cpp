@@ -33,43 +33,47 @@ void finishGeometry(Node& e) {
     e.bounds = Bounds3{};
     for (int i = 0; i < e.vertexCount; ++i) e.bounds.extend(e.v[i]);
     e.area = elementArea(e);
-    const Vec3& n = e.normal;
-    e.coneAxis = n;
-    e.coneAngle = 0;
-    e.vectorArea = e.area * n;
-    e.normalMoment = {e.area * n.x * n.x, e.area * n.y * n.y, e.area * n.z * n.z,
-                      e.area * n.x * n.y, e.area * n.x * n.z, e.area * n.y * n.z};
     e.centre = elementCentroid(e);
     e.radius = 0;
     for (int i = 0; i < e.vertexCount; ++i)
         e.radius = std::max(e.radius, glm::length(e.v[i] - e.centre));
 }
 
+/// An element's second moment of orientation, A n n^T (ClusterFields::normalMoment).
+std::array<double, 6> elementMoment(const Node& e) {
+    const Vec3& n = e.normal;
+    return {e.area * n.x * n.x, e.area * n.y * n.y, e.area * n.z * n.z,
+            e.area * n.x * n.y, e.area * n.x * n.z, e.area * n.y * n.z};
+}
+
 /// A cluster's box, area, orientation moments and bounding sphere from its children.
 void aggregateChildren(std::vector<Node>& nodes, std::vector<ClusterFields>& fields, int node) {
     Node& c = nodes[node];
+    ClusterFields& cf = fields[c.clusterSlot];
     c.bounds = Bounds3{};
     c.area = 0;
-    c.vectorArea = Vec3{0, 0, 0};
-    c.normalMoment = {};
+    cf.vectorArea = Vec3{0, 0, 0};
+    cf.normalMoment = {};
     for (int k = 0; k < c.childCount; ++k) {
         const Node& ch = nodes[c.firstChild + k];
         c.bounds.extend(ch.bounds);
         c.area += ch.area;
-        c.vectorArea += ch.vectorArea;
-        for (int i = 0; i < 6; ++i) c.normalMoment[i] += ch.normalMoment[i];
+        const bool cluster = ch.isCluster();
+        cf.vectorArea += cluster ? fields[ch.clusterSlot].vectorArea : ch.area * ch.normal;
+        const auto m = cluster ? fields[ch.clusterSlot].normalMoment : elementMoment(ch);
+        for (int i = 0; i < 6; ++i) cf.normalMoment[i] += m[i];
     }
     c.centre = c.bounds.empty() ? Vec3{0, 0, 0} : c.bounds.centre();
     c.radius = c.bounds.empty() ? 0 : 0.5 * glm::length(c.bounds.diagonal());
     // Principal frame: eigenvectors of sum A n n^T (symmetric, so orthonormal).
-    const auto& m = c.normalMoment;
+    const auto& m = cf.normalMoment;
     Eigen::Matrix3d M;
     M << m[0], m[3], m[4], m[3], m[1], m[5], m[4], m[5], m[2];
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(M);
     if (eig.info() == Eigen::Success && std::isfinite(eig.eigenvectors().sum())) {
         for (int a = 0; a < 3; ++a) {
             const auto col = eig.eigenvectors().col(a);
-            fields[c.clusterSlot].frame[a] = glm::normalize(Vec3{col(0), col(1), col(2)});
+            cf.frame[a] = glm::normalize(Vec3{col(0), col(1), col(2)});
         }
     }
 }
@@ -83,13 +87,14 @@ double selfTransferBound(double coneAngle) {
     return std::min(1.0, c * c);
 }
 
-double projectedArea(const Node& node, const Vec3& v) {
+double Hierarchy::projectedArea(const Node& node, const Vec3& v) const {
     if (!node.isCluster()) return node.area * std::max(0.0, glm::dot(node.normal, v));
-    const auto& M = node.normalMoment;
+    const ClusterFields& f = clusterFields[node.clusterSlot];
+    const auto& M = f.normalMoment;
     const double vMv = M[0] * v.x * v.x + M[1] * v.y * v.y + M[2] * v.z * v.z +
                        2 * (M[3] * v.x * v.y + M[4] * v.x * v.z + M[5] * v.y * v.z);
     const double absProjected = std::sqrt(std::max(0.0, node.area * vMv));
-    const double facing = 0.5 * (absProjected + glm::dot(node.vectorArea, v));
+    const double facing = 0.5 * (absProjected + glm::dot(f.vectorArea, v));
     const Vec3 d = node.bounds.empty() ? Vec3{0, 0, 0} : node.bounds.diagonal();
     const double box =
         std::abs(v.x) * d.y * d.z + std::abs(v.y) * d.x * d.z + std::abs(v.z) * d.x * d.y;
@@ -272,13 +277,14 @@ void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
 void Hierarchy::fitNormalCone(int cluster) {
     // About the mean normal, as wide as its farthest polygon normal (pi when the normals
     // cancel out, as in a closed box's cluster).
-    Node& c = nodes[cluster];
-    const double va = glm::length(c.vectorArea);
-    c.coneAxis = va > 0 ? c.vectorArea / va : Vec3{0, 0, 1};
+    const Node& c = nodes[cluster];
+    ClusterFields& f = clusterFields[c.clusterSlot];
+    const double va = glm::length(f.vectorArea);
+    f.coneAxis = va > 0 ? f.vectorArea / va : Vec3{0, 0, 1};
     double minCos = va > 0 ? 1.0 : -1.0;
     for (int i = c.polyBegin; i < c.polyEnd && minCos > -1; ++i)
-        minCos = std::min(minCos, glm::dot(c.coneAxis, polygons_[polygonOrder[i]].normal));
-    c.coneAngle = std::acos(std::clamp(minCos, -1.0, 1.0));
+        minCos = std::min(minCos, glm::dot(f.coneAxis, polygons_[polygonOrder[i]].normal));
+    f.coneAngle = std::acos(std::clamp(minCos, -1.0, 1.0));
 }
 
 void Hierarchy::initElement(Node& e, const Polygon& p, int polygonIndex) {

@@ -43,15 +43,6 @@ struct Node {
     double radius = 0;     ///< bounding-sphere radius about `centre` (metres)
     Bounds3 bounds;
     double area = 0;  ///< element: its area; cluster: total area of its polygons (m^2)
-    /// Orientation of the node's surfaces, for projectedArea(): the vector area
-    /// sum A_i n_i (m^2) and the second moment sum A_i n_i n_i^T (m^2; xx, yy, zz, xy, xz,
-    /// yz) over its polygons (one term for an element).
-    Vec3 vectorArea{0, 0, 0};
-    std::array<double, 6> normalMoment{};
-    /// Normal cone: every surface's front normal in the node lies within coneAngle
-    /// (radians) of coneAxis (an element: its normal, angle 0; pi: no bound).
-    Vec3 coneAxis{0, 0, 1};
-    double coneAngle = 0;
 
     Rgb rho;  ///< reflectance (cluster: area-weighted mean)
     Rgb E;    ///< emittance, radiosity units (cluster: area-weighted mean)
@@ -92,9 +83,19 @@ struct Node {
 };
 
 /// What only a cluster has, kept beside the nodes (Hierarchy::clusterFields) rather than in
-/// every Node: elements outnumber clusters, and these 216 bytes were more than a quarter of
-/// each node (a 1.6 M-face model holds 5 M nodes).
+/// every Node: elements outnumber clusters, and these 320 bytes were more than a third of
+/// each node (a 1.6 M-face model holds 2.4 M nodes). An element's orientation follows from
+/// its normal and area (Hierarchy::coneAxis, coneAngle, projectedArea).
 struct ClusterFields {
+    /// Orientation of the cluster's surfaces, for projectedArea(): the vector area
+    /// sum A_i n_i (m^2) and the second moment sum A_i n_i n_i^T (m^2; xx, yy, zz, xy, xz,
+    /// yz) over its polygons.
+    Vec3 vectorArea{0, 0, 0};
+    std::array<double, 6> normalMoment{};
+    /// Normal cone: every surface's front normal in the cluster lies within coneAngle
+    /// (radians) of coneAxis (pi: no bound).
+    Vec3 coneAxis{0, 0, 1};
+    double coneAngle = 0;
     /// The cluster's principal frame of orientation, the eigenvectors of its normalMoment
     /// (rows: unit axes), in which its directional irradiance is binned.
     std::array<Vec3, 3> frame{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
@@ -134,6 +135,23 @@ class Hierarchy {
     }
     /// Direction v (world) in the cluster's principal frame.
     Vec3 toFrame(const Node& cluster, const Vec3& v) const;
+    /// Normal cone of a node: every surface's front normal in it lies within coneAngle
+    /// (radians) of coneAxis (an element: its normal, angle 0).
+    const Vec3& coneAxis(const Node& n) const {
+        return n.isCluster() ? clusterFields[n.clusterSlot].coneAxis : n.normal;
+    }
+    double coneAngle(const Node& n) const {
+        return n.isCluster() ? clusterFields[n.clusterSlot].coneAngle : 0.0;
+    }
+    /// Area of the node's surfaces facing direction v (unit), projected onto the plane
+    /// perpendicular to v (m^2): the area a distant observer in direction v sees, without the
+    /// surfaces' mutual occlusion. Exact for an element, A max(0, n.v). For a cluster:
+    ///     sum A_i max(0, n_i.v) = 1/2 sum A_i |n_i.v| + 1/2 a.v     (a: vectorArea)
+    /// and, by Cauchy-Schwarz, sum A_i |n_i.v| <= sqrt(A v^T M v) (M: normalMoment), exact
+    /// when the surfaces are parallel (a face cluster) and 15 % high for a sphere. The result
+    /// is at most the cross-section of the cluster's box in direction v, which no set of
+    /// surfaces inside it can exceed as seen from outside (Smits, Arvo & Greenberg 1994).
+    double projectedArea(const Node& node, const Vec3& v) const;
 
     /// Splits a leaf element into 4 children (returns false for clusters and non-leaves).
     bool subdivide(int node);
@@ -220,7 +238,7 @@ class Hierarchy {
     /// polygon p) down to leaf clusters of at most maxPerCluster root elements.
     void buildCluster(int node, int begin, int end, int maxPerCluster,
                       const std::vector<Vec3>& centroids, int base);
-    /// A cluster's normal cone from its polygons' normals (Node::coneAxis, coneAngle).
+    /// A cluster's normal cone from its polygons' normals (ClusterFields::coneAxis, coneAngle).
     void fitNormalCone(int cluster);
     void initElement(Node& e, const Polygon& p, int polygonIndex);
     /// A new cluster node (not yet in `nodes`) with its slot in clusterFields.
@@ -243,16 +261,6 @@ class Hierarchy {
     };
     std::vector<Attached> attached_;  // a stack: detachLastObject() pops
 };
-
-/// Area of the node's surfaces facing direction v (unit), projected onto the plane
-/// perpendicular to v (m^2): the area a distant observer in direction v sees, without the
-/// surfaces' mutual occlusion. Exact for an element, A max(0, n.v). For a cluster:
-///     sum A_i max(0, n_i.v) = 1/2 sum A_i |n_i.v| + 1/2 a.v     (a: vectorArea)
-/// and, by Cauchy-Schwarz, sum A_i |n_i.v| <= sqrt(A v^T M v) (M: normalMoment), exact
-/// when the surfaces are parallel (a face cluster) and 15 % high for a sphere. The result
-/// is at most the cross-section of the cluster's box in direction v, which no set of
-/// surfaces inside it can exceed as seen from outside (Smits, Arvo & Greenberg 1994).
-double projectedArea(const Node& node, const Vec3& v);
 
 /// The largest share of a surface's emitted light that can land on the surface itself,
 /// given the normal cone (half-angle t, radians) of its faces: min(1, (sin t + 2 sin(t/2))^2),

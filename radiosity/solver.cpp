@@ -159,8 +159,9 @@ HierarchicalSolver::Verdict HierarchicalSolver::oracle(const Link& link) const {
         // opened, or it sends its bright side's light out through its dark one.
         if (R.isCluster() && S.isCluster())
             return {R.radius >= S.radius ? Decision::splitReceiver : Decision::splitSource, value};
-        const auto elementFirst = [](const Node& cluster, const Node& element, bool canSplitIt) {
-            return canSplitIt && cluster.coneAngle < kSurfaceCone &&
+        const auto elementFirst = [this](const Node& cluster, const Node& element,
+                                         bool canSplitIt) {
+            return canSplitIt && h_.coneAngle(cluster) < kSurfaceCone &&
                    element.radius > kElementFirstRatio * cluster.radius;
         };
         if (R.isCluster())
@@ -194,7 +195,7 @@ HierarchicalSolver::Verdict HierarchicalSolver::selfVerdict(int node) const {
     if (timing_.refineRounds == 0)
         B = std::max(B, R.rho.maxComponent() * ambientIrradiance_);  // nothing gathered yet
     const double value =
-        R.rho.maxComponent() * B * R.area * selfTransferBound(R.coneAngle) * importanceOf(node);
+        R.rho.maxComponent() * B * R.area * selfTransferBound(h_.coneAngle(R)) * importanceOf(node);
     if (!(value > powerThreshold_ * receiverScale(R))) return {Decision::defer, value};
     return {Decision::splitReceiver, value};
 }

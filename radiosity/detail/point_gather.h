@@ -83,7 +83,7 @@ void gatherLink(const HierarchicalSolver& solver, int polygon, const Vec3& x, co
     if (!S.isCluster()) {
         F = pointToPolygon(x, n, S.v.data(), S.vertexCount, S.normal);
     } else {
-        F = pointToNode(x, n, S);  // the link's own bounded estimate, from x
+        F = pointToNode(h, x, n, S);  // the link's own bounded estimate, from x
     }
     if (!(F > 0)) return;
     const double V = l.type == VisibilityType::partial && partialRays > 0 && F > kPointVisibilityF

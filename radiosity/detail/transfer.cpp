@@ -38,12 +38,12 @@ Vec3 linkDirection(const Node& R, const Node& S) {
     return len > 0 ? d / len : Vec3{0, 0, 0};
 }
 
-double pointToNode(const Vec3& x, const Vec3& n, const Node& S) {
+double pointToNode(const Hierarchy& h, const Vec3& x, const Vec3& n, const Node& S) {
     const Vec3 d = S.centre - x;
     const double d2 = glm::dot(d, d);
     if (!(d2 > 0)) return 0.0;  // x at the source's centre: no direction
     const Vec3 w = d / std::sqrt(d2);
-    return discFormFactor(glm::dot(n, w), 1.0, d2, projectedArea(S, -w));
+    return discFormFactor(glm::dot(n, w), 1.0, d2, h.projectedArea(S, -w));
 }
 
 bool TransferEvaluator::facing(int r, int s) const {
@@ -72,7 +72,7 @@ double TransferEvaluator::formFactor(int r, int s) const {
     // carries nothing.
     if (!(d2 > 0)) return 0.0;
     const Vec3 w = d / std::sqrt(d2);
-    const double As = projectedArea(S, -w);
+    const double As = h_.projectedArea(S, -w);
     // The receiver's cosine for an element; for a cluster the gather applies each of its
     // surfaces' own (vector irradiance).
     const double cosR = R.isCluster() ? 1.0 : glm::dot(R.normal, w);
@@ -84,8 +84,9 @@ double TransferEvaluator::coneBound(int r, int s) const {
     const Node& S = h_.nodes[s];
     // The two cones about their bisector: every normal within half the angle between the
     // axes plus the wider cone's angle.
-    const double between = std::acos(std::clamp(glm::dot(R.coneAxis, S.coneAxis), -1.0, 1.0));
-    const double alpha = 0.5 * between + std::max(R.coneAngle, S.coneAngle);
+    const double between =
+        std::acos(std::clamp(glm::dot(h_.coneAxis(R), h_.coneAxis(S)), -1.0, 1.0));
+    const double alpha = 0.5 * between + std::max(h_.coneAngle(R), h_.coneAngle(S));
     if (!(alpha < kPi / 2)) return 1.0;  // 8 delta^2 >= 1 long before: no bound
     const double delta = 2 * std::sin(0.5 * alpha);
     return std::min(1.0, 8 * delta * delta);
@@ -100,7 +101,7 @@ double TransferEvaluator::bound(int r, int s, double F) const {
     const double dist = glm::length(d);
     const double dMin = dist - R.radius - S.radius;
     if (!(dMin > 0)) return cone;
-    const double As = projectedArea(S, -d / dist);
+    const double As = h_.projectedArea(S, -d / dist);
     return std::min({1.0, cone, As / (kPi * dMin * dMin)});
 }
 
@@ -111,7 +112,7 @@ double TransferEvaluator::receiverArea(int r, int s) const {
     const double dist = glm::length(d);
     // Coincident centres: no direction; the whole area is the safe (larger) estimate.
     if (!(dist > 0)) return R.area;
-    return projectedArea(R, d / dist);
+    return h_.projectedArea(R, d / dist);
 }
 
 bool TransferEvaluator::shaftQuery(const Shaft& shaft, int node, int skipA, int skipB,
@@ -239,14 +240,16 @@ bool TransferEvaluator::turnedAway(int r, int c) const {
     // of c to one of R lies in the box R.bounds - C.bounds. max over n of n.d is convex in d,
     // so its largest value over the box is at a corner; at a corner it is at most 0 when
     // the angle between a and d is at least t + 90 degrees: a.d / |d| <= -sin t.
-    if (!(C.coneAngle < kPi / 2)) return false;
-    const double sinT = std::sin(C.coneAngle);
+    const double t = h_.coneAngle(C);
+    if (!(t < kPi / 2)) return false;
+    const double sinT = std::sin(t);
+    const Vec3& axis = h_.coneAxis(C);
     for (int k = 0; k < 8; ++k) {
         const Vec3 d{((k & 1) ? R.bounds.hi.x - C.bounds.lo.x : R.bounds.lo.x - C.bounds.hi.x),
                      ((k & 2) ? R.bounds.hi.y - C.bounds.lo.y : R.bounds.lo.y - C.bounds.hi.y),
                      ((k & 4) ? R.bounds.hi.z - C.bounds.lo.z : R.bounds.lo.z - C.bounds.hi.z)};
         const double len = glm::length(d);
-        if (!(len > 0) || glm::dot(C.coneAxis, d) / len > -sinT) return false;
+        if (!(len > 0) || glm::dot(axis, d) / len > -sinT) return false;
     }
     return true;
 }

@@ -90,9 +90,9 @@ struct TransferCounters {
 /// cluster receiver's vector irradiance takes from the link R <- S.
 Vec3 linkDirection(const Node& R, const Node& S);
 /// Bounded estimate of the form factor from point x (unit normal n) to a node S seen from
-/// afar: discFormFactor(max(0, n.w), 1, d^2, projectedArea(S, -w)), the same estimate as a
+/// afar: discFormFactor(max(0, n.w), 1, d^2, h.projectedArea(S, -w)), the same estimate as a
 /// link's for an element receiver (used by per-point gathers through cluster sources).
-double pointToNode(const Vec3& x, const Vec3& n, const Node& S);
+double pointToNode(const Hierarchy& h, const Vec3& x, const Vec3& n, const Node& S);
 
 class TransferEvaluator {
   public:

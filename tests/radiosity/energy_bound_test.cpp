@@ -46,10 +46,10 @@ TEST(ProjectedArea, ExactForElementsAndFaceClusters) {
     ASSERT_NEAR(root.area, 2.0, 1e-12);
     const Vec3 v = glm::normalize(Vec3{0.3, 1.0, 0.2});
     // Parallel surfaces: sum A max(0, n.v) = A (n.v), exactly.
-    EXPECT_NEAR(projectedArea(root, v), 2.0 * v.y, 1e-9);
-    EXPECT_NEAR(projectedArea(root, -v), 0.0, 1e-9);  // seen from behind: nothing
+    EXPECT_NEAR(h.projectedArea(root, v), 2.0 * v.y, 1e-9);
+    EXPECT_NEAR(h.projectedArea(root, -v), 0.0, 1e-9);  // seen from behind: nothing
     const Node& e = h.nodes[h.polygonRoot[0]];
-    EXPECT_NEAR(projectedArea(e, v), e.area * v.y, 1e-15);
+    EXPECT_NEAR(h.projectedArea(e, v), e.area * v.y, 1e-15);
 }
 
 TEST(ProjectedArea, ClosedBoxWithinItsTrueAreaAndCrossSection) {
@@ -67,7 +67,7 @@ TEST(ProjectedArea, ClosedBoxWithinItsTrueAreaAndCrossSection) {
     for (const Vec3 d : {Vec3{1, 0, 0}, Vec3{1, 1, 0}, Vec3{1, -2, 3}, Vec3{0, 0, -1}}) {
         const Vec3 v = glm::normalize(d);
         const double truth = std::abs(v.x) * 6 + std::abs(v.y) * 3 + std::abs(v.z) * 2;
-        EXPECT_NEAR(projectedArea(root, v), truth, 1e-9) << v.x << " " << v.y << " " << v.z;
+        EXPECT_NEAR(h.projectedArea(root, v), truth, 1e-9) << v.x << " " << v.y << " " << v.z;
     }
 }
 

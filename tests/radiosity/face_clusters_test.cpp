@@ -176,7 +176,7 @@ TEST(FaceClusters, TheHierarchyKeepsEachPatchContiguousUnderItsNode) {
         for (int i = c.polyBegin; i < c.polyEnd; ++i)
             EXPECT_EQ(h.polygonPatch[h.polygonOrder[i]], node);
         // Every cluster under a patch is planar: its cone is 0 to rounding.
-        EXPECT_LT(c.coneAngle, 1e-6);
+        EXPECT_LT(h.coneAngle(c), 1e-6);
     }
     // Every polygon has one root element, the cluster ranges cover the polygons once.
     std::vector<int> order = h.polygonOrder;
