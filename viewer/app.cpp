@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <optional>
 
 #include "viewer/background_work.h"
 
@@ -51,7 +53,11 @@ PhotoRect photoRect(int winW, int winH, int photoW, int photoH) {
 class App {
   public:
     App(GlWindow& window, Session& session, FrameRenderer& frame, const AppOptions& o)
-        : window_(window), session_(session), frame_(frame), windowShot_(o.windowShot) {
+        : window_(window),
+          session_(session),
+          frame_(frame),
+          windowShot_(o.windowShot),
+          script_(o.actions.begin(), o.actions.end()) {
         std::snprintf(savePath_, sizeof savePath_, "%s", o.saveFile.c_str());
     }
 
@@ -60,7 +66,11 @@ class App {
   private:
     void panel();
     void beginPanel();  ///< the panel's window, right of the photo, the window's height
+    /// The overlay's window, over the photo's top left corner; it takes no input.
+    void beginOverlay(const PhotoRect& r);
     void lightsPanel();
+    /// A light's control edited this frame (`edited`) or let go (`letGo`).
+    void lightChange(bool edited, bool letGo);
     void emitterControls(LightControl& l);
     void skyControls(const LightControl& l, const radiosity::EmitterField& sh9);
     void objectsPanel();
@@ -69,12 +79,39 @@ class App {
     void lampsPanel();
     void drawLamps(const PhotoRect& r);
     void statsOverlay(const PhotoRect& r);
+    /// Where the pointer is and what its left button does this frame.
+    struct Pointer {
+        double x = 0, y = 0;  ///< window coordinates
+        double u = 0, v = 0;  ///< photo pixels
+        bool down = false, pressed = false;
+        bool onPhoto = false;  ///< over the photo, not over the panel
+    };
     void mouse(const PhotoRect& r);
+    /// Tool::sun: a drag on the image turns the sun. In the per-pixel displays the sun
+    /// follows the drag, a quick frame each time the pointer moves (Session::setQuickMoves),
+    /// exact once it rests; in the ratio display the drag is applied when the button is let
+    /// go (each turn is solved again, as a saved "direction" is: a second or more on a large
+    /// scene), on the worker thread.
+    void sunTool(const PhotoRect& r, const Pointer& m);
+    /// Tool::movePoint: the point lamp goes above the surface where the button is let go (a
+    /// drag; a click is a drag of no length).
+    void pointTool(const Pointer& m);
+    /// The other tools: a click adds, removes, places or grabs; a drag moves the grabbed object.
+    void click(const Pointer& m);
+    /// One frame's input: the end of the work in the background, the next scripted action,
+    /// then the panel and the mouse, or busyPanel() while work runs.
+    void interact(const PhotoRect& r);
     void act(const char* what, const std::function<void()>& f);
     /// Runs `work` on the worker thread (BackgroundWork) and returns at once; the next
     /// frames show the last image and busyPanel() until it ends. `work` must capture what
     /// it uses by value: the caller's frame is gone when it runs.
-    void inBackground(const char* what, std::function<void()> work);
+    void inBackground(std::string what, std::function<void()> work);
+    /// Records a slow action of the panel (one that solves, gathers or inserts the parts
+    /// again), which interact() starts with inBackground() once panel() has returned: the panel
+    /// reads the session until its end, so the work may not begin while it is drawn. `work`
+    /// captures by value what it needs (the slider's new value, a name, an index), never
+    /// ImGui's state. One a frame: a click edits one control.
+    void later(const char* what, std::function<void()> work);
     /// The panel and overlay while work runs: what is being done, for how long, and what
     /// the image shows meanwhile. Reads nothing of the session.
     void busyPanel(const PhotoRect& r);
@@ -103,9 +140,16 @@ class App {
     float skyTurn_ = 15.0f;      ///< degrees the sky's "turn about z" button turns it
     bool pointDrag_ = false;     ///< Tool::movePoint: the button is down
     BackgroundWork work_;
-    std::string busyFrom_;    ///< what the image showed when the work began
-    int busyFrames_ = 0;      ///< frames drawn while the work ran
-    double busyLongest_ = 0;  ///< the longest of them (seconds)
+    /// A slow action of the panel, started after it is drawn (later()).
+    struct Deferred {
+        std::string what;
+        std::function<void()> work;
+    };
+    std::optional<Deferred> deferred_;
+    std::deque<ScriptedAction> script_;  ///< AppOptions::actions not yet started
+    std::string busyFrom_;               ///< what the image showed when the work began
+    int busyFrames_ = 0;                 ///< frames drawn while the work ran
+    double busyLongest_ = 0;             ///< the longest of them (seconds)
 };
 
 /// The window's back buffer (sRGB-encoded bytes) as a linear image, rows from the top.
@@ -143,14 +187,48 @@ void App::beginPanel() {
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
 }
 
-void App::inBackground(const char* what, std::function<void()> work) {
+void App::beginOverlay(const PhotoRect& r) {
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(r.x) + 8, static_cast<float>(r.y) + 8));
+    ImGui::SetNextWindowBgAlpha(0.55f);
+    ImGui::Begin("stats", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings);
+}
+
+void App::inBackground(std::string what, std::function<void()> work) {
     busyFrom_ = session_.exactPending() ? session_.stage() : "exact";
     busyFrames_ = 0;
     busyLongest_ = 0;
-    work_.start(what, std::move(work));
+    // The per-pixel display's image of the result is made there too: made by the frame after
+    // (FrameRenderer::render), its shadow rays would hold that frame instead. The display's
+    // settings, read here, cannot change while the work runs (no panel).
+    const bool perPixel = frame_.view == ViewKind::relit && frame_.perPixel;
+    const DisplayMode mode = frame_.perPixelMode;
+    work_.start(std::move(what), [this, work = std::move(work), perPixel, mode] {
+        work();
+        if (perPixel) frame_.prepareImage(mode);
+    });
+}
+
+void App::later(const char* what, std::function<void()> work) {
+    deferred_ = Deferred{what, std::move(work)};
+}
+
+void App::lightChange(bool edited, bool letGo) {
+    if (!edited && !letGo) return;
+    // The quick image at once, each frame a slider moves (Session::updateQuickly: the
+    // superposition, or the quick path with virtual objects, exact when the slider rests).
+    // A change that inserts the parts again (a virtual lamp's strength; a real lamp's with a
+    // virtual lamp in) waits until the control is let go, then runs in the background: started
+    // while the slider is held, the busy panel would take the slider from under the hand.
+    bool quick = true;
+    act("light change", [&] { quick = session_.updateQuickly(); });
+    if (!quick && letGo) later("light change", [this] { session_.update(); });
 }
 
 void App::busyPanel(const PhotoRect& r) {
+    // Drawn instead of the panel while the work runs: no control, so nothing of the session
+    // is read or changed while the worker holds it.
     beginPanel();
     ImGui::TextWrapped("Catching up in the background: %s (%.1f s).", work_.what().c_str(),
                        work_.seconds());
@@ -158,11 +236,7 @@ void App::busyPanel(const PhotoRect& r) {
         "The window stays live; the controls wait until the exact image is ready, which is "
         "what `relight render` draws of the edit.");
     ImGui::End();
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(r.x) + 8, static_cast<float>(r.y) + 8));
-    ImGui::SetNextWindowBgAlpha(0.55f);
-    ImGui::Begin("stats", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings);
+    beginOverlay(r);
     ImGui::Text("frame %.1f ms (%.0f fps)", 1e3 * frameSeconds_,
                 static_cast<double>(ImGui::GetIO().Framerate));
     ImGui::TextWrapped("shown meanwhile: the last image (%s)", busyFrom_.c_str());
@@ -182,7 +256,8 @@ void App::lightsPanel() {
         const std::string label = l.name +
                                   (l.emitter ? std::string(" (") + l.emitter->type() + ")" : "") +
                                   (l.isVirtual ? " (virtual)" : "");
-        bool changed = ImGui::Checkbox(label.c_str(), &l.on);
+        const bool toggled = ImGui::Checkbox(label.c_str(), &l.on);
+        bool changed = toggled, letGo = toggled;
         if (l.isVirtual) {
             ImGui::SameLine();
             if (ImGui::SmallButton("remove")) remove = static_cast<int>(i);
@@ -190,7 +265,7 @@ void App::lightsPanel() {
         if (l.emitter) {
             for (LightControl& o : lights)  // its components follow its switch
                 if (o.emitter == l.emitter) o.on = l.on;
-            if (changed) act("light change", [&] { session_.update(); });
+            lightChange(changed, letGo);
             emitterControls(l);
             ImGui::PopID();
             continue;
@@ -201,23 +276,25 @@ void App::lightsPanel() {
             l.colour = Rgb{c[0], c[1], c[2]};
             changed = true;
         }
+        letGo = letGo || ImGui::IsItemDeactivatedAfterEdit();
         float intensity = static_cast<float>(l.intensity);
         if (ImGui::SliderFloat("intensity", &intensity, 0.0f, 60.0f, "%.2f",
                                ImGuiSliderFlags_Logarithmic)) {
             l.intensity = std::max(0.0f, intensity);
             changed = true;
         }
-        if (changed) act("light change", [&] { session_.update(); });
+        letGo = letGo || ImGui::IsItemDeactivatedAfterEdit();
+        lightChange(changed, letGo);
         ImGui::PopID();
     }
-    if (remove >= 0) act("removing the light", [&] { session_.removeLight(remove); });
+    if (remove >= 0) later("removing the light", [this, remove] { session_.removeLight(remove); });
 }
 
 /// The controls of a sun, point lamp or sky, from the fields it has (radiosity::Emitter::
 /// fields): a direction (az/el sliders, the sun tool), a position (the move tool), sh9 (the
 /// sky's), its strength. Each change is the edit field `relight render` reads
-/// (Session::editLight), applied when the control is let go (a sun or lamp moved is solved
-/// again as a virtual light, seconds on a large scene).
+/// (Session::editLight), applied when the control is let go, in the background (a sun or
+/// lamp moved is solved again as a virtual light, seconds on a large scene).
 void App::emitterControls(LightControl& l) {
     const std::string name = l.name;
     if (const auto d = radiosity::findField(*l.emitter, "direction")) {
@@ -234,12 +311,13 @@ void App::emitterControls(LightControl& l) {
         bool release = ImGui::IsItemDeactivatedAfterEdit();
         turn = ImGui::SliderFloat("elevation", &sliders_[1], -10.0f, 90.0f, "%.1f deg") || turn;
         release = release || ImGui::IsItemDeactivatedAfterEdit();
-        if (release || (follow && turn))
-            act("turning the sun", [&] {
-                radiosity::EmitterEdit e;
-                e.direction = Session::sunDirection(sliders_[0], sliders_[1]);
-                session_.editLight(name, e);
-            });
+        radiosity::EmitterEdit e;
+        e.direction = Session::sunDirection(sliders_[0], sliders_[1]);
+        // Followed: each move a quick frame (DynamicRelighting::previewEmitter), at once.
+        if (release)
+            later("turning the sun", [this, name, e] { session_.editLight(name, e); });
+        else if (follow && turn)
+            act("turning the sun", [&] { session_.editLight(name, e); });
         if (ImGui::RadioButton("turn it by dragging on the image",
                                tool_ == Tool::sun && sun_ == name)) {
             tool_ = Tool::sun;
@@ -258,12 +336,11 @@ void App::emitterControls(LightControl& l) {
         float c[3] = {static_cast<float>(s->values[0]), static_cast<float>(s->values[1]),
                       static_cast<float>(s->values[2])};
         ImGui::DragFloat3(l.emitter->strengthKey(), c, 0.01f, 0.0f, 1e6f, "%.3f");
-        if (ImGui::IsItemDeactivatedAfterEdit())
-            act("light change", [&] {
-                radiosity::EmitterEdit e;
-                e.strength = Rgb{std::max(0.0f, c[0]), std::max(0.0f, c[1]), std::max(0.0f, c[2])};
-                session_.editLight(name, e);
-            });
+        if (ImGui::IsItemDeactivatedAfterEdit()) {
+            radiosity::EmitterEdit e;
+            e.strength = Rgb{std::max(0.0f, c[0]), std::max(0.0f, c[1]), std::max(0.0f, c[2])};
+            later("light change", [this, name, e] { session_.editLight(name, e); });
+        }
     }
 }
 
@@ -273,21 +350,19 @@ void App::skyControls(const LightControl& l, const radiosity::EmitterField& sh9)
     const std::string name = l.name;
     ImGui::DragFloat("turn (deg)", &skyTurn_, 1.0f, -180.0f, 180.0f, "%.0f");
     ImGui::SameLine();
-    if (ImGui::SmallButton("turn about z"))
-        act("turning the sky", [&] {
-            radiosity::EmitterEdit e;
-            e.rotate = radiosity::EmitterEdit::Rotation{Vec3(0, 0, 1), skyTurn_};
-            session_.editLight(name, e);
-        });
+    if (ImGui::SmallButton("turn about z")) {
+        radiosity::EmitterEdit e;
+        e.rotate = radiosity::EmitterEdit::Rotation{Vec3(0, 0, 1), skyTurn_};
+        later("turning the sky", [this, name, e] { session_.editLight(name, e); });
+    }
     for (const double k : {0.8, 1.25}) {
         char label[32];
         std::snprintf(label, sizeof label, "scale x%.2f", k);
-        if (ImGui::SmallButton(label))
-            act("scaling the sky", [&] {
-                radiosity::EmitterEdit e;
-                e.scale = k;
-                session_.editLight(name, e);
-            });
+        if (ImGui::SmallButton(label)) {
+            radiosity::EmitterEdit e;
+            e.scale = k;
+            later("scaling the sky", [this, name, e] { session_.editLight(name, e); });
+        }
         ImGui::SameLine();
     }
     ImGui::NewLine();
@@ -298,16 +373,15 @@ void App::skyControls(const LightControl& l, const radiosity::EmitterField& sh9)
                       static_cast<float>(sh9.values[3 * k + 2])};
         ImGui::PushID(static_cast<int>(k));
         ImGui::DragFloat3("", c, 0.005f, -1e3f, 1e3f, "%.3f");
-        if (ImGui::IsItemDeactivatedAfterEdit())
-            act("setting a coefficient", [&] {
-                radiosity::EmitterEdit e;
-                radiosity::Sh9Rgb L;
-                for (size_t j = 0; j < L.c.size(); ++j)
-                    L.c[j] = Rgb{sh9.values[3 * j], sh9.values[3 * j + 1], sh9.values[3 * j + 2]};
-                L.c[k] = Rgb{c[0], c[1], c[2]};
-                e.sh9 = L;
-                session_.editLight(name, e);
-            });
+        if (ImGui::IsItemDeactivatedAfterEdit()) {
+            radiosity::EmitterEdit e;
+            radiosity::Sh9Rgb L;
+            for (size_t j = 0; j < L.c.size(); ++j)
+                L.c[j] = Rgb{sh9.values[3 * j], sh9.values[3 * j + 1], sh9.values[3 * j + 2]};
+            L.c[k] = Rgb{c[0], c[1], c[2]};
+            e.sh9 = L;
+            later("setting a coefficient", [this, name, e] { session_.editLight(name, e); });
+        }
         ImGui::PopID();
     }
     ImGui::TreePop();
@@ -345,12 +419,14 @@ void App::objectsPanel() {
             // Below 1: a surface reflects less than it receives (edit_file.h).
             const Rgb r{std::clamp(c[0], 0.0f, 0.99f), std::clamp(c[1], 0.0f, 0.99f),
                         std::clamp(c[2], 0.0f, 0.99f)};
-            act("reflectance change", [&] { session_.setReflectance(static_cast<int>(i), r); });
+            later("reflectance change",
+                  [this, i = static_cast<int>(i), r] { session_.setReflectance(i, r); });
         }
         specularControls(static_cast<int>(i));
         ImGui::PopID();
     }
-    if (remove >= 0) act("removing the object", [&] { session_.removeObject(remove); });
+    if (remove >= 0)
+        later("removing the object", [this, remove] { session_.removeObject(remove); });
     // The real objects taken out, each with a button that brings it back.
     std::string restore;
     for (const std::string& name : session_.removedObjects()) {
@@ -361,7 +437,7 @@ void App::objectsPanel() {
         ImGui::PopID();
     }
     if (!restore.empty())
-        act("bringing the object back", [&] { session_.restoreRealObject(restore); });
+        later("bringing the object back", [this, restore] { session_.restoreRealObject(restore); });
 }
 
 void App::specularControls(int i) {
@@ -385,8 +461,10 @@ void App::specularControls(int i) {
     // ks >= 0 and a shininess > 0 (edit_file.h); the colour picker may go below 0.
     const Specular next{Rgb{std::max(ks[0], 0.0f), std::max(ks[1], 0.0f), std::max(ks[2], 0.0f)},
                         std::clamp(static_cast<double>(shininess), 1.0, 1e4)};
-    act("specular change",
-        [&] { session_.setSpecular(i, on ? std::optional<Specular>(next) : std::nullopt); });
+    // Only the overlay changes, unless another object shares the name and the parts are
+    // inserted again: in the background either way (a click, not a slider's frames).
+    const std::optional<Specular> term = on ? std::optional<Specular>(next) : std::nullopt;
+    later("specular change", [this, i, term] { session_.setSpecular(i, term); });
 }
 
 void App::lampsPanel() {
@@ -528,11 +606,7 @@ void App::panel() {
 }
 
 void App::statsOverlay(const PhotoRect& r) {
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(r.x) + 8, static_cast<float>(r.y) + 8));
-    ImGui::SetNextWindowBgAlpha(0.55f);
-    ImGui::Begin("stats", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings);
+    beginOverlay(r);
     const PreparedImage& p = session_.prepared();
     ImGui::Text("frame %.1f ms (%.0f fps)", 1e3 * frameSeconds_,
                 static_cast<double>(ImGui::GetIO().Framerate));
@@ -552,59 +626,66 @@ void App::statsOverlay(const PhotoRect& r) {
 
 void App::mouse(const PhotoRect& r) {
     GLFWwindow* w = window_.handle();
-    const bool down = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    double mx = 0, my = 0;
-    glfwGetCursorPos(w, &mx, &my);
+    Pointer m;
+    m.down = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    glfwGetCursorPos(w, &m.x, &m.y);
     const PreparedImage& p = session_.prepared();
-    double u = 0, v = 0;
-    r.toPixel(mx, my, p.photo.width, p.photo.height, u, v);
-    const bool pressed = down && !wasDown_;
-    const bool overUi = ImGui::GetIO().WantCaptureMouse;
-    // The sun tool. In the per-pixel displays the sun follows the drag, a quick frame each
-    // time the pointer moves (Session::setQuickMoves), exact once it rests; in the ratio
-    // display the drag is applied when the button is let go (each turn is solved again, as
-    // a saved "direction" is: a second or more on a large scene).
-    if (tool_ == Tool::sun) {
-        if (pressed && !overUi && r.contains(mx, my)) {
-            sunDrag_ = true;
-            dragU_ = dragV_ = 0;
-        }
-        if (down && sunDrag_) {
-            dragU_ += (mx - lastMx_) / r.w * p.photo.width;
-            dragV_ += (my - lastMy_) / r.h * p.photo.height;
-        }
-        const bool follow = session_.quickMoves() && down && sunDrag_;
-        if ((follow && (dragU_ != 0 || dragV_ != 0)) || (!down && sunDrag_)) {
-            sunDrag_ = down;
-            act("turning the sun", [&] { session_.dragSun(sun_, dragU_, dragV_); });
-            dragU_ = dragV_ = 0;
-        }
-        wasDown_ = down;
-        lastMx_ = mx;
-        lastMy_ = my;
-        return;
+    r.toPixel(m.x, m.y, p.photo.width, p.photo.height, m.u, m.v);
+    m.pressed = m.down && !wasDown_;
+    m.onPhoto = !ImGui::GetIO().WantCaptureMouse && r.contains(m.x, m.y);
+    if (tool_ == Tool::sun)
+        sunTool(r, m);
+    else if (tool_ == Tool::movePoint)
+        pointTool(m);
+    else
+        click(m);
+    wasDown_ = m.down;
+    lastMx_ = m.x;
+    lastMy_ = m.y;
+}
+
+void App::sunTool(const PhotoRect& r, const Pointer& m) {
+    const PreparedImage& p = session_.prepared();
+    if (m.pressed && m.onPhoto) {
+        sunDrag_ = true;
+        dragU_ = dragV_ = 0;
     }
-    // The point lamp being moved goes above the surface where the button is let go (a drag;
-    // a click is a drag of no length).
-    if (tool_ == Tool::movePoint) {
-        if (pressed && !overUi && r.contains(mx, my)) pointDrag_ = true;
-        // In the per-pixel displays the lamp follows the pointer (quick frames, as the sun's);
-        // else it goes where the button is let go.
-        const bool follow =
-            session_.quickMoves() && down && pointDrag_ && (mx != lastMx_ || my != lastMy_);
-        if (follow || (!down && pointDrag_)) {
-            pointDrag_ = down;
-            const Pick pick = session_.pick(u, v);
-            if (pick.hit)
-                act("moving the point lamp", [&] { session_.movePointLampTo(point_, pick); });
-        }
-        wasDown_ = down;
-        lastMx_ = mx;
-        lastMy_ = my;
-        return;
+    if (m.down && sunDrag_) {
+        dragU_ += (m.x - lastMx_) / r.w * p.photo.width;
+        dragV_ += (m.y - lastMy_) / r.h * p.photo.height;
     }
-    if (pressed && !overUi && r.contains(mx, my)) {
-        const Pick pick = session_.pick(u, v);
+    const bool follow = session_.quickMoves() && m.down && sunDrag_;
+    if (follow && (dragU_ != 0 || dragV_ != 0))
+        act("turning the sun", [&] { session_.dragSun(sun_, dragU_, dragV_); });
+    else if (!m.down && sunDrag_)  // let go: solved (or, followed, made exact) on the worker
+        inBackground("turning the sun", [this, name = sun_, du = dragU_, dv = dragV_] {
+            session_.dragSun(name, du, dv);
+        });
+    if (follow || !m.down) dragU_ = dragV_ = 0;
+    sunDrag_ = sunDrag_ && m.down;
+}
+
+void App::pointTool(const Pointer& m) {
+    if (m.pressed && m.onPhoto) pointDrag_ = true;
+    // In the per-pixel displays the lamp follows the pointer (quick frames, as the sun's);
+    // else it goes where the button is let go, solved on the worker.
+    const bool follow =
+        session_.quickMoves() && m.down && pointDrag_ && (m.x != lastMx_ || m.y != lastMy_);
+    if (!follow && (m.down || !pointDrag_)) return;
+    pointDrag_ = m.down;
+    const Pick pick = session_.pick(m.u, m.v);  // one ray
+    if (!pick.hit) return;
+    if (follow)
+        act("moving the point lamp", [&] { session_.movePointLampTo(point_, pick); });
+    else
+        inBackground("moving the point lamp",
+                     [this, name = point_, pick] { session_.movePointLampTo(name, pick); });
+}
+
+void App::click(const Pointer& m) {
+    if (m.pressed && m.onPhoto) {
+        const Pick pick = session_.pick(m.u, m.v);
+        const int last = static_cast<int>(session_.objects().size()) - 1;
         if (!pick.hit)
             status_ = "nothing there to click on";
         else if (tool_ == Tool::light)
@@ -612,11 +693,12 @@ void App::mouse(const PhotoRect& r) {
         else if (tool_ == Tool::box)
             inBackground("adding a box", [this, pick] { session_.addBoxAt(pick); });
         else if (tool_ == Tool::point)
-            act("adding a point lamp", [&] {
+            // The tool and the lamp it moves are set by the worker: the panel and the mouse,
+            // which read them, wait for it.
+            inBackground("adding a point lamp", [this, pick] {
                 point_ = session_.addPointLampAt(pick);
                 tool_ = Tool::movePoint;  // a click then moves it (a drag's end)
             });
-
         else if (tool_ == Tool::lamp && movingLamp_ >= 0)
             act("moving the lamp", [&] {
                 session_.moveLampTo(movingLamp_, pick);
@@ -630,17 +712,52 @@ void App::mouse(const PhotoRect& r) {
         else if (tool_ == Tool::remove)
             inBackground("removing the object",
                          [this, name = pick.realObject] { session_.removeRealObject(name); });
-        else if (pick.object >= 0)
+        else if (pick.object >= 0 && pick.object == last)
             act("picking the object", [&] { session_.beginDrag(pick.object, pick); });
+        else if (pick.object >= 0)  // made the last part first: the parts inserted again
+            inBackground("picking the object",
+                         [this, pick] { session_.beginDrag(pick.object, pick); });
     }
     // Nothing more of the session this frame once work was started in the background.
-    if (!work_.busy() && down && session_.dragging() >= 0 && (mx != lastMx_ || my != lastMy_))
-        act("moving the object", [&] { session_.dragTo(u, v); });
-    if (!work_.busy() && !down && session_.dragging() >= 0)
+    if (!work_.busy() && m.down && session_.dragging() >= 0 && (m.x != lastMx_ || m.y != lastMy_))
+        act("moving the object", [&] { session_.dragTo(m.u, m.v); });
+    if (!work_.busy() && !m.down && session_.dragging() >= 0)
         inBackground("letting the object go", [this] { session_.endDrag(); });
-    wasDown_ = down;
-    lastMx_ = mx;
-    lastMy_ = my;
+}
+
+void App::interact(const PhotoRect& r) {
+    // Work in the background ended: its result is drawn below (its error in the panel).
+    if (work_.busy())
+        act(work_.what().c_str(), [&] {
+            if (work_.finish())
+                std::printf(
+                    "%s: done in %.2f s, in the background (%d frames drawn meanwhile, the "
+                    "longest %.1f ms)\n",
+                    work_.what().c_str(), work_.seconds(), busyFrames_, 1e3 * busyLongest_);
+        });
+    if (!work_.busy() && !script_.empty()) {
+        ScriptedAction next = std::move(script_.front());
+        script_.pop_front();
+        inBackground(next.what, [this, run = std::move(next.run)] { run(session_); });
+    }
+    if (work_.busy()) {
+        busyPanel(r);  // the last image stays in the display's target
+        return;
+    }
+    // Quick frames of a moved sun or lamp in the per-pixel displays only (their direct light
+    // per pixel; the ratio display's vertices are solved at each move).
+    session_.setQuickMoves(frame_.view == ViewKind::relit && frame_.perPixel);
+    panel();
+    // The panel's slow action starts now that the panel has read the session to its end;
+    // from here the worker alone touches the session until finish(): no mouse this frame,
+    // busyPanel() the next ones.
+    if (deferred_) {
+        Deferred d = std::move(*deferred_);
+        deferred_.reset();
+        inBackground(std::move(d.what), std::move(d.work));
+    } else {
+        mouse(r);
+    }
 }
 
 void App::run() {
@@ -662,24 +779,7 @@ void App::run() {
         glfwGetWindowSize(window_.handle(), &winW, &winH);
         glfwGetFramebufferSize(window_.handle(), &fbW, &fbH);
         const PhotoRect r = photoRect(winW, winH, p.photo.width, p.photo.height);
-        // Work in the background ended: its result is drawn below (its error in the panel).
-        if (work_.busy())
-            act(work_.what().c_str(), [&] {
-                if (work_.finish())
-                    std::printf(
-                        "%s: done in %.2f s, in the background (%d frames drawn meanwhile, the "
-                        "longest %.1f ms)\n",
-                        work_.what().c_str(), work_.seconds(), busyFrames_, 1e3 * busyLongest_);
-            });
-        if (work_.busy()) {
-            busyPanel(r);  // the last image stays in the display's target
-        } else {
-            // Quick frames of a moved sun or lamp in the per-pixel displays only (their
-            // direct light per pixel; the ratio display's vertices are solved at each move).
-            session_.setQuickMoves(frame_.view == ViewKind::relit && frame_.perPixel);
-            panel();
-            mouse(r);
-        }
+        interact(r);
         if (!work_.busy()) {
             statsOverlay(r);
             drawLamps(r);
@@ -707,8 +807,10 @@ void App::run() {
                        static_cast<int>(std::lround(r.h * sy)));
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         // A few frames first: ImGui lays its windows out over the first ones.
-        // (The shot waits for the exact image: no work running, nothing left to settle.)
-        if (!windowShot_.empty() && !work_.busy() && !session_.canSettle() && ++frames >= 4) {
+        // (The shot waits for the exact image: no work running or to run, nothing left to
+        // settle.)
+        if (!windowShot_.empty() && !work_.busy() && script_.empty() && !session_.canSettle() &&
+            ++frames >= 4) {
             writeImage(windowShot_, readWindow(fbW, fbH));
             std::printf("wrote %s (%dx%d)\n", windowShot_.c_str(), fbW, fbH);
             break;

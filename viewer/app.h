@@ -4,12 +4,21 @@
 // objects and sees the relit photo at once).
 #pragma once
 
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "viewer/frame.h"
 #include "viewer/gl_window.h"
 
 namespace relight::viewer {
+
+/// An action the window runs as it runs the panel's slow ones: on its worker thread, the
+/// window drawing meanwhile (viewer/main.cpp's --do actions when the window is open).
+struct ScriptedAction {
+    std::string what;                   ///< what the panel and the terminal call it
+    std::function<void(Session&)> run;  ///< the work: takes the session, captures by value
+};
 
 struct AppOptions {
     std::string saveFile = "viewer-edit.json";  ///< where "Save edit" writes by default
@@ -17,6 +26,8 @@ struct AppOptions {
     /// the image is exact (no work in the background, nothing left to settle), and the
     /// viewer exits (documentation, and a test that the interface runs).
     std::string windowShot;
+    /// Run in order, one at a time, before anything else; the window shot waits for them.
+    std::vector<ScriptedAction> actions;
 };
 
 /// Runs the window until it is closed. Returns the process exit code.

@@ -27,14 +27,17 @@ void BackgroundWork::start(std::string what, std::function<void()> work) {
 
 bool BackgroundWork::finish() {
     if (!worker_.joinable() || !done_.load(std::memory_order_acquire)) return false;
-    worker_.join();
-    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+    joinAndRethrow();
     return true;
 }
 
 void BackgroundWork::wait() {
-    if (!worker_.joinable()) return;
+    if (worker_.joinable()) joinAndRethrow();
+}
+
+void BackgroundWork::joinAndRethrow() {
     worker_.join();
+    // Cleared first: the error is rethrown once, and a later start() begins without it.
     if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
 }
 

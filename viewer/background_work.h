@@ -1,9 +1,10 @@
 // Session work that takes longer than a frame, run on a worker thread so that the window
 // keeps drawing: the exact image when a slider or a drag rests (1.3 s for a point lamp moved
 // in the room at 320x240, 10.6 s at 1280x960), a light or a box inserted (2.4 s), an object
-// let go. bench/RESULTS.md, 2026-11-28 (eleventh session), measured these as frames that
-// blocked the window; the ratio-map paper's point (../shared/seeds/000) is that nothing the
-// user does should wait on the radiosity.
+// let go, the panel's slow actions (a virtual lamp's strength, *bring back*: App::later in
+// viewer/app.cpp). bench/RESULTS.md, 2026-11-28 (eleventh session), measured these as
+// frames that blocked the window; the ratio-map paper's point (../shared/seeds/000) is that
+// nothing the user does should wait on the radiosity.
 //
 // While the work runs, nothing else may touch the session: the window shows the last image
 // it drew and a panel that says what is being done and for how long, and takes no input
@@ -44,6 +45,9 @@ class BackgroundWork {
     double seconds() const;
 
   private:
+    /// Joins the worker, then rethrows what the work threw (finish() and wait()).
+    void joinAndRethrow();
+
     std::thread worker_;
     std::atomic<bool> done_{false};
     std::exception_ptr error_;

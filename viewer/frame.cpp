@@ -53,6 +53,20 @@ const DebugViews& FrameRenderer::debugViews() {
     return *views_;
 }
 
+void FrameRenderer::prepareImage(DisplayMode mode) {
+    prepared_ = session_.relitPerPixel(mode);
+    preparedGeneration_ = session_.generation();
+    preparedMode_ = mode;
+}
+
+Image FrameRenderer::relitImage() {
+    const bool current =
+        preparedGeneration_ == session_.generation() && preparedMode_ == perPixelMode;
+    preparedGeneration_ = -1;  // shown once; a later state is made again
+    if (current) return std::move(prepared_);
+    return session_.relitPerPixel(perPixelMode);
+}
+
 FrameStats FrameRenderer::render() {
     const bool valuesChanged = session_.generation() != generation_;
     const bool viewChanged = view != lastView_ || generation_ < 0;
@@ -65,8 +79,7 @@ FrameStats FrameRenderer::render() {
     double gain = std::exp2(exposure);
     const bool cpuRelit = view == ViewKind::relit && perPixel;
     if (cpuRelit) {
-        if (valuesChanged || viewChanged || modeChanged)
-            display_.setImage(session_.relitPerPixel(perPixelMode));
+        if (valuesChanged || viewChanged || modeChanged) display_.setImage(relitImage());
     } else if (view == ViewKind::relit || view == ViewKind::B) {
         if (valuesChanged || viewChanged) {
             display_.setVertexValues(view == ViewKind::B ? session_.vertexIrradiance()

@@ -53,8 +53,17 @@ class FrameRenderer {
     bool drew() const { return drew_; }
     /// The views that do not depend on the edit (computed once, on first use).
     const DebugViews& debugViews();
+    /// Makes the per-pixel display's image of the session as it stands
+    /// (Session::relitPerPixel in `mode`), which the next render() shows instead of making it
+    /// itself, if nothing changed meanwhile. The window calls it on its worker thread at the
+    /// end of the work (viewer/app.cpp): made in the frame after, its shadow rays held that
+    /// frame 2 s with a virtual lamp in the room (bench/RESULTS.md, 2026-11-29).
+    void prepareImage(DisplayMode mode);
 
   private:
+    /// The per-pixel image: prepareImage()'s when it is of this state, else made now.
+    Image relitImage();
+
     Session& session_;
     GpuRatioDisplay& display_;
     std::unique_ptr<DebugViews> views_;
@@ -66,6 +75,9 @@ class FrameRenderer {
     DisplayMode lastPerPixelMode_ = DisplayMode::pixel;
     bool drew_ = false;
     FrameStats last_;
+    Image prepared_;               ///< prepareImage()'s
+    int preparedGeneration_ = -1;  ///< the session's generation it shows; -1: none
+    DisplayMode preparedMode_ = DisplayMode::pixel;
 };
 
 }  // namespace relight::viewer

@@ -26,6 +26,9 @@
 // and the object panel's specular term (relight/dynamic/specular.h):
 //   specular:NAME:R,G,B:S  the virtual object NAME's ks (R, G, B) and shininess S
 //                      (ks 0,0,0: no term)
+// With the window open (no --screenshot), the window runs them as it runs the panel's slow
+// actions: one after another on its worker thread, drawing meanwhile; --window-screenshot
+// waits for them, and the terminal prints how long each took.
 // Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option, a
 // screenshot that cannot be written) print one clear line and exit with 2 for bad input, 3
 // for an output that cannot be written, 1 otherwise (relight/errors.h).
@@ -391,7 +394,15 @@ int run(const Args& a) {
         std::fprintf(stderr, "warning: %s\n", w.c_str());
     // A sun or lamp moved shows quick frames in the per-pixel displays, as the window's.
     session.setQuickMoves(drawsPerPixel(mode));
-    for (const Action& act : actions) runAction(session, act);
+    // In the window, the actions run as the panel's slow ones do: on its worker thread, one
+    // after another, the window drawing meanwhile (viewer/app.h); a failed one is a message.
+    AppOptions ao;
+    for (const Action& act : actions) {
+        if (interactive)
+            ao.actions.push_back({"--do " + act.text, [act](Session& s) { runAction(s, act); }});
+        else
+            runAction(session, act);
+    }
     // The image as `relight render` draws the edit, not a slider's quick one.
     if (!interactive && session.exactPending()) {
         std::printf("the quick image made exact (Session::settle)\n");
@@ -428,7 +439,6 @@ int run(const Args& a) {
                     s.passes == 1 ? "" : "es", 1e3 * s.draw);
         return 0;
     }
-    AppOptions ao;
     if (!a.saveEdit.empty()) ao.saveFile = a.saveEdit;
     ao.windowShot = a.windowShot;
     return runApp(window, session, frame, ao);

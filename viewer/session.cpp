@@ -313,6 +313,14 @@ void Session::rebuild() {
 }
 
 void Session::update() {
+    apply(/*quickOnly=*/false);
+}
+
+bool Session::updateQuickly() {
+    return apply(/*quickOnly=*/true);
+}
+
+bool Session::apply(bool quickOnly) {
     const auto t0 = Clock::now();
     std::vector<Rgb> now;
     for (const LightControl& l : lights_) now.push_back(l.radiance());
@@ -320,34 +328,40 @@ void Session::update() {
     bool strengthsKept = now.size() == applied_.size();
     for (size_t i = 0; strengthsKept && i < now.size(); ++i) strengthsKept = now[i] == applied_[i];
     const bool radianceChanged = !strengthsKept || state != appliedState_;
-    if (!stale_ && !radianceChanged) return;
-    const std::vector<Rgb> before = std::exchange(applied_, now);
+    if (!stale_ && !radianceChanged) return true;
     const bool shapesKept = state == appliedState_;
-    appliedState_ = std::move(state);
+    const bool sameCount = applied_.size() == now.size();
+    // An object shown moved (dragTo's quick frames) is not in the solver: insert it again.
+    const bool stale = stale_ || (dyn_ && dyn_->previewingObject());
     // Without virtual parts (nor a moved light, nor any before) a radiance change is the
     // superposition path: nothing to solve. With virtual objects, the quick path while a
     // slider moves (settle() makes it exact); a sun or lamp moved, its quick path too.
+    // Each quick path changes nothing where it does not apply, so that updateQuickly() can
+    // leave the rest to update() (on the window's worker thread).
     bool quickMove = false;
-    // An object shown moved (dragTo's quick frames) is not in the solver: insert it again.
-    if (dyn_ && dyn_->previewingObject()) stale_ = true;
-    if (!stale_ && strengthsKept && !shapesKept && quickMoves_ && previewMoves())
+    if (!stale && strengthsKept && !shapesKept && quickMoves_ && previewMoves()) {
         quickMove = exactPending_ = true;
-    else if (!stale_ && radianceChanged && shapesKept && dyn_ && before.size() == now.size() &&
-             dyn_->setRealRadiances(realRadiance()))
+    } else if (!stale && radianceChanged && shapesKept && dyn_ && sameCount &&
+               dyn_->setRealRadiances(realRadiance())) {
         exactPending_ = true;
-    else if (stale_ || (radianceChanged && (hasVirtualParts() || dyn_)))
+    } else if (stale || (radianceChanged && (hasVirtualParts() || dyn_))) {
+        if (quickOnly) return false;
+        stale_ = true;
         rebuild();
+    }
+    const std::vector<Rgb> before = std::exchange(applied_, now);
+    appliedState_ = std::move(state);
     // The first update (the edit the session starts from) is checked on its first frame,
     // which names the edit's key (viewer/main.cpp); a change made in the panel here. A move
     // shown quickly keeps the vertices' values, and the strengths: nothing to check.
-    if (!quickMove && !before.empty() && before.size() == now.size() && !displayFinite())
-        undo(before);
+    if (!quickMove && !before.empty() && sameCount && !displayFinite()) undo(before);
     appliedEmitters_.clear();
     for (const LightControl& l : lights_)
         appliedEmitters_.push_back(
             l.emitter ? std::shared_ptr<radiosity::Emitter>(l.emitter->clone()) : nullptr);
     updateSeconds_ = secondsSince(t0);
     changed();
+    return true;
 }
 
 bool Session::previewMoves() {

@@ -106,6 +106,12 @@ class Session {
     /// they are, no shadow ray; the image is then near `relight render`'s of the edit, not
     /// equal to it (exactPending()), until settle() inserts the parts again.
     void update();
+    /// update() where it is quick (nothing to solve, the superposition path, the quick image
+    /// of a slider or of a moved sun or lamp) and returns true; returns false, changing
+    /// nothing, where the change needs the parts inserted again (seconds on a large scene):
+    /// the window then runs update() on its worker thread (viewer/app.cpp), so that a
+    /// slider keeps its quick frames and nothing slow runs inside a frame.
+    bool updateQuickly();
     /// Whether the image is a quick one (update()) that settle() makes exact.
     bool exactPending() const { return exactPending_; }
     /// Whether a sun turned or a point lamp moved (editLight's "direction" or "position",
@@ -239,6 +245,8 @@ class Session {
 
   private:
     void rebuild();  ///< inserts every virtual part again, in render's order
+    /// update(); with `quickOnly`, updateQuickly().
+    bool apply(bool quickOnly);
     void changed() { ++generation_; }
     bool displayFinite() const;  ///< every display ratio fits a 32-bit float
     /// Puts the lights' radiances back to `before` (one per light) and throws InputError

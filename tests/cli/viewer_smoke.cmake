@@ -11,6 +11,8 @@
 #  - data/courtyard, per pixel and in the ratio display: the sun turned by its sliders and by a
 #    drag, the sky turned, scaled and a coefficient set, a point lamp added and moved;
 #  - data/courtyard in the window itself: the sun turned, made exact in the background;
+#  - data/room in the window itself: a virtual lamp's strength and a real object brought back,
+#    run in the background as the panel runs them;
 #  - a real lamp placed by a click and saved into a copy of the room's scene.json.
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=data/room
 #   -DCOURTYARD=data/courtyard -DWORK=... -P this (and -DVIEWER_PRELOAD=... under the
@@ -65,6 +67,18 @@ viewer(o 0 "${COURTYARD}" ${coarse} --do sun:sun:-60,25 --window-screenshot "${W
 expect("${o}" "making the image exact: done in [0-9.]+ s, in the background"
        "the exact image made in the background")
 expect("${o}" "wrote .*busy.png \\([0-9]+x[0-9]+\\)" "window screenshot after the background work")
+
+# The panel's slow actions in the window: a virtual lamp's strength and the table brought
+# back run on the worker thread as the panel's slider and "bring back" do (viewer/app.cpp),
+# one after another; the screenshot waits for them.
+viewer(o 0 "${SCENE}" ${coarse} --do light:200,20 --do scale:V1:0.5 --do remove:180,155
+       --do restore:table --window-screenshot "${WORK}/panel.png")
+foreach(action scale:V1:0.5 restore:table)
+  expect("${o}" "--do ${action}: done in [0-9.]+ s, in the background"
+         "the panel's action ${action} made in the background")
+endforeach()
+expect("${o}" "wrote .*panel.png \\([0-9]+x[0-9]+\\)"
+       "window screenshot after the panel's actions")
 
 copy_room("${WORK}/lamps")
 viewer(o 0 "${WORK}/lamps" ${coarse} --display ratio --do lamp:160,20:0.3,0.2 --save-lamps

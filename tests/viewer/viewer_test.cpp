@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -459,6 +460,62 @@ TEST(ViewerSession, AnImageMadeExactInTheBackgroundIsTheOneMadeAtOnce) {
     }
     EXPECT_EQ(maxStepDifference(images[0], images[1], kAllPixels), 0);
     EXPECT_EQ(images[0].rgb, images[1].rgb);
+}
+
+// The window runs the panel's slow actions on its worker thread (viewer/app.cpp's later()):
+// a virtual lamp's strength, which inserts the parts again, and an object brought back. Each
+// must give the same floats as the same action run at once on the calling thread.
+TEST(ViewerSession, APanelActionInTheBackgroundIsTheOneMadeAtOnce) {
+    const std::unique_ptr<Relighting> r = preparePerPixelRoom();
+    Image lamp[2], back[2];
+    for (int background = 0; background < 2; ++background) {
+        Session session(*r, loadEdit(kRoom + "/edits/virtual_light_only.json", r->scene));
+        session.setQuickMoves(true);
+        session.removeRealObject("table");
+        // The panel's actions, captured by value as the window's are.
+        const auto run = [&](const char* what, std::function<void()> action) {
+            if (!background) return action();
+            BackgroundWork work;
+            work.start(what, std::move(action));
+            work.wait();
+        };
+        // The virtual lamp's intensity slider, let go: no quick path (the parts are inserted
+        // again), so the frame leaves it to update() and shows what it showed.
+        LightControl& v = session.lights().back();
+        ASSERT_TRUE(v.isVirtual);
+        v.intensity *= 0.5;
+        const int generation = session.generation();
+        EXPECT_FALSE(session.updateQuickly());
+        EXPECT_EQ(session.generation(), generation);
+        run("light change", [&session] { session.update(); });
+        EXPECT_NE(session.generation(), generation);
+        EXPECT_FALSE(session.exactPending());
+        lamp[background] = session.relitPerPixel();
+        run("bringing the object back",
+            [&session, name = std::string("table")] { session.restoreRealObject(name); });
+        EXPECT_TRUE(session.removedObjects().empty());
+        back[background] = session.relitPerPixel();
+    }
+    EXPECT_EQ(lamp[0].rgb, lamp[1].rgb);
+    EXPECT_EQ(back[0].rgb, back[1].rgb);
+    EXPECT_GT(maxStepDifference(lamp[0], back[0], kAllPixels), 0);  // the table came back
+}
+
+// A light's slider keeps its quick frames in the window (Session::updateQuickly): with no
+// virtual part the superposition, with a box the quick image that settle() makes exact.
+TEST(ViewerSession, ASliderIsUpdatedInTheFrameWhereThatIsQuick) {
+    const std::unique_ptr<Relighting> r = preparePerPixelRoom();
+    Session plain(*r, EditFile{});
+    const Image before = plain.relitPerPixel();
+    plain.lights()[0].setRadiance(plain.lights()[0].radiance() * 0.4);
+    EXPECT_TRUE(plain.updateQuickly());
+    EXPECT_FALSE(plain.exactPending());
+    EXPECT_GT(maxStepDifference(plain.relitPerPixel(), before, kAllPixels), 0);
+    Session boxed(*r, loadEdit(kRoom + "/edits/virtual_box.json", r->scene));
+    boxed.lights()[0].setRadiance(boxed.lights()[0].radiance() * 0.4);
+    EXPECT_TRUE(boxed.updateQuickly());
+    EXPECT_TRUE(boxed.exactPending());
+    EXPECT_TRUE(boxed.canSettle());
 }
 
 }  // namespace
