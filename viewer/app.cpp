@@ -61,7 +61,8 @@ class App {
         std::snprintf(savePath_, sizeof savePath_, "%s", o.saveFile.c_str());
     }
 
-    void run();
+    /// Returns the exit code: 2 when a scripted action (AppOptions::actions) failed.
+    int run();
 
   private:
     void panel();
@@ -101,7 +102,8 @@ class App {
     /// One frame's input: the end of the work in the background, the next scripted action,
     /// then the panel and the mouse, or busyPanel() while work runs.
     void interact(const PhotoRect& r);
-    void act(const char* what, const std::function<void()>& f);
+    /// Whether f ran without throwing.
+    bool act(const char* what, const std::function<void()>& f);
     /// Runs `work` on the worker thread (BackgroundWork) and returns at once; the next
     /// frames show the last image and busyPanel() until it ends. `work` must capture what
     /// it uses by value: the caller's frame is gone when it runs.
@@ -147,9 +149,13 @@ class App {
     };
     std::optional<Deferred> deferred_;
     std::deque<ScriptedAction> script_;  ///< AppOptions::actions not yet started
-    std::string busyFrom_;               ///< what the image showed when the work began
-    int busyFrames_ = 0;                 ///< frames drawn while the work ran
-    double busyLongest_ = 0;             ///< the longest of them (seconds)
+    bool scriptRunning_ = false;         ///< the work in the background is a scripted action
+    /// A scripted action failed: bad input on the command line (--do), exit code 2 as
+    /// without the window, once the window closes.
+    bool scriptFailed_ = false;
+    std::string busyFrom_;    ///< what the image showed when the work began
+    int busyFrames_ = 0;      ///< frames drawn while the work ran
+    double busyLongest_ = 0;  ///< the longest of them (seconds)
 };
 
 /// The window's back buffer (sRGB-encoded bytes) as a linear image, rows from the top.
@@ -167,14 +173,16 @@ Image readWindow(int w, int h) {
     return img;
 }
 
-void App::act(const char* what, const std::function<void()>& f) {
+bool App::act(const char* what, const std::function<void()>& f) {
     // A failed action (a degenerate pick, a file that cannot be written) is a message in the
     // panel, never the end of the session.
     try {
         f();
+        return true;
     } catch (const std::exception& e) {
         status_ = std::string(what) + " failed: " + e.what();
         std::fprintf(stderr, "relight-viewer: %s\n", status_.c_str());
+        return false;
     }
 }
 
@@ -727,18 +735,26 @@ void App::click(const Pointer& m) {
 
 void App::interact(const PhotoRect& r) {
     // Work in the background ended: its result is drawn below (its error in the panel).
-    if (work_.busy())
-        act(work_.what().c_str(), [&] {
-            if (work_.finish())
+    if (work_.busy()) {
+        bool ended = false;
+        const bool ok = act(work_.what().c_str(), [&] {
+            ended = work_.finish();
+            if (ended)
                 std::printf(
                     "%s: done in %.2f s, in the background (%d frames drawn meanwhile, the "
                     "longest %.1f ms)\n",
                     work_.what().c_str(), work_.seconds(), busyFrames_, 1e3 * busyLongest_);
         });
+        if ((ended || !ok) && scriptRunning_) {
+            scriptFailed_ = scriptFailed_ || !ok;
+            scriptRunning_ = false;
+        }
+    }
     if (!work_.busy() && !script_.empty()) {
         ScriptedAction next = std::move(script_.front());
         script_.pop_front();
         inBackground(next.what, [this, run = std::move(next.run)] { run(session_); });
+        scriptRunning_ = true;
     }
     if (work_.busy()) {
         busyPanel(r);  // the last image stays in the display's target
@@ -760,7 +776,7 @@ void App::interact(const PhotoRect& r) {
     }
 }
 
-void App::run() {
+int App::run() {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
@@ -824,19 +840,20 @@ void App::run() {
     }
     if (work_.busy()) {
         std::printf("waiting for the background work to end: %s\n", work_.what().c_str());
-        act(work_.what().c_str(), [&] { work_.wait(); });
+        if (!act(work_.what().c_str(), [&] { work_.wait(); }) && scriptRunning_)
+            scriptFailed_ = true;
     }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+    return scriptFailed_ ? 2 : 0;
 }
 
 }  // namespace
 
 int runApp(GlWindow& window, Session& session, FrameRenderer& frame, const AppOptions& options) {
     App app(window, session, frame, options);
-    app.run();
-    return 0;
+    return app.run();
 }
 
 }  // namespace relight::viewer

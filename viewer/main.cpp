@@ -28,7 +28,8 @@
 //                      (ks 0,0,0: no term)
 // With the window open (no --screenshot), the window runs them as it runs the panel's slow
 // actions: one after another on its worker thread, drawing meanwhile; --window-screenshot
-// waits for them, and the terminal prints how long each took.
+// waits for them, and the terminal prints how long each took; one that fails is a message
+// in the panel, and the viewer's exit code is then 2 when the window closes.
 // Errors (no display, no OpenGL 3.3, a scene or edit that does not load, a bad option, a
 // screenshot that cannot be written) print one clear line and exit with 2 for bad input, 3
 // for an output that cannot be written, 1 otherwise (relight/errors.h).
@@ -395,7 +396,8 @@ int run(const Args& a) {
     // A sun or lamp moved shows quick frames in the per-pixel displays, as the window's.
     session.setQuickMoves(drawsPerPixel(mode));
     // In the window, the actions run as the panel's slow ones do: on its worker thread, one
-    // after another, the window drawing meanwhile (viewer/app.h); a failed one is a message.
+    // after another, the window drawing meanwhile (viewer/app.h); a failed one is a message, and
+    // the exit code 2 once the window closes.
     AppOptions ao;
     for (const Action& act : actions) {
         if (interactive)

@@ -70,13 +70,15 @@ expect("${o}" "wrote .*busy.png \\([0-9]+x[0-9]+\\)" "window screenshot after th
 
 # The panel's slow actions in the window: a virtual lamp's strength and the table brought
 # back run on the worker thread as the panel's slider and "bring back" do (viewer/app.cpp),
-# one after another; the screenshot waits for them.
-viewer(o 0 "${SCENE}" ${coarse} --do light:200,20 --do scale:V1:0.5 --do remove:180,155
-       --do restore:table --window-screenshot "${WORK}/panel.png")
+# one after another; the screenshot waits for them. The last action names no object: a
+# message in the window, which goes on, and exit code 2 (bad input) when it closes.
+viewer(o 2 "${SCENE}" ${coarse} --do light:200,20 --do scale:V1:0.5 --do remove:180,155
+       --do restore:table --do restore:nosuch --window-screenshot "${WORK}/panel.png")
 foreach(action scale:V1:0.5 restore:table)
   expect("${o}" "--do ${action}: done in [0-9.]+ s, in the background"
          "the panel's action ${action} made in the background")
 endforeach()
+expect("${o}" "--do restore:nosuch failed: [^\n]*nosuch" "a failed scripted action named")
 expect("${o}" "wrote .*panel.png \\([0-9]+x[0-9]+\\)"
        "window screenshot after the panel's actions")
 
