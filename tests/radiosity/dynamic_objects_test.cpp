@@ -81,6 +81,7 @@ TEST(DynamicObjects, InsertThenRemoveRestoresTheSolutionBitForBit) {
     const std::vector<Link> links = solver.links();
     const std::vector<Link> passive = solver.passiveLinks();
     const std::vector<Node> nodes = solver.hierarchy().nodes;
+    const std::vector<ClusterFields> fields = solver.hierarchy().clusterFields;
     const size_t polygons = solver.scene().polygons.size();
 
     DynamicUpdate report;
@@ -88,6 +89,20 @@ TEST(DynamicObjects, InsertThenRemoveRestoresTheSolutionBitForBit) {
     EXPECT_GT(report.linksCut, 0);
     EXPECT_GT(report.linksNew, 0);
     EXPECT_GT(solver.hierarchy().nodes.size(), nodes.size());
+    // With the object attached, every cluster has a slot of its own among the cluster
+    // fields, and no element has one.
+    const Hierarchy& attached = solver.hierarchy();
+    std::vector<int> owners(attached.clusterFields.size(), 0);
+    for (const Node& n : attached.nodes) {
+        if (!n.isCluster()) {
+            ASSERT_EQ(n.clusterSlot, -1);
+            continue;
+        }
+        ASSERT_GE(n.clusterSlot, 0);
+        ASSERT_LT(static_cast<size_t>(n.clusterSlot), owners.size());
+        ++owners[n.clusterSlot];
+    }
+    for (int o : owners) ASSERT_EQ(o, 1);
     solver.removeLastObject();
 
     ASSERT_EQ(solver.scene().polygons.size(), polygons);
@@ -121,7 +136,15 @@ TEST(DynamicObjects, InsertThenRemoveRestoresTheSolutionBitForBit) {
         ASSERT_EQ(a.parent, b.parent) << n;
         ASSERT_EQ(a.firstChild, b.firstChild) << n;
         ASSERT_EQ(a.level, b.level) << n;
+        ASSERT_EQ(a.clusterSlot, b.clusterSlot) << n;
     }
+    // The clusters' frames, cones, moments and directional irradiance (the root's were
+    // recomputed over the old root and the object): all doubles, compared bit for bit.
+    ASSERT_EQ(solver.hierarchy().clusterFields.size(), fields.size());
+    for (size_t c = 0; c < fields.size(); ++c)
+        ASSERT_EQ(std::memcmp(&solver.hierarchy().clusterFields[c], &fields[c], sizeof fields[c]),
+                  0)
+            << c;
     EXPECT_THROW(solver.removeLastObject(), std::logic_error);
 }
 
