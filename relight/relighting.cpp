@@ -572,7 +572,7 @@ void mapDisplay(Relighting& r, const RelightOptions& o) {
 
 std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOptions& o) {
     auto r = std::make_unique<Relighting>();
-    r->budget = {Clock::now(), o.timeBudget};
+    r->budget = {o.budgetStart == Clock::time_point{} ? Clock::now() : o.budgetStart, o.timeBudget};
     r->scene = std::move(scene);
     r->directOptions = directLightOptions(o);
     checkEstimableLights(r->scene);  // before the long work: an "estimate" light off in the photo

@@ -354,6 +354,7 @@ void runAction(Session& s, const Action& a) {
 int run(const Args& a) {
     // Everything that can fail fast does, before the preparation: the scene, the edit, the
     // display and the OpenGL context.
+    const auto start = radiosity::Clock::now();  // the preparation's budget counts from here
     const SceneFile sf = loadScene(a.scene);
     EditFile edit;
     if (!a.edit.empty()) {
@@ -381,6 +382,7 @@ int run(const Args& a) {
     std::fprintf(stderr, "relight-viewer: %s\n", window.renderer().c_str());
 
     RelightOptions o;
+    o.budgetStart = start;
     o.epsilon = a.epsilon;
     o.spp = a.spp;
     const DisplayMode mode = parseDisplayMode(a.display);

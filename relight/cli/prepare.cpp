@@ -31,6 +31,8 @@ std::string fitsScene(const PreparedImage& p, const SceneFile& sf) {
 
 RelightOptions PrepareOptionArgs::relightOptions() const {
     RelightOptions o;
+    // Made at the command's start, before the scene is loaded: the budget counts from here.
+    o.budgetStart = Clock::now();
     o.epsilon = epsilon;
     o.darkFloor = darkFloor;
     o.perLightOracle = perLightOracle;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "relight/display/ratio_display.h"
@@ -72,4 +73,21 @@ TEST(PhaseBudget, TheRoomAtTheDefaultBudgetTakesNoFallback) {
     const PreparedImage& P = test::coarseRoom().prepared;
     EXPECT_EQ(P.budgetReached & ~7, 0);
     EXPECT_TRUE(phaseBudgetLines(P.budgetReached, 60).empty());
+}
+
+TEST(PhaseBudget, TheBudgetCountsFromTheCommandsStartNotThePreparations) {
+    // A command sets budgetStart before it loads the scene; the loading's time is then
+    // spent from the budget. A start a whole budget ago leaves every phase its fallback,
+    // as a budget spent before the preparation began must.
+    RelightOptions o = test::coarseOptions();
+    o.pixelLight = true;
+    o.timeBudget = 600;  // far beyond what the room takes, counted from now...
+    const auto fresh = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
+    EXPECT_EQ(fresh->prepared.budgetReached & ~7, 0);
+    o.budgetStart = radiosity::Clock::now() - std::chrono::seconds(600);  // ...or spent
+    const auto late = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
+    const int spent = PreparedImage::kShadowRefinementBudget | PreparedImage::kGatherBudget |
+                      PreparedImage::kLeafReflectanceBudget | PreparedImage::kShadowRemovalBudget;
+    EXPECT_EQ(late->prepared.budgetReached & spent, spent);
+    EXPECT_TRUE(late->solver->stats().timeBudgetReached);
 }
