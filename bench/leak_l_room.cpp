@@ -2,7 +2,7 @@
 // solution against the full-matrix reference (radiosity/reference_solver.h), per epsilon.
 //
 //   ./build/bench/leak_l_room [--cut N] [--arm A|B] [--no-balance] [--rays MIN MAX]
-//                             [epsilons...]             (default 1e-3 1e-4 1e-5)
+//                             [--dark-floor F] [epsilons...]   (default 1e-3 1e-4 1e-5)
 //   ./build/bench/leak_l_room --reference-areas 0.02 0.01
 //
 // --reference-areas checks the yardstick instead: the reference solved again with
@@ -13,7 +13,8 @@
 // --arm): the same room as many small polygons, which the solver clusters, rather than
 // 10 large ones, which it subdivides. --no-balance leaves out the balance of what leaves
 // send (radiosity/solver.h). --rays sets the links' visibility rays: MIN first, MAX in all
-// in penumbra (TransferOptions).
+// in penumbra (TransferOptions). --dark-floor sets SolverOptions::darkFloor (relight's
+// preparation uses 0.1, RelightOptions; the solver's own default 1 is the plain criterion).
 //
 // The enclosure is 1 m high: arm A along x ([0,4] x [0,1]), arm B along y ([0,1] x [1,4]);
 // rho 0.6, one 0.4 m lamp under the ceiling at the far end of arm A. Arm B is lit only by
@@ -95,6 +96,7 @@ int main(int argc, char** argv) {
     int cut = 1;
     char arm = 0;
     bool balance = true, referenceAreas = false;
+    double darkFloor = SolverOptions{}.darkFloor;
     int minRays = TransferOptions{}.minRays, maxRays = TransferOptions{}.maxRays;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -104,6 +106,8 @@ int main(int argc, char** argv) {
             cut = std::max(1, std::atoi(argv[++i]));
         else if (a == "--arm" && i + 1 < argc)
             arm = argv[++i][0];
+        else if (a == "--dark-floor" && i + 1 < argc)
+            darkFloor = std::atof(argv[++i]);
         else if (a == "--no-balance")
             balance = false;
         else if (a == "--rays" && i + 2 < argc) {
@@ -147,6 +151,7 @@ int main(int argc, char** argv) {
         SolverOptions o;
         o.epsilon = e;
         o.balanceSends = balance;
+        o.darkFloor = darkFloor;
         o.transfer.minRays = minRays;
         o.transfer.maxRays = maxRays;
         HierarchicalSolver solver(s, o);

@@ -227,6 +227,11 @@ std::vector<std::string> phaseBudgetLines(int budgetReached, double seconds) {
          "real-shadow removal skipped (D = the photo's lighting)"},
     };
     std::vector<std::string> out;
+    if (budgetReached & PreparedImage::kBudgetOverrun)
+        out.push_back(
+            "the preparation ended past its budget: the work that no fallback removes "
+            "(the hierarchy, the lamps' links to every face, the responses) grows with "
+            "the mesh; a larger --time-budget, or fewer faces, ends within it");
     for (const Phase& ph : phases) {
         if (!(budgetReached & ph.bit)) continue;
         char line[240];

@@ -112,6 +112,11 @@ struct PreparedImage {
     /// The leaves' reflectance from their texture was skipped (the polygons' estimate
     /// kept): the vertices' final gather had used up its share.
     static constexpr int kLeafReflectanceBudget = 128;
+    /// The preparation ended past the budget (more than kOverrunTolerance of it): every
+    /// phase with a fallback had taken it, and the work that none removes (the hierarchy,
+    /// the lamps' links to every face, the per-light responses) grows with the mesh.
+    static constexpr int kBudgetOverrun = 256;
+    static constexpr double kOverrunTolerance = 1.05;
     uint64_t solverBytes = 0, maxLinks = 0, maxMemory = 0;
     PrepareTimes times;
 

@@ -174,6 +174,7 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
           {"pixel_gather_budget_reached",
            (p.budgetReached & PreparedImage::kPixelGatherBudget) != 0},
           {"shadow_removal_skipped", (p.budgetReached & PreparedImage::kShadowRemovalBudget) != 0},
+          {"overrun", (p.budgetReached & PreparedImage::kBudgetOverrun) != 0},
           {"shares_end_at",
            {{"refinement", RelightOptions::kRefineShare},
             {"reflectance", RelightOptions::kRefineShare + RelightOptions::kReflectanceShare},

@@ -56,7 +56,9 @@ TEST(PhaseBudget, ASpentBudgetTakesEveryFallbackAndTheUneditedRoomIsStillThePhot
                 worst = std::max(worst, std::abs(v - t) / std::max(std::abs(t), 1e-3));
             }
     EXPECT_LT(worst, 1e-5);
-    EXPECT_EQ(phaseBudgetLines(P.budgetReached, o.timeBudget).size(), 5u);
+    // Past its (nanosecond) budget at the end: said too, as the sixth line.
+    EXPECT_TRUE(P.budgetReached & PreparedImage::kBudgetOverrun);
+    EXPECT_EQ(phaseBudgetLines(P.budgetReached, o.timeBudget).size(), 6u);
 }
 
 TEST(PhaseBudget, ThePixelGatherKeepsItsRaysUnlessAskedToCutThem) {
@@ -77,17 +79,19 @@ TEST(PhaseBudget, TheRoomAtTheDefaultBudgetTakesNoFallback) {
 
 TEST(PhaseBudget, TheBudgetCountsFromTheCommandsStartNotThePreparations) {
     // A command sets budgetStart before it loads the scene; the loading's time is then
-    // spent from the budget. A start a whole budget ago leaves every phase its fallback,
-    // as a budget spent before the preparation began must.
+    // spent from the budget. A start more than a whole budget ago leaves every phase its
+    // fallback, as a budget spent before the preparation began must, and the preparation
+    // says that it ended past the budget.
     RelightOptions o = test::coarseOptions();
     o.pixelLight = true;
     o.timeBudget = 600;  // far beyond what the room takes, counted from now...
     const auto fresh = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
     EXPECT_EQ(fresh->prepared.budgetReached & ~7, 0);
-    o.budgetStart = radiosity::Clock::now() - std::chrono::seconds(600);  // ...or spent
+    o.budgetStart = radiosity::Clock::now() - std::chrono::seconds(700);  // ...or spent
     const auto late = prepareRelighting(loadScene(RELIGHT_DATA_DIR "/room"), o);
     const int spent = PreparedImage::kShadowRefinementBudget | PreparedImage::kGatherBudget |
                       PreparedImage::kLeafReflectanceBudget | PreparedImage::kShadowRemovalBudget;
     EXPECT_EQ(late->prepared.budgetReached & spent, spent);
+    EXPECT_TRUE(late->prepared.budgetReached & PreparedImage::kBudgetOverrun);
     EXPECT_TRUE(late->solver->stats().timeBudgetReached);
 }
