@@ -12,32 +12,16 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <utility>
 
 #include "viewer/background_work.h"
+#include "viewer/mouse_tools.h"
 
 namespace relight::viewer {
 
 namespace {
 
 constexpr float kPanelWidth = 360.0f;  ///< window pixels
-
-/// What a click on the image does: pick and drag an object, add a light, a box, a point lamp,
-/// take a real object out, place a real lamp, turn the sun (drag), move a point lamp.
-enum class Tool { select, light, box, remove, lamp, point, sun, movePoint };
-
-/// Where the photo is drawn in the window (window coordinates, y down): the area left of
-/// the panel, at the photo's aspect, centred.
-struct PhotoRect {
-    double x = 0, y = 0, w = 1, h = 1;
-    bool contains(double mx, double my) const {
-        return mx >= x && mx < x + w && my >= y && my < y + h;
-    }
-    /// Pixel coordinates in the photo (OpenCV: 0 is the centre of the first pixel).
-    void toPixel(double mx, double my, int photoW, int photoH, double& u, double& v) const {
-        u = (mx - x) / w * photoW - 0.5;
-        v = (my - y) / h * photoH - 0.5;
-    }
-};
 
 PhotoRect photoRect(int winW, int winH, int photoW, int photoH) {
     const double areaW = std::max(1.0, winW - static_cast<double>(kPanelWidth));
@@ -57,7 +41,14 @@ class App {
           session_(session),
           frame_(frame),
           windowShot_(o.windowShot),
-          script_(o.actions.begin(), o.actions.end()) {
+          script_(o.actions.begin(), o.actions.end()),
+          tools_(session, ToolHost{[this](const char* what, const std::function<void()>& f) {
+                                       return act(what, f);
+                                   },
+                                   [this](std::string what, std::function<void()> work) {
+                                       inBackground(std::move(what), std::move(work));
+                                   },
+                                   [this] { return work_.busy(); }}) {
         std::snprintf(savePath_, sizeof savePath_, "%s", o.saveFile.c_str());
     }
 
@@ -80,25 +71,8 @@ class App {
     void lampsPanel();
     void drawLamps(const PhotoRect& r);
     void statsOverlay(const PhotoRect& r);
-    /// Where the pointer is and what its left button does this frame.
-    struct Pointer {
-        double x = 0, y = 0;  ///< window coordinates
-        double u = 0, v = 0;  ///< photo pixels
-        bool down = false, pressed = false;
-        bool onPhoto = false;  ///< over the photo, not over the panel
-    };
+    /// The pointer from GLFW, to the tools (viewer/mouse_tools.h).
     void mouse(const PhotoRect& r);
-    /// Tool::sun: a drag on the image turns the sun. In the per-pixel displays the sun
-    /// follows the drag, a quick frame each time the pointer moves (Session::setQuickMoves),
-    /// exact once it rests; in the ratio display the drag is applied when the button is let
-    /// go (each turn is solved again, as a saved "direction" is: a second or more on a large
-    /// scene), on the worker thread.
-    void sunTool(const PhotoRect& r, const Pointer& m);
-    /// Tool::movePoint: the point lamp goes above the surface where the button is let go (a
-    /// drag; a click is a drag of no length).
-    void pointTool(const Pointer& m);
-    /// The other tools: a click adds, removes, places or grabs; a drag moves the grabbed object.
-    void click(const Pointer& m);
     /// One frame's input: the end of the work in the background, the next scripted action,
     /// then the panel and the mouse, or busyPanel() while work runs.
     void interact(const PhotoRect& r);
@@ -121,7 +95,6 @@ class App {
     GlWindow& window_;
     Session& session_;
     FrameRenderer& frame_;
-    Tool tool_ = Tool::select;
     char savePath_[1024] = {};
     std::string status_;
     FrameStats stats_;
@@ -130,17 +103,9 @@ class App {
     /// How long a slider rests before its quick image is made exact (Session::settle):
     /// longer than between two mouse reports while it moves, short enough not to be waited for.
     static constexpr double kSettleSeconds = 0.25;
-    bool wasDown_ = false;
-    double lastMx_ = -1, lastMy_ = -1;
     std::string windowShot_;
-    int movingLamp_ = -1;            ///< the real lamp the next click moves, or -1
-    float newLampSize_[2] = {0, 0};  ///< metres; 0: the size of the scene's lamps
-    std::string sun_, point_;        ///< the sun Tool::sun turns, the lamp Tool::movePoint moves
-    double dragU_ = 0, dragV_ = 0;   ///< the sun tool's drag so far (photo pixels)
-    bool sunDrag_ = false;
     float sliders_[2] = {0, 0};  ///< the sun's azimuth and elevation while a slider is held
     float skyTurn_ = 15.0f;      ///< degrees the sky's "turn about z" button turns it
-    bool pointDrag_ = false;     ///< Tool::movePoint: the button is down
     BackgroundWork work_;
     /// A slow action of the panel, started after it is drawn (later()).
     struct Deferred {
@@ -156,6 +121,7 @@ class App {
     std::string busyFrom_;    ///< what the image showed when the work began
     int busyFrames_ = 0;      ///< frames drawn while the work ran
     double busyLongest_ = 0;  ///< the longest of them (seconds)
+    MouseTools tools_;        ///< the mouse on the photo: the panel's tool and its drags
 };
 
 /// The window's back buffer (sRGB-encoded bytes) as a linear image, rows from the top.
@@ -327,16 +293,16 @@ void App::emitterControls(LightControl& l) {
         else if (follow && turn)
             act("turning the sun", [&] { session_.editLight(name, e); });
         if (ImGui::RadioButton("turn it by dragging on the image",
-                               tool_ == Tool::sun && sun_ == name)) {
-            tool_ = Tool::sun;
-            sun_ = name;
+                               tools_.tool == Tool::sun && tools_.sun == name)) {
+            tools_.tool = Tool::sun;
+            tools_.sun = name;
         }
     }
     if (radiosity::findField(*l.emitter, "position") &&
         ImGui::RadioButton("move it: click a surface",
-                           tool_ == Tool::movePoint && point_ == name)) {
-        tool_ = Tool::movePoint;
-        point_ = name;
+                           tools_.tool == Tool::movePoint && tools_.point == name)) {
+        tools_.tool = Tool::movePoint;
+        tools_.point = name;
     }
     if (const auto sh9 = radiosity::findField(*l.emitter, "sh9")) skyControls(l, *sh9);
     if (const auto s = radiosity::findField(*l.emitter, l.emitter->strengthKey());
@@ -397,21 +363,23 @@ void App::skyControls(const LightControl& l, const radiosity::EmitterField& sh9)
 
 void App::objectsPanel() {
     if (!ImGui::CollapsingHeader("Virtual parts", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    if (ImGui::RadioButton("move objects", tool_ == Tool::select)) tool_ = Tool::select;
+    if (ImGui::RadioButton("move objects", tools_.tool == Tool::select)) tools_.tool = Tool::select;
     ImGui::SameLine();
-    if (ImGui::RadioButton("add light", tool_ == Tool::light)) tool_ = Tool::light;
+    if (ImGui::RadioButton("add light", tools_.tool == Tool::light)) tools_.tool = Tool::light;
     ImGui::SameLine();
-    if (ImGui::RadioButton("add box", tool_ == Tool::box)) tool_ = Tool::box;
-    if (ImGui::RadioButton("add point lamp", tool_ == Tool::point)) tool_ = Tool::point;
+    if (ImGui::RadioButton("add box", tools_.tool == Tool::box)) tools_.tool = Tool::box;
+    if (ImGui::RadioButton("add point lamp", tools_.tool == Tool::point)) tools_.tool = Tool::point;
     ImGui::SameLine();
-    if (ImGui::RadioButton("remove real objects", tool_ == Tool::remove)) tool_ = Tool::remove;
-    ImGui::TextDisabled(tool_ == Tool::select      ? "drag an object over the surface it stands on"
-                        : tool_ == Tool::light     ? "click a surface: a lamp on it"
-                        : tool_ == Tool::box       ? "click a surface: a box standing on it"
-                        : tool_ == Tool::point     ? "click a surface: a point lamp above it"
-                        : tool_ == Tool::sun       ? "drag on the image: the sun turns"
-                        : tool_ == Tool::movePoint ? "click a surface: the lamp goes above it"
-                                                   : "click an object marked removable: it goes");
+    if (ImGui::RadioButton("remove real objects", tools_.tool == Tool::remove))
+        tools_.tool = Tool::remove;
+    ImGui::TextDisabled(tools_.tool == Tool::select ? "drag an object over the surface it stands on"
+                        : tools_.tool == Tool::light ? "click a surface: a lamp on it"
+                        : tools_.tool == Tool::box   ? "click a surface: a box standing on it"
+                        : tools_.tool == Tool::point ? "click a surface: a point lamp above it"
+                        : tools_.tool == Tool::sun   ? "drag on the image: the sun turns"
+                        : tools_.tool == Tool::movePoint
+                            ? "click a surface: the lamp goes above it"
+                            : "click an object marked removable: it goes");
     const auto& objects = session_.objects();
     int remove = -1;
     for (size_t i = 0; i < objects.size(); ++i) {
@@ -477,12 +445,12 @@ void App::specularControls(int i) {
 
 void App::lampsPanel() {
     if (!ImGui::CollapsingHeader("Real lamps (scene.json)", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    if (ImGui::RadioButton("place real lamps", tool_ == Tool::lamp)) tool_ = Tool::lamp;
-    if (ImGui::DragFloat2("new lamp size (m)", newLampSize_, 0.005f, 0.0f, 10.0f, "%.3f"))
-        for (float& side : newLampSize_) side = std::max(0.0f, side);
+    if (ImGui::RadioButton("place real lamps", tools_.tool == Tool::lamp)) tools_.tool = Tool::lamp;
+    if (ImGui::DragFloat2("new lamp size (m)", tools_.newLampSize, 0.005f, 0.0f, 10.0f, "%.3f"))
+        for (float& side : tools_.newLampSize) side = std::max(0.0f, side);
     // Wrapped: the hints are longer than the panel is wide.
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextDisabled("%s", movingLamp_ >= 0
+    ImGui::TextDisabled("%s", tools_.movingLamp >= 0
                                   ? "click where the lamp goes"
                                   : "click where a lamp is in the photo: a quad on the surface, "
                                     "facing out (size 0: the scene's lamps' size)");
@@ -509,8 +477,8 @@ void App::lampsPanel() {
         }
         ImGui::Checkbox("on in the photo", &l.onInPhoto);
         if (ImGui::SmallButton("move")) {
-            movingLamp_ = static_cast<int>(i);
-            tool_ = Tool::lamp;
+            tools_.movingLamp = static_cast<int>(i);
+            tools_.tool = Tool::lamp;
         }
         ImGui::SameLine();
         if (ImGui::SmallButton("remove")) remove = static_cast<int>(i);
@@ -519,7 +487,7 @@ void App::lampsPanel() {
     }
     if (remove >= 0) {
         lamps.erase(lamps.begin() + remove);
-        movingLamp_ = -1;
+        tools_.movingLamp = -1;
     }
     if (!lamps.empty() && ImGui::Button("Save lamps into scene.json")) {
         const std::filesystem::path dir = session_.relighting().scene.dir;
@@ -548,8 +516,8 @@ void App::drawLamps(const PhotoRect& r) {
                                 static_cast<float>(r.y + (v + 0.5) / p.photo.height * r.h));
         }
         if (points.size() != 4) continue;  // behind the camera: nothing to draw
-        const ImU32 colour = static_cast<int>(i) == movingLamp_ ? IM_COL32(255, 80, 80, 255)
-                                                                : IM_COL32(255, 220, 60, 255);
+        const ImU32 colour = static_cast<int>(i) == tools_.movingLamp ? IM_COL32(255, 80, 80, 255)
+                                                                      : IM_COL32(255, 220, 60, 255);
         draw->AddPolyline(points.data(), 4, colour, ImDrawFlags_Closed, 2.0f);
         draw->AddText(points[3], colour, session_.placedLamps()[i].name.c_str());
     }
@@ -634,103 +602,12 @@ void App::statsOverlay(const PhotoRect& r) {
 
 void App::mouse(const PhotoRect& r) {
     GLFWwindow* w = window_.handle();
-    Pointer m;
-    m.down = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    glfwGetCursorPos(w, &m.x, &m.y);
-    const PreparedImage& p = session_.prepared();
-    r.toPixel(m.x, m.y, p.photo.width, p.photo.height, m.u, m.v);
-    m.pressed = m.down && !wasDown_;
-    m.onPhoto = !ImGui::GetIO().WantCaptureMouse && r.contains(m.x, m.y);
-    if (tool_ == Tool::sun)
-        sunTool(r, m);
-    else if (tool_ == Tool::movePoint)
-        pointTool(m);
-    else
-        click(m);
-    wasDown_ = m.down;
-    lastMx_ = m.x;
-    lastMy_ = m.y;
-}
-
-void App::sunTool(const PhotoRect& r, const Pointer& m) {
-    const PreparedImage& p = session_.prepared();
-    if (m.pressed && m.onPhoto) {
-        sunDrag_ = true;
-        dragU_ = dragV_ = 0;
-    }
-    if (m.down && sunDrag_) {
-        dragU_ += (m.x - lastMx_) / r.w * p.photo.width;
-        dragV_ += (m.y - lastMy_) / r.h * p.photo.height;
-    }
-    const bool follow = session_.quickMoves() && m.down && sunDrag_;
-    if (follow && (dragU_ != 0 || dragV_ != 0))
-        act("turning the sun", [&] { session_.dragSun(sun_, dragU_, dragV_); });
-    else if (!m.down && sunDrag_)  // let go: solved (or, followed, made exact) on the worker
-        inBackground("turning the sun", [this, name = sun_, du = dragU_, dv = dragV_] {
-            session_.dragSun(name, du, dv);
-        });
-    if (follow || !m.down) dragU_ = dragV_ = 0;
-    sunDrag_ = sunDrag_ && m.down;
-}
-
-void App::pointTool(const Pointer& m) {
-    if (m.pressed && m.onPhoto) pointDrag_ = true;
-    // In the per-pixel displays the lamp follows the pointer (quick frames, as the sun's);
-    // else it goes where the button is let go, solved on the worker.
-    const bool follow =
-        session_.quickMoves() && m.down && pointDrag_ && (m.x != lastMx_ || m.y != lastMy_);
-    if (!follow && (m.down || !pointDrag_)) return;
-    pointDrag_ = m.down;
-    const Pick pick = session_.pick(m.u, m.v);  // one ray
-    if (!pick.hit) return;
-    if (follow)
-        act("moving the point lamp", [&] { session_.movePointLampTo(point_, pick); });
-    else
-        inBackground("moving the point lamp",
-                     [this, name = point_, pick] { session_.movePointLampTo(name, pick); });
-}
-
-void App::click(const Pointer& m) {
-    if (m.pressed && m.onPhoto) {
-        const Pick pick = session_.pick(m.u, m.v);
-        const int last = static_cast<int>(session_.objects().size()) - 1;
-        if (!pick.hit)
-            status_ = "nothing there to click on";
-        else if (tool_ == Tool::light)
-            inBackground("adding a light", [this, pick] { session_.addLightAt(pick); });
-        else if (tool_ == Tool::box)
-            inBackground("adding a box", [this, pick] { session_.addBoxAt(pick); });
-        else if (tool_ == Tool::point)
-            // The tool and the lamp it moves are set by the worker: the panel and the mouse,
-            // which read them, wait for it.
-            inBackground("adding a point lamp", [this, pick] {
-                point_ = session_.addPointLampAt(pick);
-                tool_ = Tool::movePoint;  // a click then moves it (a drag's end)
-            });
-        else if (tool_ == Tool::lamp && movingLamp_ >= 0)
-            act("moving the lamp", [&] {
-                session_.moveLampTo(movingLamp_, pick);
-                movingLamp_ = -1;
-            });
-        else if (tool_ == Tool::lamp)
-            act("placing a lamp",
-                [&] { session_.placeLampAt(pick, newLampSize_[0], newLampSize_[1]); });
-        else if (tool_ == Tool::remove && pick.realObject.empty())
-            status_ = "no removable object there (scene.json marks which are)";
-        else if (tool_ == Tool::remove)
-            inBackground("removing the object",
-                         [this, name = pick.realObject] { session_.removeRealObject(name); });
-        else if (pick.object >= 0 && pick.object == last)
-            act("picking the object", [&] { session_.beginDrag(pick.object, pick); });
-        else if (pick.object >= 0)  // made the last part first: the parts inserted again
-            inBackground("picking the object",
-                         [this, pick] { session_.beginDrag(pick.object, pick); });
-    }
-    // Nothing more of the session this frame once work was started in the background.
-    if (!work_.busy() && m.down && session_.dragging() >= 0 && (m.x != lastMx_ || m.y != lastMy_))
-        act("moving the object", [&] { session_.dragTo(m.u, m.v); });
-    if (!work_.busy() && !m.down && session_.dragging() >= 0)
-        inBackground("letting the object go", [this] { session_.endDrag(); });
+    Pointer p;
+    p.down = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    glfwGetCursorPos(w, &p.x, &p.y);
+    p.onPhoto = !ImGui::GetIO().WantCaptureMouse && r.contains(p.x, p.y);
+    tools_.handle(r, p);
+    if (!tools_.status.empty()) status_ = std::exchange(tools_.status, {});
 }
 
 void App::interact(const PhotoRect& r) {

@@ -37,6 +37,7 @@
 #include "viewer/frame.h"
 #include "viewer/gl_window.h"
 #include "viewer/gpu_display.h"
+#include "viewer/mouse_tools.h"
 #include "viewer/session.h"
 
 namespace relight::viewer {
@@ -516,6 +517,205 @@ TEST(ViewerSession, ASliderIsUpdatedInTheFrameWhereThatIsQuick) {
     EXPECT_TRUE(boxed.updateQuickly());
     EXPECT_TRUE(boxed.exactPending());
     EXPECT_TRUE(boxed.canSettle());
+}
+
+// The mouse tools (viewer/mouse_tools.h) driven as the window drives them, one pointer a
+// frame, against the same changes made by calling the session directly: what the tools add
+// is the bookkeeping of a drag (where it began, what has been applied, what is left for the
+// button's release), and that is what these check, bit for bit.
+
+/// A ToolHost as the window's: act() at once, inBackground() on a worker thread whose end
+/// the next frame waits for (the window takes no input meanwhile, viewer/app.cpp).
+struct TestHost {
+    BackgroundWork work;
+    std::vector<std::string> background;  ///< what ran on the worker, in order
+    ToolHost host() {
+        return {[](const char*, const std::function<void()>& f) {
+                    f();  // an exception fails the test
+                    return true;
+                },
+                [this](std::string what, std::function<void()> job) {
+                    background.push_back(what);
+                    work.start(std::move(what), std::move(job));
+                },
+                [this] { return work.busy(); }};
+    }
+    /// One frame: the pointer to the tools, then the worker's end waited for.
+    void frame(MouseTools& tools, const PhotoRect& r, double x, double y, bool down) {
+        tools.handle(r, Pointer{x, y, down, r.contains(x, y)});
+        if (work.busy()) work.wait();
+    }
+};
+
+/// The photo drawn at twice its size, offset as in a window with a margin.
+PhotoRect twiceTheSize(const PreparedImage& p) {
+    return PhotoRect{12, 8, 2.0 * p.photo.width, 2.0 * p.photo.height};
+}
+
+std::vector<std::vector<double>> emitterValues(Session& s, const std::string& name) {
+    for (const LightControl& l : s.lights())
+        if (l.name == name && l.emitter) {
+            std::vector<std::vector<double>> out;
+            for (const radiosity::EmitterField& f : l.emitter->fields()) out.push_back(f.values);
+            return out;
+        }
+    ADD_FAILURE() << "no emitter named " << name;
+    return {};
+}
+
+Relighting& courtyardPerPixel() {
+    static const auto r = [] {
+        RelightOptions o;
+        o.epsilon = 1e-3;
+        o.spp = 4;
+        o.reflectanceRounds = 3;
+        o.pixelLight = true;
+        return prepareRelighting(loadScene(RELIGHT_DATA_DIR "/courtyard"), o);
+    }();
+    return *r;
+}
+
+TEST(MouseTools, ASunDraggedOnThePhotoTurnsAsTheSameDragGivenToTheSession) {
+    Relighting& r = courtyardPerPixel();
+    const PhotoRect rect = twiceTheSize(r.prepared);
+    const double W = r.prepared.photo.width, H = r.prepared.photo.height;
+    // The pointer's path: up, pressed, two moves, let go where it last was.
+    const double xs[] = {100, 100, 110, 137}, ys[] = {90, 90, 94, 101};
+    for (const bool quick : {false, true}) {
+        std::vector<std::vector<double>> byMouse, direct;
+        std::vector<Rgb> ratiosByMouse, ratiosDirect;
+        {
+            Session session(r, EditFile{});
+            session.setQuickMoves(quick);
+            TestHost t;
+            MouseTools tools(session, t.host());
+            tools.tool = Tool::sun;
+            tools.sun = "sun";
+            for (int k = 0; k < 4; ++k) t.frame(tools, rect, xs[k], ys[k], k > 0);
+            t.frame(tools, rect, xs[3], ys[3], false);
+            // The release is solved on the worker, in both displays.
+            ASSERT_FALSE(t.background.empty()) << quick;
+            EXPECT_EQ(t.background.back(), "turning the sun");
+            byMouse = emitterValues(session, "sun");
+            ratiosByMouse = session.vertexRatios();
+        }
+        {
+            Session session(r, EditFile{});
+            session.setQuickMoves(quick);
+            // The drag in photo pixels, summed move by move as a mouse reports it.
+            const double du1 = (xs[2] - xs[1]) / rect.w * W, dv1 = (ys[2] - ys[1]) / rect.h * H;
+            const double du2 = (xs[3] - xs[2]) / rect.w * W, dv2 = (ys[3] - ys[2]) / rect.h * H;
+            if (quick) {  // the sun follows each move; the release makes it exact
+                session.dragSun("sun", du1, dv1);
+                session.dragSun("sun", du2, dv2);
+                session.dragSun("sun", 0, 0);
+            } else {  // the whole drag at the release
+                session.dragSun("sun", du1 + du2, dv1 + dv2);
+            }
+            direct = emitterValues(session, "sun");
+            ratiosDirect = session.vertexRatios();
+        }
+        EXPECT_EQ(byMouse, direct) << (quick ? "quick moves" : "ratio display");
+        EXPECT_EQ(ratiosByMouse, ratiosDirect);
+        Session unturned(r, EditFile{});
+        EXPECT_NE(byMouse, emitterValues(unturned, "sun"));  // it did turn
+    }
+}
+
+TEST(MouseTools, APointLampAddedByAClickGoesWhereItsDragIsLetGo) {
+    Relighting& r = courtyardPerPixel();
+    const PhotoRect rect = twiceTheSize(r.prepared);
+    const auto pixel = [&](double x, double y) {
+        double u = 0, v = 0;
+        rect.toPixel(x, y, r.prepared.photo.width, r.prepared.photo.height, u, v);
+        return std::pair{u, v};
+    };
+    // A click on the ground, then a drag from elsewhere to a third place.
+    const double xa = 150, ya = 380, xb = 200, yb = 390, xc = 260, yc = 400;
+    std::vector<std::vector<double>> byMouse, direct;
+    std::string name;
+    {
+        Session session(r, EditFile{});
+        TestHost t;
+        MouseTools tools(session, t.host());
+        tools.tool = Tool::point;
+        t.frame(tools, rect, xa, ya, false);
+        t.frame(tools, rect, xa, ya, true);  // the click adds the lamp, on the worker
+        t.frame(tools, rect, xa, ya, false);
+        ASSERT_EQ(tools.tool, Tool::movePoint) << tools.status;
+        name = tools.point;
+        t.frame(tools, rect, xb, yb, true);
+        t.frame(tools, rect, (xb + xc) / 2, (yb + yc) / 2, true);
+        t.frame(tools, rect, xc, yc, true);
+        t.frame(tools, rect, xc, yc, false);  // let go: the lamp goes there, on the worker
+        EXPECT_EQ(t.background,
+                  (std::vector<std::string>{"adding a point lamp", "moving the point lamp"}));
+        byMouse = emitterValues(session, name);
+    }
+    {
+        Session session(r, EditFile{});
+        const auto [ua, va] = pixel(xa, ya);
+        const Pick a = session.pick(ua, va);
+        ASSERT_TRUE(a.hit);
+        EXPECT_EQ(session.addPointLampAt(a), name);
+        const auto [uc, vc] = pixel(xc, yc);
+        const Pick c = session.pick(uc, vc);
+        ASSERT_TRUE(c.hit);
+        session.movePointLampTo(name, c);
+        direct = emitterValues(session, name);
+    }
+    EXPECT_EQ(byMouse, direct);
+}
+
+TEST(MouseTools, ABoxGrabbedAndDraggedIsWhereTheSameDragPutsIt) {
+    const std::unique_ptr<Relighting> r = preparePerPixelRoom();
+    const PhotoRect rect = twiceTheSize(r->prepared);
+    const EditFile edit = loadEdit(kRoom + "/edits/virtual_box.json", r->scene);
+    // A window pixel on the box: the first on a scan of the photo at every 4th pixel.
+    double x0 = -1, y0 = -1;
+    {
+        Session probe(*r, edit);
+        for (double y = rect.y + 1; y < rect.y + rect.h && x0 < 0; y += 4)
+            for (double x = rect.x + 1; x < rect.x + rect.w && x0 < 0; x += 4) {
+                double u = 0, v = 0;
+                rect.toPixel(x, y, r->prepared.photo.width, r->prepared.photo.height, u, v);
+                if (probe.pick(u, v).object == 0) x0 = x, y0 = y;
+            }
+    }
+    ASSERT_GE(x0, 0) << "the box is not in the photo";
+    const double path[][2] = {{x0, y0}, {x0 + 6, y0 + 2}, {x0 + 14, y0 + 3}};
+    const auto pixel = [&](double x, double y) {
+        double u = 0, v = 0;
+        rect.toPixel(x, y, r->prepared.photo.width, r->prepared.photo.height, u, v);
+        return std::pair{u, v};
+    };
+    std::vector<Rgb> byMouse, direct;
+    {
+        Session session(*r, edit);
+        TestHost t;
+        MouseTools tools(session, t.host());
+        t.frame(tools, rect, x0, y0, false);
+        for (const auto& p : path) t.frame(tools, rect, p[0], p[1], true);
+        EXPECT_EQ(session.dragging(), 0);
+        t.frame(tools, rect, path[2][0], path[2][1], false);  // let go, on the worker
+        EXPECT_EQ(t.background, std::vector<std::string>{"letting the object go"});
+        EXPECT_LT(session.dragging(), 0);
+        byMouse = session.vertexRatios();
+    }
+    {
+        Session session(*r, edit);
+        const auto [u0, v0] = pixel(x0, y0);
+        session.beginDrag(0, session.pick(u0, v0));
+        for (int k = 1; k < 3; ++k) {
+            const auto [u, v] = pixel(path[k][0], path[k][1]);
+            session.dragTo(u, v);
+        }
+        session.endDrag();
+        direct = session.vertexRatios();
+    }
+    EXPECT_EQ(byMouse, direct);
+    Session unmoved(*r, edit);
+    EXPECT_NE(byMouse, unmoved.vertexRatios());  // the box did move
 }
 
 }  // namespace
