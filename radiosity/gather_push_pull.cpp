@@ -94,9 +94,7 @@ Rgb HierarchicalSolver::fromClusterAncestors(int element) const {
             if (s < 0) continue;
             const DirectionalIrradiance& d = h_.Hv(h_.nodes[a]);
             if (d.isZero()) continue;
-            const auto& f = layout_.frame[s];
-            H += d.onto(
-                {glm::dot(f[0], e.normal), glm::dot(f[1], e.normal), glm::dot(f[2], e.normal)});
+            H += d.onto(toFrame(layout_.frame[s], e.normal));
         }
         return H;
     }
