@@ -362,7 +362,7 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
         estimateLeafReflectance(*r.solver, *r.mesh, *r.texture, H, o.leafReflectanceSamples);
     say(o, "reflectance of " + std::to_string(set) + " leaf elements from their texture");
     r.solver->gatherPushPull();
-    r.responses = std::make_unique<radiosity::LightResponses>(*r.solver, r.responses.get());
+    r.responses = std::make_unique<radiosity::LightResponses>(*r.solver, std::move(r.responses));
     P.lighting = regatherVertexLighting(*r.solver, *r.mesh, *r.responses, r.direct);
     P.times.reflectance += since(t0);
     char msg[96];
