@@ -123,7 +123,7 @@ Vec3 pointOnPolygon(const Polygon& p, double u, double v) {
     return pointOnCorners(p.v, p.vertexCount, u, v);
 }
 
-Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) : polygons_(scene.polygons) {
+Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) {
     const int n = static_cast<int>(scene.polygons.size());
     polygonOrder.resize(n);
     std::iota(polygonOrder.begin(), polygonOrder.end(), 0);
@@ -131,12 +131,13 @@ Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) : polygons_(
     polygonPatch.assign(n, -1);
     nodes.reserve(4 * n + 16);
     nodes.push_back(newCluster(-1, 0));
-    buildOverPatches(kRoot, scene.polygons, 0, std::max(1, maxPolygonsPerCluster));
+    const BuildInput in(scene.polygons, 0);
+    buildOverPatches(kRoot, in, std::max(1, maxPolygonsPerCluster));
 
     areaPrefix.assign(n + 1, 0.0);
     for (int i = 0; i < n; ++i)
         areaPrefix[i + 1] = areaPrefix[i] + scene.polygons[polygonOrder[i]].area;
-    orderSampleCorners(0);
+    orderSampleCorners(0, in);
     for (int i = 0; i < n; ++i) {
         Node& e = nodes[polygonRoot[i]];
         e.E = scene.emittance(i);
@@ -145,10 +146,27 @@ Hierarchy::Hierarchy(const Scene& scene, int maxPolygonsPerCluster) : polygons_(
     pullAverages(kRoot);
 }
 
-void Hierarchy::buildOverPatches(int node, std::span<const Polygon> polygons, int base,
-                                 int maxPerCluster) {
+Hierarchy::BuildInput::BuildInput(std::span<const Polygon> input, int first)
+    : polygons(input), centroids(input.size()), base(first) {
+    for (size_t i = 0; i < polygons.size(); ++i) centroids[i] = polygons[i].centroid();
+}
+
+namespace {
+
+/// The clusters buildCluster() makes over `count` polygons, the first included: halved
+/// until at most `maxPerCluster` are left.
+size_t clustersOver(int count, int maxPerCluster) {
+    if (count <= maxPerCluster) return 1;
+    return 1 + clustersOver(count / 2, maxPerCluster) +
+           clustersOver(count - count / 2, maxPerCluster);
+}
+
+}  // namespace
+
+void Hierarchy::buildOverPatches(int node, const BuildInput& in, int maxPerCluster) {
     // The face clusters (face_clusters.h) are the units of the spatial split above them: a
     // patch is never cut by it, so every cluster below a patch's node is nearly planar.
+    const std::span<const Polygon> polygons = in.polygons;
     const FaceClusterForest forest = buildFaceClusters(polygons);
     PatchSet set;
     set.centroid.reserve(forest.roots.size());
@@ -164,22 +182,29 @@ void Hierarchy::buildOverPatches(int node, std::span<const Polygon> polygons, in
             area += p.area;
         }
         set.start.push_back(static_cast<int>(set.polygons.size()));
-        for (int m : members) set.polygons.push_back(base + m);
+        for (int m : members) set.polygons.push_back(in.base + m);
         set.centroid.push_back(area > 0 ? c / area
                                         : polygons[static_cast<size_t>(members[0])].centroid());
     }
     set.start.push_back(static_cast<int>(set.polygons.size()));
     set.order.resize(set.centroid.size());
     std::iota(set.order.begin(), set.order.end(), 0);
-    std::vector<Vec3> centroids(polygons.size());  // by polygon index less `base`
-    for (size_t i = 0; i < polygons.size(); ++i) centroids[i] = polygons[i].centroid();
-    set.base = base;
-    buildPatchLevel(node, set, 0, static_cast<int>(set.order.size()), base, maxPerCluster,
-                    centroids);
+    // The clusters the build makes, at most: the patch level's inner nodes (fewer than the
+    // patches) and, below them, what each patch would make on its own (patches grouped in
+    // one cluster make fewer). Reserved before the build, so that the fields (a third of a
+    // GB on a 1.6 M-face model) are not copied at each doubling nor left with its slack. An
+    // object attached later grows them as push_back would, by doubling: the next ones then
+    // find room.
+    size_t bound = set.order.size();
+    for (size_t k = 0; k < set.order.size(); ++k)
+        bound += clustersOver(set.size(static_cast<int>(k)), maxPerCluster);
+    if (const size_t need = clusterFields.size() + bound; need > clusterFields.capacity())
+        clusterFields.reserve(std::max(need, 2 * clusterFields.size()));
+    buildPatchLevel(node, set, 0, static_cast<int>(set.order.size()), in.base, maxPerCluster, in);
 }
 
 void Hierarchy::buildPatchLevel(int node, PatchSet& set, int pb, int pe, int begin,
-                                int maxPerCluster, const std::vector<Vec3>& centroids) {
+                                int maxPerCluster, const BuildInput& in) {
     int count = 0;
     for (int i = pb; i < pe; ++i) count += set.size(set.order[i]);
     if (pe - pb == 1 || count <= maxPerCluster) {
@@ -191,7 +216,7 @@ void Hierarchy::buildPatchLevel(int node, PatchSet& set, int pb, int pe, int beg
                 polygonOrder[at++] = set.polygons[k];
         if (pe - pb == 1 && count > 1)
             for (int i = begin; i < at; ++i) polygonPatch[polygonOrder[i]] = node;
-        buildCluster(node, begin, begin + count, maxPerCluster, centroids, set.base);
+        buildCluster(node, begin, begin + count, maxPerCluster, in);
         return;
     }
     // Median split of the patches' centroids along the longest axis of their bounds.
@@ -210,10 +235,10 @@ void Hierarchy::buildPatchLevel(int node, PatchSet& set, int pb, int pe, int beg
     nodes[node].polyBegin = begin;
     nodes[node].polyEnd = begin + count;
     const int first = addClusterChildren(node);
-    buildPatchLevel(first, set, pb, mid, begin, maxPerCluster, centroids);
-    buildPatchLevel(first + 1, set, mid, pe, begin + left, maxPerCluster, centroids);
+    buildPatchLevel(first, set, pb, mid, begin, maxPerCluster, in);
+    buildPatchLevel(first + 1, set, mid, pe, begin + left, maxPerCluster, in);
     aggregateChildren(nodes, clusterFields, node);
-    fitNormalCone(node);
+    fitNormalCone(node, [&](int i) -> const Vec3& { return in[polygonOrder[i]].normal; });
 }
 
 int Hierarchy::addClusterChildren(int node) {
@@ -235,7 +260,7 @@ Node Hierarchy::newCluster(int parent, int level) {
 }
 
 void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
-                             const std::vector<Vec3>& centroids, int base) {
+                             const BuildInput& in) {
     nodes[node].polyBegin = begin;
     nodes[node].polyEnd = end;
     const int count = end - begin;
@@ -248,7 +273,7 @@ void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
         for (int i = begin; i < end; ++i) {
             const int p = polygonOrder[i];
             Node e;
-            initElement(e, polygons_[p], p);
+            initElement(e, in[p], p);
             e.parent = node;
             e.level = level;
             polygonRoot[p] = static_cast<int>(nodes.size());
@@ -257,7 +282,7 @@ void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
     } else {
         // Median split of the centroids along the longest axis of their bounds.
         Bounds3 cb;
-        const auto at = [&](int p) -> const Vec3& { return centroids[p - base]; };
+        const auto at = [&](int p) -> const Vec3& { return in.centroids[p - in.base]; };
         for (int i = begin; i < end; ++i) cb.extend(at(polygonOrder[i]));
         const int axis = cb.longestAxis();
         const int mid = begin + count / 2;
@@ -267,14 +292,15 @@ void Hierarchy::buildCluster(int node, int begin, int end, int maxPerCluster,
                              return a < b;  // deterministic order for ties
                          });
         const int first = addClusterChildren(node);
-        buildCluster(first, begin, mid, maxPerCluster, centroids, base);
-        buildCluster(first + 1, mid, end, maxPerCluster, centroids, base);
+        buildCluster(first, begin, mid, maxPerCluster, in);
+        buildCluster(first + 1, mid, end, maxPerCluster, in);
     }
     aggregateChildren(nodes, clusterFields, node);
-    fitNormalCone(node);
+    fitNormalCone(node, [&](int i) -> const Vec3& { return in[polygonOrder[i]].normal; });
 }
 
-void Hierarchy::fitNormalCone(int cluster) {
+template <class NormalAt>
+void Hierarchy::fitNormalCone(int cluster, const NormalAt& normalAt) {
     // About the mean normal, as wide as its farthest polygon normal (pi when the normals
     // cancel out, as in a closed box's cluster).
     const Node& c = nodes[cluster];
@@ -283,7 +309,7 @@ void Hierarchy::fitNormalCone(int cluster) {
     f.coneAxis = va > 0 ? f.vectorArea / va : Vec3{0, 0, 1};
     double minCos = va > 0 ? 1.0 : -1.0;
     for (int i = c.polyBegin; i < c.polyEnd && minCos > -1; ++i)
-        minCos = std::min(minCos, glm::dot(f.coneAxis, polygons_[polygonOrder[i]].normal));
+        minCos = std::min(minCos, glm::dot(f.coneAxis, normalAt(i)));
     f.coneAngle = std::acos(std::clamp(minCos, -1.0, 1.0));
 }
 
@@ -353,13 +379,14 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
                             std::span<const Rgb> emittance, int maxPolygonsPerCluster,
                             int* oldRoot) {
     if (polygons.empty()) throw std::invalid_argument("attachObject: no polygon");
-    if (firstPolygon != static_cast<int>(polygons_.size()) || emittance.size() != polygons.size())
+    if (firstPolygon != static_cast<int>(polygonOrder.size()) ||
+        emittance.size() != polygons.size())
         throw std::invalid_argument("attachObject: polygons must follow the existing ones");
     Attached rec;
     rec.root = nodes[kRoot];
     rec.rootFields = clusterFields[nodes[kRoot].clusterSlot];
     rec.nodes = nodes.size();
-    rec.polygons = polygons_.size();
+    rec.polygons = polygonOrder.size();
     rec.clusters = clusterFields.size();
     const int n0 = static_cast<int>(nodes.size());
     // The old root's copy takes its children; every node below it is one level deeper.
@@ -374,17 +401,16 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
 
     const int begin = static_cast<int>(polygonOrder.size());
     const int total = firstPolygon + static_cast<int>(polygons.size());
-    for (size_t i = 0; i < polygons.size(); ++i) {
-        polygons_.push_back(polygons[i]);
+    for (size_t i = 0; i < polygons.size(); ++i)
         polygonOrder.push_back(firstPolygon + static_cast<int>(i));
-    }
     polygonRoot.resize(total, -1);
     polygonPatch.resize(total, -1);
-    buildOverPatches(n0 + 1, polygons, firstPolygon, std::max(1, maxPolygonsPerCluster));
+    const BuildInput in(polygons, firstPolygon);
+    buildOverPatches(n0 + 1, in, std::max(1, maxPolygonsPerCluster));
     areaPrefix.resize(total + 1);
     for (int i = begin; i < total; ++i)
-        areaPrefix[i + 1] = areaPrefix[i] + polygons_[polygonOrder[i]].area;
-    orderSampleCorners(static_cast<size_t>(begin));
+        areaPrefix[i + 1] = areaPrefix[i] + in[polygonOrder[i]].area;
+    orderSampleCorners(static_cast<size_t>(begin), in);
     for (size_t i = 0; i < polygons.size(); ++i) {
         Node& e = nodes[polygonRoot[firstPolygon + i]];
         e.E = emittance[i];
@@ -398,7 +424,9 @@ int Hierarchy::attachObject(std::span<const Polygon> polygons, int firstPolygon,
     root.polyBegin = 0;
     root.polyEnd = total;
     aggregateChildren(nodes, clusterFields, kRoot);
-    fitNormalCone(kRoot);
+    // The root's cone spans the scene's polygons too, which only ordered_ holds here.
+    fitNormalCone(kRoot,
+                  [&](int i) -> const Vec3& { return ordered_[static_cast<size_t>(i)].normal; });
     root.level = 0;
     // The root's averages, from its two children only (the rest is unchanged).
     const double a0 = nodes[n0].area, a1 = nodes[n0 + 1].area;
@@ -426,7 +454,6 @@ void Hierarchy::detachLastObject() {
     nodes[kRoot].level = 0;  // it was not raised: restore its saved level
     clusterFields.resize(rec.clusters);
     clusterFields[nodes[kRoot].clusterSlot] = rec.rootFields;
-    polygons_.resize(rec.polygons);
     polygonOrder.resize(rec.polygons);
     polygonRoot.resize(rec.polygons);
     polygonPatch.resize(rec.polygons);
@@ -434,10 +461,11 @@ void Hierarchy::detachLastObject() {
     ordered_.resize(rec.polygons);
 }
 
-void Hierarchy::orderSampleCorners(size_t from) {
+void Hierarchy::orderSampleCorners(size_t from, const BuildInput& in) {
     ordered_.resize(from);
+    ordered_.reserve(polygonOrder.size());
     for (size_t i = from; i < polygonOrder.size(); ++i) {
-        const Polygon& p = polygons_[polygonOrder[i]];
+        const Polygon& p = in[polygonOrder[i]];
         ordered_.push_back({p.v, p.normal, p.vertexCount});
     }
 }

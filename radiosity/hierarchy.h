@@ -222,28 +222,37 @@ class Hierarchy {
     struct PatchSet {
         std::vector<int> polygons, start, order;
         std::vector<Vec3> centroid;
-        int base = 0;  ///< the index of the first polygon built over
         int size(int patch) const { return start[patch + 1] - start[patch]; }
     };
-    /// Builds the subtree of `node` over `polygons` (Scene indices base, base + 1, ...,
+    /// The polygons a build reads (Scene indices base, base + 1, ...), for the length of the
+    /// build only: the hierarchy keeps no copy of them (the solver's Scene holds them, and
+    /// after the build the hierarchy reads their corners from ordered_).
+    struct BuildInput {
+        std::span<const Polygon> polygons;
+        std::vector<Vec3> centroids;  ///< by polygon index less `base`
+        int base = 0;
+        BuildInput(std::span<const Polygon> polygons, int base);
+        const Polygon& operator[](int p) const { return polygons[static_cast<size_t>(p - base)]; }
+    };
+    /// Builds the subtree of `node` over in.polygons (Scene indices base, base + 1, ...,
     /// already in polygonOrder from position base): the polygons' face clusters, split by
     /// their centroids (median along the longest axis) down to one patch, or to at most
     /// `maxPerCluster` polygons; each patch then split by its polygons' centroids.
-    void buildOverPatches(int node, std::span<const Polygon> polygons, int base, int maxPerCluster);
+    void buildOverPatches(int node, const BuildInput& in, int maxPerCluster);
     void buildPatchLevel(int node, PatchSet& set, int pb, int pe, int begin, int maxPerCluster,
-                         const std::vector<Vec3>& centroids);
+                         const BuildInput& in);
     /// Appends two empty cluster children to `node`; returns the first one's id.
     int addClusterChildren(int node);
-    /// Median split of polygonOrder[begin, end) by centroid (centroids[p - base] for
-    /// polygon p) down to leaf clusters of at most maxPerCluster root elements.
-    void buildCluster(int node, int begin, int end, int maxPerCluster,
-                      const std::vector<Vec3>& centroids, int base);
-    /// A cluster's normal cone from its polygons' normals (ClusterFields::coneAxis, coneAngle).
-    void fitNormalCone(int cluster);
+    /// Median split of polygonOrder[begin, end) by centroid (in.centroids) down to leaf
+    /// clusters of at most maxPerCluster root elements.
+    void buildCluster(int node, int begin, int end, int maxPerCluster, const BuildInput& in);
+    /// A cluster's normal cone from its polygons' normals (ClusterFields::coneAxis, coneAngle);
+    /// normalAt(i): the normal of the polygon at polygonOrder[i].
+    template <class NormalAt>
+    void fitNormalCone(int cluster, const NormalAt& normalAt);
     void initElement(Node& e, const Polygon& p, int polygonIndex);
     /// A new cluster node (not yet in `nodes`) with its slot in clusterFields.
     Node newCluster(int parent, int level);
-    std::vector<Polygon> polygons_;  // the input polygons, by index
     /// What samplePoint reads of a polygon, in polygonOrder's order: a cluster's polygons
     /// lie together, and a sample reads one 128-byte record (not the polygon's index,
     /// then its whole record elsewhere: two cache misses per point on a large mesh).
@@ -253,7 +262,8 @@ class Hierarchy {
         int vertexCount;
     };
     std::vector<SampleCorners> ordered_;
-    void orderSampleCorners(size_t from);  // ordered_[from, end) from polygonOrder
+    /// ordered_[from, end) from polygonOrder, whose polygons from `from` on are in.polygons.
+    void orderSampleCorners(size_t from, const BuildInput& in);
     struct Attached {
         Node root;                 // the root before the attachment
         ClusterFields rootFields;  // and its cluster fields

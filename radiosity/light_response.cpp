@@ -76,6 +76,8 @@ struct SweepLayout {
 class PerLight {
   public:
     PerLight(size_t nodes, int K) : K_(K), v_(nodes * static_cast<size_t>(K)) {}
+    /// Over `values` (nodes x K of them), taken as they are.
+    PerLight(std::vector<Rgb> values, int K) : K_(K), v_(std::move(values)) {}
     Rgb* operator[](size_t node) { return v_.data() + node * K_; }
     const Rgb* operator[](size_t node) const { return v_.data() + node * K_; }
     void clear() { std::fill(v_.begin(), v_.end(), Rgb{}); }
@@ -259,7 +261,7 @@ class ResponseSweeps {
 
 }  // namespace
 
-LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses* warm)
+LightResponses::LightResponses(HierarchicalSolver& solver, std::unique_ptr<LightResponses> warm)
     : lights_(static_cast<int>(solver.scene().lights.size())) {
     solver.ensureLightLinks();
     const Hierarchy& h = solver.hierarchy();
@@ -270,7 +272,12 @@ LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses*
 
     // E_l: light l's faces at radiance 1, nothing elsewhere (leaves; clusters and inner
     // elements take area means, as the nodes' E).
-    PerLight E(N, lights_), B(N, lights_);
+    PerLight E(N, lights_);
+    // B in the warm start's storage, when it fits, where its responses are added below.
+    const bool warmFits =
+        warm && warm->lights_ == lights_ && warm->R_.size() == N * static_cast<size_t>(lights_);
+    PerLight B = warmFits ? PerLight(std::move(warm->R_), lights_) : PerLight(N, lights_);
+    warm.reset();
     std::vector<Rgb> unit(lights_);
     for (int l = 0; l < lights_; ++l) {
         Light one = scene.lights[l];
@@ -298,13 +305,15 @@ LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses*
     }
     ResponseSweeps sweeps(h, solver.links(), lights_, E, B, X.get());
     sweeps.pullAll(E);
-    B.values() = E.values();
-    if (X) {
-        sweeps.pullAll(*X);
-        for (size_t i = 0; i < B.values().size(); ++i) B.values()[i] += X->values()[i];
+    if (X) sweeps.pullAll(*X);
+    // B = E + X + the warm responses, added in that order.
+    std::vector<Rgb>& b = B.values();
+    for (size_t i = 0; i < b.size(); ++i) {
+        Rgb sum = E.values()[i];
+        if (X) sum += X->values()[i];
+        if (warmFits) sum += b[i];
+        b[i] = sum;
     }
-    if (warm && warm->lights_ == lights_ && warm->R_.size() == B.values().size())
-        for (size_t i = 0; i < B.values().size(); ++i) B.values()[i] += warm->R_[i];
     sweeps.setSent();
 
     // Converged as HierarchicalSolver::gatherPushPull: for each light, the last change of
@@ -346,8 +355,9 @@ LightResponses::LightResponses(HierarchicalSolver& solver, const LightResponses*
             throw SolverError("light responses did not converge after " + std::to_string(sweeps_) +
                               " gather/push-pull sweeps");
     }
-    R_.resize(B.values().size());
-    for (size_t i = 0; i < R_.size(); ++i) R_[i] = B.values()[i] - E.values()[i];
+    // R = B - E in B's storage: one set less at the end, where the sweeps' are still held.
+    for (size_t i = 0; i < b.size(); ++i) b[i] = b[i] - E.values()[i];
+    R_ = std::move(b);
 }
 
 Rgb LightResponses::reflected(int node, std::span<const Rgb> radiance) const {

@@ -15,6 +15,7 @@
 // most of the preparation of a 200 k-triangle room.)
 #pragma once
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -27,8 +28,11 @@ class LightResponses {
     /// Solves for every light's response on `solver`'s links. The solver keeps any light
     /// links this adds; its radiances and solution are unchanged. With `warm` (responses
     /// of the same hierarchy before a small change: new reflectances, scaled light links),
-    /// the sweeps start from them, which saves most of them.
-    explicit LightResponses(HierarchicalSolver& solver, const LightResponses* warm = nullptr);
+    /// the sweeps start from them, which saves most of them. `warm` is taken, and its
+    /// storage becomes the new responses': two sets are never held at once (each is
+    /// lights x nodes values, half a GB on a 1.6 M-face model).
+    explicit LightResponses(HierarchicalSolver& solver,
+                            std::unique_ptr<LightResponses> warm = nullptr);
 
     int lights() const { return lights_; }
     /// R_l(node) for l = 0..lights()-1: reflected radiosity per unit radiance of light l

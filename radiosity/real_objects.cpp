@@ -22,9 +22,7 @@ std::vector<int> HierarchicalSolver::removedObjects() const {
 
 void HierarchicalSolver::removeRealObject(int object, DynamicUpdate* reportOut) {
     if (!started_) throw std::logic_error("removeRealObject: solve() first");
-    // The scene's own polygons: those before the first insertion.
-    const size_t scenePolygons =
-        inserted_.empty() ? scene_.polygons.size() : inserted_.front().polygons;
+    const size_t scenePolygons = this->scenePolygons();
     const int sceneObjects =
         static_cast<int>(inserted_.empty() ? scene_.objects.size() : inserted_.front().objects);
     if (object < 0 || object >= sceneObjects)

@@ -342,6 +342,11 @@ class HierarchicalSolver {
     }
     /// Objects inserted and not removed (real objects taken out count as well).
     int insertedObjects() const { return static_cast<int>(inserted_.size()); }
+    /// The scene's own polygons, those given to the constructor: scene().polygons before
+    /// the first inserted object's.
+    size_t scenePolygons() const {
+        return inserted_.empty() ? scene_.polygons.size() : inserted_.front().polygons;
+    }
 
     /// Real-object removal (Loscos et al. 1999, §4.4 and §5.3: "we delete every link ... of
     /// the removed object"): takes the scene's object `object` (an index of

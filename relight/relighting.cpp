@@ -144,6 +144,17 @@ radiosity::DirectLightOptions directLightOptions(const RelightOptions& o) {
     return dlo;
 }
 
+/// The solver's scene: sf.scene with its polygons moved, not copied (a quarter of a GB on a
+/// 1.6 M-face model), leaving sf.scene.polygons empty (Relighting::scene says why).
+radiosity::Scene takeSolverScene(SceneFile& sf) {
+    radiosity::Scene s;
+    s.polygons = std::move(sf.scene.polygons);
+    sf.scene.polygons = {};  // moved from: empty, said rather than assumed
+    s.objects = sf.scene.objects;
+    s.lights = sf.scene.lights;
+    return s;
+}
+
 /// Step 1: the first photo, the solver's scene, and the item buffer the camera casts on it.
 void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     PreparedImage& P = r.prepared;
@@ -160,7 +171,7 @@ void readPhotoAndCastItems(Relighting& r, const RelightOptions& o) {
     so.transfer.maxRays = o.maxRays;
     so.progress = o.progress;
     auto t0 = Clock::now();
-    r.solver = std::make_unique<radiosity::HierarchicalSolver>(r.scene.scene, so);
+    r.solver = std::make_unique<radiosity::HierarchicalSolver>(takeSolverScene(r.scene), so);
     for (const std::string& w :
          lightReachWarnings(r.scene, r.solver->scene(), r.solver->visibility()))
         say(o, "warning: " + w);
@@ -352,7 +363,7 @@ void lightLeafVertices(Relighting& r, const RelightOptions& o) {
         estimateLeafReflectance(*r.solver, *r.mesh, *r.texture, H, o.leafReflectanceSamples);
     say(o, "reflectance of " + std::to_string(set) + " leaf elements from their texture");
     r.solver->gatherPushPull();
-    r.responses = std::make_unique<radiosity::LightResponses>(*r.solver, r.responses.get());
+    r.responses = std::make_unique<radiosity::LightResponses>(*r.solver, std::move(r.responses));
     P.lighting = regatherVertexLighting(*r.solver, *r.mesh, *r.responses, r.direct);
     P.times.reflectance += since(t0);
     char msg[96];

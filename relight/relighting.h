@@ -177,7 +177,11 @@ int indirectRaySide(const RelightOptions& o, size_t vertices);
 struct Relighting {
     /// The scene as loaded, except that the lights whose radiance is "estimate" (still
     /// flagged in estimateRadiance) have their estimate in nominalRadiance and
-    /// scene.lights: editRadiance(scene, edit) gives their edits.
+    /// scene.lights: editRadiance(scene, edit) gives their edits. Its polygons are not here
+    /// (scene.scene.polygons is empty) but in the solver, which owns them: a second copy
+    /// was a quarter of a GB on a 1.6 M-face model. solver->scene().polygons holds them
+    /// unchanged but for their reflectance, which the photo sets, followed by those of any
+    /// object inserted (solver->scenePolygons() says how many are the scene's).
     SceneFile scene;
     EmittanceReport emittance;      ///< what was estimated and how (empty lights: nothing to do)
     SkyEstimateReport skyEstimate;  ///< the "estimate" sun and sky (any(): fitted)
@@ -241,7 +245,8 @@ Image loadFirstPhoto(const SceneFile& scene);
 /// The same for photo `index` of scene.json's "photos".
 Image loadPhoto(const SceneFile& scene, size_t index);
 
-/// Runs the pipeline above on a loaded scene (loadScene). Throws InputError for bad
+/// Runs the pipeline above on a loaded scene (loadScene); move the scene in where it is not
+/// needed after (it holds the polygons, which go to the solver). Throws InputError for bad
 /// input (photo missing, unreadable, of the wrong size, with NaN/Inf pixels; no photo at
 /// all; a light whose radiance is "estimate" but that is off in the photo, or that cannot
 /// be estimated: relight/pipeline/emittance.h). Estimates and warnings are reported through

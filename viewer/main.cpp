@@ -355,7 +355,7 @@ int run(const Args& a) {
     // Everything that can fail fast does, before the preparation: the scene, the edit, the
     // display and the OpenGL context.
     const auto start = radiosity::Clock::now();  // the preparation's budget counts from here
-    const SceneFile sf = loadScene(a.scene);
+    SceneFile sf = loadScene(a.scene);
     EditFile edit;
     if (!a.edit.empty()) {
         edit = loadEdit(a.edit, sf);
@@ -389,7 +389,8 @@ int run(const Args& a) {
     o.pixelLight = drawsPerPixel(mode);
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };
     std::fprintf(stderr, "relight-viewer: preparing %s\n", a.scene.c_str());
-    const std::unique_ptr<Relighting> prepared = prepareRelighting(sf, o);
+    // Its polygons go to the solver, not copied: prepared->scene is the scene from here on.
+    const std::unique_ptr<Relighting> prepared = prepareRelighting(std::move(sf), o);
     Session session(*prepared, edit);
     for (const std::string& w :
          virtualLightReachWarnings(edit, prepared->solver->scene(), prepared->solver->visibility(),

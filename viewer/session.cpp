@@ -494,7 +494,7 @@ Pick Session::pick(double u, double v) const {
             static_cast<size_t>(hit.polygon) < objectPolygons_[i].second)
             p.object = static_cast<int>(i);
     const auto& scene = r_->scene;
-    if (static_cast<size_t>(hit.polygon) < scene.scene.polygons.size()) {
+    if (static_cast<size_t>(hit.polygon) < r_->solver->scenePolygons()) {
         const int object = polygons[static_cast<size_t>(hit.polygon)].object;
         const std::string& name = scene.scene.objects[static_cast<size_t>(object)];
         const auto settings = scene.objectSettings.find(name);

@@ -132,8 +132,10 @@ struct PreparedState {
 /// `solverState`: when given, the whole prepared state is wanted (debug views), which the
 /// cache does not hold: the scene is prepared whatever the cache, *solverState gets the
 /// state and `image` a copy of its PreparedImage, and the cache is written as when stale.
-PreparedState loadOrPrepare(const SceneFile& scene, const RelightOptions& options,
-                            const CacheArgs& cache, bool writeMustSucceed,
+/// `scene` by value: a caller that has no use for it after moves it in, and its polygons go
+/// to the solver uncopied (prepareRelighting).
+PreparedState loadOrPrepare(SceneFile scene, const RelightOptions& options, const CacheArgs& cache,
+                            bool writeMustSucceed,
                             std::unique_ptr<Relighting>* solverState = nullptr);
 
 }  // namespace relight::cli

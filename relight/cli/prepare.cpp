@@ -52,12 +52,13 @@ RelightOptions PrepareOptionArgs::relightOptions() const {
     return o;
 }
 
-PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const CacheArgs& c,
+PreparedState loadOrPrepare(SceneFile sf, const RelightOptions& o, const CacheArgs& c,
                             bool writeMustSucceed, std::unique_ptr<Relighting>* solverState) {
     PreparedState s;
     const auto t0 = Clock::now();
     auto prepare = [&] {
-        auto r = prepareRelighting(sf, o);
+        // Last use of sf: its polygons go to the solver rather than being copied there.
+        auto r = prepareRelighting(std::move(sf), o);
         if (!solverState) {
             s.image = std::move(r->prepared);
             return;
@@ -107,13 +108,13 @@ PreparedState loadOrPrepare(const SceneFile& sf, const RelightOptions& o, const 
 int runPrepare(const PrepareArgs& a) {
     const RelightOptions o = a.prep.relightOptions();
     std::fprintf(stderr, "relight prepare %s\n", a.scene.c_str());
-    const SceneFile sf = loadScene(a.scene);
+    SceneFile sf = loadScene(a.scene);
     for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     if (const std::string c = contactSplitLine(sf); !c.empty())
         std::fprintf(stderr, "%s\n", c.c_str());
     CacheArgs cache = a.cache;
     cache.use = true;
-    const PreparedState s = loadOrPrepare(sf, o, cache, /*writeMustSucceed=*/true);
+    const PreparedState s = loadOrPrepare(std::move(sf), o, cache, /*writeMustSucceed=*/true);
     const PreparedImage& p = s.image;
     std::printf("leaves %d, links %d, leaf vertices %zu\n", p.leaves, p.links, p.vertexCount());
     std::printf("budget: %.1f of %.1f MiB, links within %llu%s\n", p.solverBytes / 1048576.0,

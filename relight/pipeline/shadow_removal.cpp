@@ -66,7 +66,7 @@ void applyReflectanceFactor(radiosity::HierarchicalSolver& solver, const radiosi
     }
     solver.pullReflectance();
     solver.gatherPushPull();
-    responses = std::make_unique<radiosity::LightResponses>(solver, responses.get());
+    responses = std::make_unique<radiosity::LightResponses>(solver, std::move(responses));
 }
 
 /// Eq. (15) in the gather: each surface leaf's light links scaled by C_link averaged over its
@@ -83,7 +83,7 @@ void applyLinkCorrection(radiosity::HierarchicalSolver& solver, const radiosity:
         if (mean != 1.0) solver.scaleLightLinks(n, mean);
     }
     solver.gatherPushPull();
-    responses = std::make_unique<radiosity::LightResponses>(solver, responses.get());
+    responses = std::make_unique<radiosity::LightResponses>(solver, std::move(responses));
 }
 
 int argmax(const Rgb& c) {

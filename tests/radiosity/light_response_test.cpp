@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "radiosity/final_gather.h"
 #include "radiosity/light_response.h"
@@ -143,10 +144,10 @@ TEST(LightResponses, WarmStartReachesTheSameResponsesInFewerSweeps) {
     // tests), in fewer sweeps.
     HierarchicalSolver solver(twoLamps(true), tightOptions());
     solver.solve();
-    const LightResponses old(solver);
+    auto old = std::make_unique<LightResponses>(solver);
     solver.setReflectance(0, Rgb{0.45, 0.5, 0.55});
     solver.pullReflectance();
-    const LightResponses cold(solver), warm(solver, &old);
+    const LightResponses cold(solver), warm(solver, std::move(old));
     double maxR = 0, maxDiff = 0;
     for (size_t n = 0; n < solver.hierarchy().nodes.size(); ++n)
         for (int l = 0; l < 2; ++l) {

@@ -167,6 +167,24 @@ TEST(Relighting, UneditedLightsReproduceThePhoto) {
     EXPECT_LT(worst, 1e-5);
 }
 
+TEST(Relighting, ThePolygonsAreHeldOnceByTheSolver) {
+    // The scene's polygons go to the solver rather than being copied there: the prepared
+    // scene keeps none, the solver all of them, as loaded but for their reflectance.
+    const SceneFile loaded = loadScene(RELIGHT_DATA_DIR "/room");
+    const Relighting& r = room();
+    EXPECT_TRUE(r.scene.scene.polygons.empty());
+    ASSERT_EQ(r.solver->scenePolygons(), loaded.scene.polygons.size());
+    ASSERT_EQ(r.solver->scene().polygons.size(), loaded.scene.polygons.size());
+    for (size_t p = 0; p < loaded.scene.polygons.size(); ++p) {
+        const radiosity::Polygon &a = loaded.scene.polygons[p], &b = r.solver->scene().polygons[p];
+        EXPECT_EQ(a.v, b.v) << p;
+        EXPECT_EQ(a.object, b.object) << p;
+        EXPECT_EQ(a.light, b.light) << p;
+    }
+    EXPECT_EQ(r.scene.scene.lights.size(), loaded.scene.lights.size());
+    EXPECT_EQ(r.scene.scene.objects, loaded.scene.objects);
+}
+
 TEST(Relighting, AllLightsOffLeavesOnlyDarkness) {
     // Every light at 0: B = 0, so each vertex ratio is delta / (D + delta) and the surfaces
     // go black, up to the guard: at most kRatioFloor x mean D / D of the photo, which over
