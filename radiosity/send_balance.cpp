@@ -310,11 +310,15 @@ void HierarchicalSolver::balanceSends(const std::vector<Rgb>& Gd, size_t firstNo
         // The rows come last, so that the contraction bound holds whatever the columns
         // reached (solver.h, "Balance of what leaves send").
         const std::vector<double>& G = passes.gathered(s.send);
+        const std::vector<double> group =
+            groupRowScales([&](int n) { return G[static_cast<size_t>(n)]; },
+                           [&](int n) { return Gd[static_cast<size_t>(n)].maxComponent(); });
         boundedLeaves_ = 0;
         maxGather_ = 1;
         for (size_t i = 0; i < K; ++i) {
             if (s.moves[i])
-                s.gather[i] = rowScale(s.seen[i], s.seenError[i], G[leaves[i]], s.gd[i]);
+                s.gather[i] = rowScale(s.seen[i], s.seenError[i], G[leaves[i]], s.gd[i],
+                                       group[static_cast<size_t>(leaves[i])]);
             maxGather_ = std::max(maxGather_, G[leaves[i]]);
             if (std::abs(s.gather[i] - 1) > 0.05) ++boundedLeaves_;
         }

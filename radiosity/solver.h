@@ -28,7 +28,10 @@
 // cosine-distributed rays, 256 where they disagree), less Gd, the exact form factors of
 // its links to the lamps. So after each refinement the solver gathers a radiosity of 1
 // from every source that reflects (G) and from every lamp (Gd), and moves each leaf's G
-// into the interval seen - Gd +- 2 standard errors of the rays, never above 1 - Gd, by
+// into the interval seen - Gd +- 2 standard errors of the rays, never above 1 - Gd: first
+// the leaves below each element of a polygon together, into the interval of their area
+// mean, whose error is far smaller (a shortfall that a whole surface shares, each leaf's
+// within its own error, is found there: groupRowScales), then each leaf alone; by
 // scaling what the leaf gathers from reflecting sources (gatherScale, at most
 // kMaxRenormalisation; stats().boundedLeaves counts the leaves moved by more than 5 %,
 // stats().maxGather is the largest G). The form factors of every leaf then sum to at most
@@ -568,8 +571,14 @@ class HierarchicalSolver {
     void balanceSends(const std::vector<Rgb>& Gd, size_t firstNode = 0,
                       const std::vector<int>* also = nullptr);
     /// gatherScale of a leaf that sees `seen` (+- seenError) and whose links' form factors
-    /// from reflecting sources (weighted by what they send) sum to g, and to the lamps gd.
-    static double rowScale(double seen, double seenError, double g, double gd);
+    /// from reflecting sources (weighted by what they send) sum to g, and to the lamps gd;
+    /// `group`: the factor its ancestors' leaves moved it by together (groupRowScales).
+    static double rowScale(double seen, double seenError, double g, double gd, double group = 1);
+    /// Per node, the factor on G that the area means of the leaves below each ancestor
+    /// element ask for, each within 2 standard errors of their `seen` (energy_bound.cpp):
+    /// g(n) a leaf's G, gd(n) its lamps' form factors.
+    std::vector<double> groupRowScales(const std::function<double(int)>& g,
+                                       const std::function<double(int)>& gd) const;
     /// Area-weighted mean of value(leaf element) at every node.
     std::vector<double> meanOverLeaves(const std::function<double(const Node&)>& value) const;
     /// Scales the links from each emitting face so that they deliver its area times the

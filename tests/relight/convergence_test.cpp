@@ -30,3 +30,44 @@ TEST(Convergence, CornellErrorDecreasesWithEpsilon) {
     // And the finest setting is within 10 % of the reference (measured 0.05).
     EXPECT_LT(errors[2], 0.10);
 }
+
+TEST(Convergence, CornellSurfacesHoldTheReferencesLightAtTheDefaultEpsilon) {
+    // Each large surface's mean radiosity (floor, ceiling, walls) against the full-matrix
+    // reference at relight's epsilon. The ceiling is lit by indirect light only, through
+    // coarse links that every leaf of it gathers a few per cent short, each within the 2-3 %
+    // error of its own `seen` measurement: the row bound moved none of them, and the
+    // ceiling was 4.5 % dark (0.955). Moved as a group, by their area mean's far smaller
+    // error (HierarchicalSolver::groupRowScales), it is 0.978 (bench/surface_levels). 3 %:
+    // above the reference's own discretisation (the ceiling's ratio moves by 0.7 % between
+    // 0.004 and 0.002 m^2 elements), below the shortfall.
+    const relight::SceneFile sf = relight::loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    ReferenceOptions ro;
+    ro.maxArea = 0.004;
+    ReferenceSolver ref(sf.scene, ro);
+    ref.solve();
+    SolverOptions o;
+    o.epsilon = 1e-4;
+    HierarchicalSolver hr(sf.scene, o);
+    hr.solve();
+    const size_t P = sf.scene.polygons.size();
+    std::vector<double> mean(P, 0.0), meanRef(P, 0.0);
+    const Hierarchy& h = ref.hierarchy();
+    for (int id : ref.leaves()) {
+        const Node& e = h.nodes[id];
+        if (e.rho.maxComponent() <= 0) continue;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) {
+                const Vec3 x = pointOnElement(e, (i + 0.5) / 4, (j + 0.5) / 4);
+                const Rgb b = hr.radiosityAt(e.polygon, x), r = ref.radiosityAt(e.polygon, x);
+                mean[static_cast<size_t>(e.polygon)] += e.area * (b.r + b.g + b.b);
+                meanRef[static_cast<size_t>(e.polygon)] += e.area * (r.r + r.g + r.b);
+            }
+    }
+    int large = 0;
+    for (size_t p = 0; p < P; ++p) {
+        if (sf.scene.polygons[p].area < 0.1 || !(meanRef[p] > 0)) continue;
+        ++large;
+        EXPECT_NEAR(mean[p] / meanRef[p], 1.0, 0.03) << "polygon " << p;
+    }
+    EXPECT_EQ(large, 6);  // floor, ceiling, back wall, left wall, the right wall in two parts
+}

@@ -1,0 +1,118 @@
+// surface_levels: the hierarchical solution's level on each input polygon against the
+// full-matrix reference (radiosity/reference_solver.h), the scene's own reflectances.
+//
+//   surface_levels <scene_dir> [--ref-area A] [--dark-floor F] [--no-balance] [epsilons...]
+//
+// --ref-area: the reference's largest element (m^2, default 0.002); --dark-floor:
+// SolverOptions::darkFloor (default 1, the plain criterion); --no-balance: without the
+// balance of sends (SolverOptions::balanceSends).
+// For each epsilon (default 1e-4 1e-5), per input polygon that reflects: its centroid,
+// normal, area, and the ratio of the area mean of B (all channels) over it, hierarchical
+// against reference, read at the reference's elements (4 x 4 points each). A ratio below 1
+// is light the hierarchy loses on that surface; the area-weighted total says whether the
+// loss is overall or moves light from one surface to another.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "radiosity/reference_solver.h"
+#include "radiosity/solver.h"
+#include "relight/io/scene_file.h"
+
+using namespace radiosity;
+
+namespace {
+
+double sum3(const Rgb& c) {
+    return c.r + c.g + c.b;
+}
+
+/// Area-weighted sum of B over each polygon's reference elements, for B read by `at`.
+std::vector<double> perPolygon(const ReferenceSolver& ref, size_t polygons,
+                               const std::function<Rgb(int, const Vec3&)>& at) {
+    std::vector<double> sums(polygons, 0.0);
+    const Hierarchy& h = ref.hierarchy();
+    for (int id : ref.leaves()) {
+        const Node& e = h.nodes[id];
+        if (e.rho.maxComponent() <= 0 || e.polygon < 0) continue;
+        Rgb mean;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                mean += at(e.polygon, pointOnElement(e, (i + 0.5) / 4, (j + 0.5) / 4));
+        sums[static_cast<size_t>(e.polygon)] += e.area * sum3(mean) / 16;
+    }
+    return sums;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(
+            stderr,
+            "usage: %s <scene_dir> [--ref-area A] [--dark-floor F] [--no-balance] [epsilons...]\n",
+            argv[0]);
+        return 2;
+    }
+    std::printf("command:");
+    for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
+    std::printf("\n");
+    double refArea = 0.002, darkFloor = 1.0;
+    bool balance = true;
+    std::vector<double> eps;
+    for (int i = 2; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--ref-area") && i + 1 < argc)
+            refArea = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--dark-floor") && i + 1 < argc)
+            darkFloor = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--no-balance"))
+            balance = false;
+        else
+            eps.push_back(std::atof(argv[i]));
+    }
+    if (eps.empty()) eps = {1e-4, 1e-5};
+    try {
+        const auto sf = relight::loadScene(argv[1]);
+        const Scene& scene = sf.scene;
+        ReferenceOptions ro;
+        ro.maxArea = refArea;
+        ReferenceSolver ref(scene, ro);
+        ref.solve();
+        std::printf("reference: %zu elements of at most %g m^2\n", ref.leaves().size(), refArea);
+        const auto refSums = perPolygon(ref, scene.polygons.size(), [&](int p, const Vec3& x) {
+            return ref.radiosityAt(p, x);
+        });
+        for (double e : eps) {
+            SolverOptions o;
+            o.epsilon = e;
+            o.darkFloor = darkFloor;
+            o.balanceSends = balance;
+            HierarchicalSolver hr(scene, o);
+            hr.solve();
+            const auto sums = perPolygon(ref, scene.polygons.size(), [&](int p, const Vec3& x) {
+                return hr.radiosityAt(p, x);
+            });
+            std::printf("\nepsilon %g: %d links\n", e, hr.stats().links);
+            std::printf("%5s %26s %22s %8s %8s\n", "poly", "centroid", "normal", "area",
+                        "hier/ref");
+            double all = 0, allRef = 0;
+            for (size_t p = 0; p < sums.size(); ++p) {
+                if (!(refSums[p] > 0)) continue;
+                const Polygon& q = scene.polygons[p];
+                const Vec3 c = q.centroid(), n = q.normal;
+                std::printf("%5zu (%7.3f %7.3f %7.3f) (%5.2f %5.2f %5.2f) %8.4f %8.4f\n", p, c.x,
+                            c.y, c.z, n.x, n.y, n.z, q.area, sums[p] / refSums[p]);
+                all += sums[p];
+                allRef += refSums[p];
+            }
+            std::printf("all: %.4f\n", all / allRef);
+        }
+    } catch (const std::exception& ex) {
+        std::fprintf(stderr, "surface_levels: %s\n", ex.what());
+        return 1;
+    }
+    return 0;
+}
