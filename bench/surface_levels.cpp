@@ -1,11 +1,14 @@
 // surface_levels: the hierarchical solution's level on each input polygon against the
 // full-matrix reference (radiosity/reference_solver.h), the scene's own reflectances.
 //
-//   surface_levels <scene_dir> [--ref-area A] [--dark-floor F] [--no-balance] [epsilons...]
+//   surface_levels <scene_dir> [--ref-area A] [--dark-floor F] [--no-balance]
+//                  [--read leaf|final|ray] [epsilons...]
 //
 // --ref-area: the reference's largest element (m^2, default 0.002); --dark-floor:
 // SolverOptions::darkFloor (default 1, the plain criterion); --no-balance: without the
-// balance of sends (SolverOptions::balanceSends).
+// balance of sends (SolverOptions::balanceSends); --read: the solution read as its leaves
+// hold it (default), by the final gather through the links at each point, or by a ray
+// gather of the leaves' radiosities with the direct light per point (readAt).
 // For each epsilon (default 1e-4 1e-5), per input polygon that reflects: its centroid,
 // normal, area, and the ratio of the area mean of B (all channels) over it, hierarchical
 // against reference, read at the reference's elements (4 x 4 points each). A ratio below 1
@@ -18,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "radiosity/final_gather.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/solver.h"
 #include "relight/io/scene_file.h"
@@ -47,14 +51,28 @@ std::vector<double> perPolygon(const ReferenceSolver& ref, size_t polygons,
     return sums;
 }
 
+/// B at x as a display reads it: "final", the final gather through the links
+/// (gatheredRadiosity); "ray", the direct light per point and the leaves' radiosities met by
+/// 16 x 16 cosine rays (rayGatherIndirect).
+Rgb readAt(const HierarchicalSolver& hr, const DirectLight& direct, const std::string& read, int p,
+           const Vec3& x, uint64_t seed) {
+    if (read == "final") return gatheredRadiosity(hr, direct, p, x, seed);
+    const Scene& scene = hr.scene();
+    std::vector<double> G(scene.lights.size());
+    direct.geometry(p, x, seed, G.data());
+    Rgb H = rayGatherIndirect(hr, p, x, 16, seed);
+    for (size_t l = 0; l < scene.lights.size(); ++l) H += scene.lights[l].emittance() * G[l];
+    return scene.emittance(p) + scene.polygons[static_cast<size_t>(p)].rho * H;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(
-            stderr,
-            "usage: %s <scene_dir> [--ref-area A] [--dark-floor F] [--no-balance] [epsilons...]\n",
-            argv[0]);
+        std::fprintf(stderr,
+                     "usage: %s <scene_dir> [--ref-area A] [--dark-floor F] [--no-balance] [--read "
+                     "leaf|final|ray] [epsilons...]\n",
+                     argv[0]);
         return 2;
     }
     std::printf("command:");
@@ -62,6 +80,7 @@ int main(int argc, char** argv) {
     std::printf("\n");
     double refArea = 0.002, darkFloor = 1.0;
     bool balance = true;
+    std::string read = "leaf";
     std::vector<double> eps;
     for (int i = 2; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--ref-area") && i + 1 < argc)
@@ -70,10 +89,17 @@ int main(int argc, char** argv) {
             darkFloor = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--no-balance"))
             balance = false;
+        else if (!std::strcmp(argv[i], "--read") && i + 1 < argc)
+            read = argv[++i];
         else
             eps.push_back(std::atof(argv[i]));
     }
     if (eps.empty()) eps = {1e-4, 1e-5};
+    if (read != "leaf" && read != "final" && read != "ray") {
+        std::fprintf(stderr, "surface_levels: --read %s: expected leaf, final or ray\n",
+                     read.c_str());
+        return 2;
+    }
     try {
         const auto sf = relight::loadScene(argv[1]);
         const Scene& scene = sf.scene;
@@ -92,8 +118,11 @@ int main(int argc, char** argv) {
             o.balanceSends = balance;
             HierarchicalSolver hr(scene, o);
             hr.solve();
+            const DirectLight direct(hr);
+            uint64_t seed = 0;
             const auto sums = perPolygon(ref, scene.polygons.size(), [&](int p, const Vec3& x) {
-                return hr.radiosityAt(p, x);
+                return read == "leaf" ? hr.radiosityAt(p, x)
+                                      : readAt(hr, direct, read, p, x, ++seed);
             });
             std::printf("\nepsilon %g: %d links\n", e, hr.stats().links);
             std::printf("%5s %26s %22s %8s %8s\n", "poly", "centroid", "normal", "area",
