@@ -14,6 +14,7 @@
 // against reference, read at the reference's elements (4 x 4 points each). A ratio below 1
 // is light the hierarchy loses on that surface; the area-weighted total says whether the
 // loss is overall or moves light from one surface to another.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -42,11 +43,7 @@ std::vector<double> perPolygon(const ReferenceSolver& ref, size_t polygons,
     for (int id : ref.leaves()) {
         const Node& e = h.nodes[id];
         if (e.rho.maxComponent() <= 0 || e.polygon < 0) continue;
-        Rgb mean;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j)
-                mean += at(e.polygon, pointOnElement(e, (i + 0.5) / 4, (j + 0.5) / 4));
-        sums[static_cast<size_t>(e.polygon)] += e.area * sum3(mean) / 16;
+        sums[static_cast<size_t>(e.polygon)] += e.area * sum3(elementMean(e, at));
     }
     return sums;
 }
@@ -58,11 +55,20 @@ Rgb readAt(const HierarchicalSolver& hr, const DirectLight& direct, const std::s
            const Vec3& x, uint64_t seed) {
     if (read == "final") return gatheredRadiosity(hr, direct, p, x, seed);
     const Scene& scene = hr.scene();
-    std::vector<double> G(scene.lights.size());
-    direct.geometry(p, x, seed, G.data());
-    Rgb H = rayGatherIndirect(hr, p, x, 16, seed);
-    for (size_t l = 0; l < scene.lights.size(); ++l) H += scene.lights[l].emittance() * G[l];
+    const Rgb H = direct.irradiance(p, x, seed) + rayGatherIndirect(hr, p, x, 16, seed);
     return scene.emittance(p) + scene.polygons[static_cast<size_t>(p)].rho * H;
+}
+
+/// argv[i] as a positive finite number, or exits with a message naming `what`.
+double positive(const char* arg, const char* what) {
+    char* end = nullptr;
+    const double v = arg ? std::strtod(arg, &end) : 0.0;
+    if (!arg || end == arg || *end != '\0' || !(v > 0) || !std::isfinite(v)) {
+        std::fprintf(stderr, "surface_levels: %s: expected a positive number, got '%s'\n", what,
+                     arg ? arg : "");
+        std::exit(2);
+    }
+    return v;
 }
 
 }  // namespace
@@ -83,16 +89,17 @@ int main(int argc, char** argv) {
     std::string read = "leaf";
     std::vector<double> eps;
     for (int i = 2; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--ref-area") && i + 1 < argc)
-            refArea = std::atof(argv[++i]);
-        else if (!std::strcmp(argv[i], "--dark-floor") && i + 1 < argc)
-            darkFloor = std::atof(argv[++i]);
+        const char* next = i + 1 < argc ? argv[i + 1] : nullptr;
+        if (!std::strcmp(argv[i], "--ref-area"))
+            refArea = positive(next, "--ref-area"), ++i;
+        else if (!std::strcmp(argv[i], "--dark-floor"))
+            darkFloor = positive(next, "--dark-floor"), ++i;
         else if (!std::strcmp(argv[i], "--no-balance"))
             balance = false;
-        else if (!std::strcmp(argv[i], "--read") && i + 1 < argc)
+        else if (!std::strcmp(argv[i], "--read") && next)
             read = argv[++i];
         else
-            eps.push_back(std::atof(argv[i]));
+            eps.push_back(positive(argv[i], "epsilon"));
     }
     if (eps.empty()) eps = {1e-4, 1e-5};
     if (read != "leaf" && read != "final" && read != "ray") {

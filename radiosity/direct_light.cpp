@@ -73,6 +73,21 @@ size_t DirectLight::emitterGeometry(size_t l, int polygon, const Vec3& x, uint64
     return std::max<size_t>(n, 1);
 }
 
+Rgb DirectLight::irradiance(int polygon, const Vec3& x, uint64_t seed) const {
+    const Scene& scene = solver_.scene();
+    double G[64];  // on the stack for the usual few lights
+    std::vector<double> Gheap;
+    double* g = G;
+    if (scene.lights.size() > 64) {
+        Gheap.resize(scene.lights.size());
+        g = Gheap.data();
+    }
+    geometry(polygon, x, seed, g);
+    Rgb H;
+    for (size_t l = 0; l < scene.lights.size(); ++l) H += scene.lights[l].emittance() * g[l];
+    return H;
+}
+
 void DirectLight::geometry(int polygon, const Vec3& x, uint64_t seed, double* G, double* unoccluded,
                            int firstLight) const {
     const Scene& scene = solver_.scene();

@@ -56,6 +56,9 @@ class DirectLight {
     void geometry(int polygon, const Vec3& x, uint64_t seed, double* G,
                   double* unoccluded = nullptr, int firstLight = 0) const;
 
+    /// The direct irradiance at x, sum_l E_l G_l(x) over every light (radiosity units).
+    Rgb irradiance(int polygon, const Vec3& x, uint64_t seed) const;
+
     int lightCount() const { return static_cast<int>(solver_.scene().lights.size()); }
     uint64_t raysCast() const { return rays_; }
 

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <span>
 #include <tuple>
 #include <utility>
 
 #include "radiosity/detail/hemisphere.h"
 #include "radiosity/detail/rng.h"
+#include "radiosity/detail/seen_interval.h"
 #include "radiosity/parallel.h"
 #include "radiosity/solver.h"
 #include "radiosity/tree_walks.h"
@@ -73,11 +75,9 @@ double HierarchicalSolver::rowScale(double seen, double seenError, double g, dou
     // sources fill: what the leaf sees, less the lamps it sees. `group` is the correction
     // its ancestors' surfaces found (groupRowScales), applied first.
     if (!(seen >= 0)) return 1.0;  // not measured (a time budget cut it): no bound
-    const double target = seen - gd;
-    const double lo = std::max(0.0, target - 2 * seenError);
-    const double hi = std::max(lo, std::min(1.0 - gd, target + 2 * seenError));
+    const SeenInterval allowed(seen - gd, seenError, 1.0 - gd);
     const double gc = g * group;
-    return gc > 0 ? std::min(std::clamp(gc, lo, hi) / g, kMaxRenormalisation) : 1.0;
+    return gc > 0 ? std::min(allowed.clamp(gc) / g, kMaxRenormalisation) : 1.0;
 }
 
 namespace {
@@ -86,42 +86,55 @@ namespace {
 /// [0, 1 - Gd]) and the interval its own rays allow, and its measurement's variance times
 /// the area squared.
 struct RowLeaf {
-    double A, g, target, lo, hi, var;
+    double A, g, target;
+    SeenInterval allowed;
+    double var;
 };
 
-/// The measured leaves below node n, with their G (g) and the interval their rays allow
-/// (seen - gd +- 2 standard errors, as rowScale), appended to `out`.
-void collectRowLeaves(const std::vector<Node>& nodes, int n, const std::function<double(int)>& g,
-                      const std::function<double(int)>& gd, std::vector<RowLeaf>& out) {
+/// An element of a polygon's tree in pre-order: its node, the entry of its parent (-1 at
+/// the polygon's root) and the range of its measured leaves in the polygon's RowLeaf list.
+struct RowElement {
+    int node, parent;
+    size_t begin, end;
+};
+
+/// The polygon tree below node n in one depth-first pass: the measured leaves, with their G
+/// (g) and the interval their rays allow (seen - gd +- 2 standard errors, as rowScale),
+/// appended to `leaves`, and every element with the range of its leaves to `elements`.
+void collectRowLeaves(const std::vector<Node>& nodes, int n, int parent,
+                      const std::function<double(int)>& g, const std::function<double(int)>& gd,
+                      std::vector<RowLeaf>& leaves, std::vector<RowElement>& elements) {
     const Node& e = nodes[n];
-    if (!e.isLeaf()) {
-        const size_t first = out.size();
-        const Node& c0 = nodes[e.firstChild];
-        bool shared = true;  // every child a leaf holding the same measurement
-        for (int k = 0; k < e.childCount; ++k) {
-            const Node& c = nodes[e.firstChild + k];
-            shared = shared && c.isLeaf() && c.seen == c0.seen && c.seenError == c0.seenError;
-            collectRowLeaves(nodes, e.firstChild + k, g, gd, out);
-        }
-        // Children that took their parent's `seen` (a leaf split for a new shadow,
-        // dynamic_objects.cpp) share one measurement: its error counts once, for their
-        // whole area, not as independent ones.
-        if (shared && out.size() > first + 1) {
-            double A = 0;
-            for (size_t i = first; i < out.size(); ++i) {
-                A += out[i].A;
-                out[i].var = 0;
-            }
-            out[first].var = A * A * c0.seenError * c0.seenError;
-        }
+    const size_t first = leaves.size(), entry = elements.size();
+    elements.push_back({n, parent, first, first});
+    if (e.isLeaf()) {
+        const double gn = g(n), target = e.seen - gd(n);
+        if (!(e.seen >= 0) || !(gn > 0)) return;
+        const SeenInterval allowed(target, e.seenError, 1.0 - gd(n));
+        leaves.push_back({e.area, gn, allowed.clamp(target), allowed,
+                          e.area * e.area * e.seenError * e.seenError});
+        elements[entry].end = leaves.size();
         return;
     }
-    const double gn = g(n), target = e.seen - gd(n);
-    if (!(e.seen >= 0) || !(gn > 0)) return;
-    const double lo = std::max(0.0, target - 2 * e.seenError);
-    const double hi = std::max(lo, std::min(1.0 - gd(n), target + 2 * e.seenError));
-    out.push_back({e.area, gn, std::clamp(target, lo, hi), lo, hi,
-                   e.area * e.area * e.seenError * e.seenError});
+    const Node& c0 = nodes[e.firstChild];
+    bool shared = true;  // every child a leaf holding the same measurement
+    for (int k = 0; k < e.childCount; ++k) {
+        const Node& c = nodes[e.firstChild + k];
+        shared = shared && c.isLeaf() && c.seen == c0.seen && c.seenError == c0.seenError;
+        collectRowLeaves(nodes, e.firstChild + k, static_cast<int>(entry), g, gd, leaves, elements);
+    }
+    elements[entry].end = leaves.size();
+    // Children that took their parent's `seen` (a leaf split for a new shadow,
+    // dynamic_objects.cpp) share one measurement: its error counts once, for their whole
+    // area, not as independent ones.
+    if (shared && leaves.size() > first + 1) {
+        double A = 0;
+        for (size_t i = first; i < leaves.size(); ++i) {
+            A += leaves[i].A;
+            leaves[i].var = 0;
+        }
+        leaves[first].var = A * A * c0.seenError * c0.seenError;
+    }
 }
 
 /// The factor on the G of `leaves`, starting from c (their ancestors'), that brings the
@@ -130,12 +143,12 @@ void collectRowLeaves(const std::vector<Node>& nodes, int n, const std::function
 /// interval is decided by its own rays (a leaf half under a wall gathers twice what it
 /// sees) and is not evidence of what the surface shares; a leaf that the factor brings into
 /// its interval is, so the set and the factor are found together (a few rounds).
-double groupFactor(const std::vector<RowLeaf>& leaves, double c, double maxScale) {
+double groupFactor(std::span<const RowLeaf> leaves, double c, double maxScale) {
     for (int round = 0; round < 4; ++round) {
         double A = 0, sumG = 0, sumTarget = 0, var = 0;
         int count = 0;
         for (const RowLeaf& l : leaves) {
-            if (c * l.g < l.lo || c * l.g > l.hi) continue;
+            if (!l.allowed.holds(c * l.g)) continue;
             A += l.A;
             sumG += l.A * c * l.g;
             sumTarget += l.A * l.target;
@@ -166,20 +179,28 @@ std::vector<double> HierarchicalSolver::groupRowScales(const std::function<doubl
     // each polygon's root element down, an element's leaves are moved together by the factor
     // that brings their area mean into the interval of their targets' mean, each leaf then
     // into its own (rowScale). Returns that factor per node (1 where nothing was moved).
+    // The leaves of each polygon are collected once; each element's group is its range of
+    // them. Which leaves count depends on the factor its ancestors found, so the means are
+    // taken again per element: O(leaves x depth) additions, no allocation per element.
     const auto& nodes = h_.nodes;
     std::vector<double> factor(nodes.size(), 1.0);
-    const std::function<void(int, double)> scaleDown = [&](int n, double c) {
-        const Node& e = nodes[n];
-        factor[static_cast<size_t>(n)] = c;
-        if (e.isLeaf()) return;
-        std::vector<RowLeaf> leaves;
-        collectRowLeaves(nodes, n, g, gd, leaves);
-        c = groupFactor(leaves, c, kMaxRenormalisation);
-        for (int k = 0; k < e.childCount; ++k) scaleDown(e.firstChild + k, c);
-    };
     parallelFor(h_.polygonRoot.size(), 256, [&](size_t p) {
         const int root = h_.polygonRoot[p];
-        if (root >= 0 && !nodes[root].isLeaf()) scaleDown(root, 1.0);
+        if (root < 0 || nodes[root].isLeaf()) return;
+        std::vector<RowLeaf> leaves;
+        std::vector<RowElement> elements;
+        collectRowLeaves(nodes, root, -1, g, gd, leaves, elements);
+        std::vector<double> below(elements.size());     // the factor an element passes down
+        for (size_t i = 0; i < elements.size(); ++i) {  // pre-order: parents first
+            const RowElement& el = elements[i];
+            const double c = el.parent >= 0 ? below[static_cast<size_t>(el.parent)] : 1.0;
+            factor[static_cast<size_t>(el.node)] = c;
+            below[i] = nodes[el.node].isLeaf()
+                           ? c
+                           : groupFactor(std::span<const RowLeaf>(leaves).subspan(
+                                             el.begin, el.end - el.begin),
+                                         c, kMaxRenormalisation);
+        }
     });
     return factor;
 }

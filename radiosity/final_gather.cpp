@@ -243,18 +243,7 @@ Rgb rayGatherField(const HierarchicalSolver& solver, std::span<const Rgb> reflec
 
 Rgb gatheredIrradiance(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,
                        const Vec3& x, uint64_t seed) {
-    const Scene& scene = solver.scene();
-    double G[64];
-    std::vector<double> Gheap;
-    double* g = G;
-    if (scene.lights.size() > 64) {
-        Gheap.resize(scene.lights.size());
-        g = Gheap.data();
-    }
-    direct.geometry(polygon, x, seed, g);
-    Rgb H = finalGatherIndirect(solver, polygon, x, 4, seed);
-    for (size_t l = 0; l < scene.lights.size(); ++l) H += scene.lights[l].emittance() * g[l];
-    return H;
+    return direct.irradiance(polygon, x, seed) + finalGatherIndirect(solver, polygon, x, 4, seed);
 }
 
 Rgb gatheredRadiosity(const HierarchicalSolver& solver, const DirectLight& direct, int polygon,

@@ -98,6 +98,14 @@ Rgb ReferenceSolver::radiosityAt(int polygon, const Vec3& x) const {
     return h_.nodes[h_.locateLeaf(polygon, x)].B;
 }
 
+Rgb elementMean(const Node& e, const std::function<Rgb(int polygon, const Vec3& x)>& B) {
+    Rgb sum;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            sum += B(e.polygon, pointOnElement(e, (i + 0.5) / 4, (j + 0.5) / 4));
+    return sum * (1.0 / 16);
+}
+
 double relativeRmsError(const ReferenceSolver& ref,
                         const std::function<Rgb(int polygon, const Vec3& x)>& B) {
     const Hierarchy& h = ref.hierarchy();
@@ -105,14 +113,7 @@ double relativeRmsError(const ReferenceSolver& ref,
     for (int id : ref.leaves()) {
         const Node& e = h.nodes[id];
         if (e.rho.maxComponent() <= 0) continue;
-        // The mean of B over the element (4 x 4 midpoint rule), not its value at the
-        // centroid: the reference holds element means, and a finer solution read at one
-        // point differs from them wherever B varies inside the element (shadow edges).
-        Rgb mean;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j)
-                mean += B(e.polygon, pointOnElement(e, (i + 0.5) / 4, (j + 0.5) / 4));
-        const Rgb d = mean * (1.0 / 16) - e.B;
+        const Rgb d = elementMean(e, B) - e.B;
         sumSq += e.area * (d.r * d.r + d.g * d.g + d.b * d.b);
         sumRef += e.area * (e.B.r + e.B.g + e.B.b);
         sumArea += e.area;

@@ -60,11 +60,15 @@ class ReferenceSolver {
     double timeFF_ = 0;
 };
 
+/// The mean of a solution `B(polygon, x)` over element e (4 x 4 midpoint rule): the
+/// reference holds element means, and a finer solution read at one point differs from them
+/// wherever B varies inside the element (shadow edges).
+Rgb elementMean(const Node& e, const std::function<Rgb(int polygon, const Vec3& x)>& B);
+
 /// Relative RMS difference of radiosity between a solution `B(polygon, x)` and the
 /// reference, over the reference's reflecting elements (rho > 0), area-weighted, all three
 /// channels:  sqrt(sum A |B - B_ref|^2 / (3 sum A)) / (sum A (B_ref.r + B_ref.g + B_ref.b) /
-/// (3 sum A)). Each reference element is compared with the mean of B over it (4 x 4
-/// points), since the reference holds element means.
+/// (3 sum A)). Each reference element is compared with elementMean(e, B).
 double relativeRmsError(const ReferenceSolver& ref,
                         const std::function<Rgb(int polygon, const Vec3& x)>& B);
 

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <vector>
 
+#include "radiosity/detail/seen_interval.h"
 #include "radiosity/parallel.h"
 #include "radiosity/solver.h"
 #include "radiosity/tree_walks.h"
@@ -208,9 +209,7 @@ class BalancePasses {
         for (size_t i = 0; i < K; ++i) {
             if (!s.moves[i] || !t_.reflecting[leaves[i]] || !(s.seen[i] >= 0)) continue;
             const double c = C_[leaves[i]] * s.send[i];
-            const double lo = std::max(0.0, s.seen[i] - 2 * s.seenError[i]);
-            const double hi = std::max(lo, std::min(1.0, s.seen[i] + 2 * s.seenError[i]));
-            if (c > 0) s.send[i] *= std::clamp(c, lo, hi) / c;
+            if (c > 0) s.send[i] *= SeenInterval(s.seen[i], s.seenError[i], 1.0).clamp(c) / c;
             if (!(s.send[i] > 0)) continue;  // sees nothing: out of the mean (clamped below)
             logSum += t_.area[leaves[i]] * std::log(s.send[i]);
             areaSum += t_.area[leaves[i]];

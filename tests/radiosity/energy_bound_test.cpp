@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "furnace.h"
+#include "radiosity/detail/seen_interval.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/solver.h"
 #include "tests/support/cut_room.h"
@@ -82,6 +83,24 @@ TEST(DirectionalIrradiance, ExactAlongTheFrameAndNeverAboveTheIrradiance) {
     // Any normal: no more than the sum of the perpendicular irradiances (Cauchy-Schwarz).
     for (const Vec3 n : {Vec3{1, 1, 1}, Vec3{-1, 0.5, 0.2}, Vec3{0.3, -0.9, 0.1}})
         EXPECT_LE(d.onto(glm::normalize(n)).r, 3.0 + 1e-12);
+}
+
+TEST(SeenInterval, TwoStandardErrorsWithinZeroAndTheCap) {
+    // The interval of a measured fraction: target +- 2 standard errors, clipped to [0, cap].
+    const SeenInterval mid(0.5, 0.02, 1.0);
+    EXPECT_DOUBLE_EQ(mid.lo, 0.46);
+    EXPECT_DOUBLE_EQ(mid.hi, 0.54);
+    EXPECT_TRUE(mid.holds(0.5) && mid.holds(0.46) && !mid.holds(0.55));
+    EXPECT_DOUBLE_EQ(mid.clamp(0.7), 0.54);
+    // Near 0 the low end is 0, never negative (a leaf that sees nothing gathers nothing).
+    EXPECT_DOUBLE_EQ(SeenInterval(0.01, 0.02, 1.0).lo, 0.0);
+    // A cap below the low end (the lamps alone fill 1 - Gd < target - 2 sigma) leaves one
+    // point, not an empty interval that std::clamp would reject.
+    const SeenInterval capped(0.8, 0.01, 0.5);
+    EXPECT_DOUBLE_EQ(capped.hi, capped.lo);
+    EXPECT_DOUBLE_EQ(capped.clamp(0.1), capped.lo);
+    // No error: the interval is the target alone.
+    EXPECT_DOUBLE_EQ(SeenInterval(0.3, 0.0, 1.0).clamp(0.9), 0.3);
 }
 
 TEST(EnergyBound, CutRoomConvergesAndLinksAreBounded) {
