@@ -14,6 +14,7 @@
 #include "relight/io/json_reader.h"
 #include "relight/pipeline/confidence.h"
 #include "relight/pipeline/lighting_buffer.h"
+#include "relight/pipeline/memory_need.h"
 #include "relight/pipeline/photo_merge.h"
 #include "relight/pipeline/pixel_light.h"
 #include "relight/pipeline/reflectance.h"
@@ -610,6 +611,10 @@ std::unique_ptr<Relighting> prepareRelighting(SceneFile scene, const RelightOpti
     r->scene = std::move(scene);
     r->directOptions = directLightOptions(o);
     checkEstimableLights(r->scene);  // before the long work: an "estimate" light off in the photo
+    // Before the long work too: a mesh the machine cannot hold ends now, with what it needs.
+    const std::string memory =
+        checkPreparationMemory(r->scene.scene, r->scene.dir.string(), o.machineMemory);
+    if (!memory.empty()) say(o, memory);
     // The steps of the header's list.
     readPhotoAndCastItems(*r, o);        // 1
     estimateLightsFromPhoto(*r, o);      // 2

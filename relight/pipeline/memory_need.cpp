@@ -1,0 +1,64 @@
+#include "relight/pipeline/memory_need.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace relight {
+
+namespace {
+
+/// Per face and light: the per-light responses' arrays (relight/prepared.h), measured as the
+/// growth of the x4 hall's peak when they are made (1.2 GB for 1.57 M leaves, 3 lights).
+constexpr double kBytesPerFaceLight = 255;
+/// Per face, the rest: node, links, measurements, the vertex lighting, the loaded mesh
+/// (2.5 kB a face at 3 lights, less the responses).
+constexpr double kBytesPerFace = 2500 - 3 * kBytesPerFaceLight;
+
+double gigabytes(double bytes) {
+    return bytes / 1e9;
+}
+
+}  // namespace
+
+double preparationMemoryNeed(size_t faces, size_t lights) {
+    return static_cast<double>(faces) *
+           (kBytesPerFace + kBytesPerFaceLight * static_cast<double>(lights));
+}
+
+size_t machineMemory() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || pageSize <= 0) return 0;
+    return static_cast<size_t>(pages) * static_cast<size_t>(pageSize);
+}
+
+std::string checkPreparationMemory(const radiosity::Scene& scene, const std::string& what,
+                                   size_t available) {
+    if (available == 0) available = machineMemory();
+    if (available == 0) return {};  // the system does not say: nothing to compare with
+    const double need = preparationMemoryNeed(scene.polygons.size(), scene.lights.size());
+    const double have = static_cast<double>(available);
+    const double perFace =
+        scene.polygons.empty() ? 0.0 : need / static_cast<double>(scene.polygons.size());
+    char msg[640];
+    if (need > kMemoryRefuseShare * have) {
+        std::snprintf(msg, sizeof msg,
+                      "%s: %zu faces and %zu lights: preparing them needs about %.1f GB "
+                      "(%.1f kB a face, measured on real meshes), more than this machine's "
+                      "%.1f GB can give (%.0f %% of it); a mesh of at most %.0f k faces fits "
+                      "(decimate it, or prepare it on a machine with more memory)",
+                      what.c_str(), scene.polygons.size(), scene.lights.size(), gigabytes(need),
+                      perFace / 1e3, gigabytes(have), 100 * kMemoryRefuseShare,
+                      perFace > 0 ? kMemoryWarnShare * have / perFace / 1e3 : 0.0);
+        throw std::runtime_error(msg);
+    }
+    if (!(need > kMemoryWarnShare * have)) return {};
+    std::snprintf(msg, sizeof msg,
+                  "warning: %zu faces: the preparation needs about %.1f GB of this machine's "
+                  "%.1f GB; other programs may run short",
+                  scene.polygons.size(), gigabytes(need), gigabytes(have));
+    return msg;
+}
+
+}  // namespace relight
