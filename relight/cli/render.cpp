@@ -13,6 +13,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "relight/cli/commands.h"
 
@@ -215,11 +216,15 @@ int runRender(const RenderArgs& a) {
     std::fprintf(stderr, "relight render %s\n", a.scene.c_str());
     // The edit is read (and checked against the scene) before the long preparation, so a
     // bad edit fails at once.
-    const SceneFile sf = loadScene(a.scene);
+    SceneFile loaded = loadScene(a.scene);
     EditFile edit;
     if (!a.edit.empty()) {
-        edit = loadEdit(a.edit, sf);
+        edit = loadEdit(a.edit, loaded);
     }
+    // The preparation takes the polygons (it moves them into the solver); render reads the
+    // lights, the camera and the names after it, from a copy without them: one copy of a
+    // large mesh in memory, not two.
+    const SceneFile sf = copyWithoutPolygons(loaded);
     for (const std::string& w : edit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // A folder that cannot be made fails at once too, not after the preparation.
     if (!a.debugViews.empty()) createDebugViewsFolder(a.debugViews);
@@ -228,7 +233,7 @@ int runRender(const RenderArgs& a) {
                               !edit.removeObjects.empty() ||
                               std::any_of(edit.lights.begin(), edit.lights.end(),
                                           [](const auto& l) { return l.second.moves(); });
-    const PreparedState s = loadOrPrepare(sf, o, a.cache, /*writeMustSucceed=*/false,
+    const PreparedState s = loadOrPrepare(std::move(loaded), o, a.cache, /*writeMustSucceed=*/false,
                                           a.debugViews.empty() && !virtualParts ? nullptr : &full);
     RenderTimes t;
     t.prepare = s.seconds;

@@ -354,6 +354,15 @@ SceneFile readScene(const json& root, const fs::path& dir) {
 
 }  // namespace
 
+SceneFile copyWithoutPolygons(SceneFile& sf) {
+    // Set aside, so that the copy never holds them; put back once it is made.
+    std::vector<radiosity::Polygon> polygons = std::move(sf.scene.polygons);
+    sf.scene.polygons = {};
+    SceneFile copy = sf;
+    sf.scene.polygons = std::move(polygons);
+    return copy;
+}
+
 std::string contactSplitLine(const SceneFile& sf) {
     const radiosity::ContactSplitReport& c = sf.contactSplit;
     if (c.polygonsCut == 0 && sf.buriedPolygons == 0) return {};

@@ -166,6 +166,26 @@ TEST_F(LoadScene, RoomCountsAreasAndSettings) {
     EXPECT_EQ(sf.photos[0].lightsOn.size(), 4u);
 }
 
+TEST_F(LoadScene, ACopyWithoutPolygonsKeepsEverythingElseAndLeavesTheSceneWhole) {
+    SceneFile sf = loadScene(fs::path(RELIGHT_DATA_DIR) / "room");
+    const size_t polygons = sf.scene.polygons.size();
+    ASSERT_GT(polygons, 0u);
+    const SceneFile copy = copyWithoutPolygons(sf);
+    EXPECT_TRUE(copy.scene.polygons.empty());
+    EXPECT_EQ(sf.scene.polygons.size(), polygons);  // the original as it was
+    // What render reads after the preparation: the lights, the camera, the names.
+    ASSERT_EQ(copy.scene.lights.size(), sf.scene.lights.size());
+    for (size_t l = 0; l < sf.scene.lights.size(); ++l) {
+        EXPECT_EQ(copy.scene.lights[l].name, sf.scene.lights[l].name);
+        EXPECT_EQ(copy.scene.lights[l].polygons, sf.scene.lights[l].polygons);
+    }
+    EXPECT_EQ(copy.scene.objects, sf.scene.objects);
+    EXPECT_EQ(copy.camera.width, sf.camera.width);
+    EXPECT_EQ(copy.nominalRadiance.size(), sf.nominalRadiance.size());
+    EXPECT_EQ(copy.estimateRadiance, sf.estimateRadiance);
+    EXPECT_EQ(copy.dir, sf.dir);
+}
+
 TEST_F(LoadScene, ParseSceneReadsTheTextAsLoadSceneReadsTheFile) {
     const fs::path roomDir = fs::path(RELIGHT_DATA_DIR) / "room";
     std::ifstream file(roomDir / "scene.json");
