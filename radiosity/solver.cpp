@@ -66,11 +66,17 @@ HierarchicalSolver::HierarchicalSolver(Scene scene, SolverOptions options)
     }
 }
 
-size_t defaultMemoryBudget() {
+size_t physicalMemory() {
     const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || pageSize <= 0) return 0;
+    return static_cast<size_t>(pages) * static_cast<size_t>(pageSize);
+}
+
+size_t defaultMemoryBudget() {
+    const size_t memory = physicalMemory();
     // Unknown (an unusual system): 4 GiB, what the 200 k-triangle room needs.
-    if (pages <= 0 || pageSize <= 0) return size_t{4} << 30;
-    return static_cast<size_t>(0.4 * static_cast<double>(pages) * static_cast<double>(pageSize));
+    if (memory == 0) return size_t{4} << 30;
+    return static_cast<size_t>(0.4 * static_cast<double>(memory));
 }
 
 HierarchicalSolver::~HierarchicalSolver() = default;

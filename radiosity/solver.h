@@ -132,6 +132,8 @@ struct SolverError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// The machine's physical memory in bytes (0 when the system does not say).
+size_t physicalMemory();
 /// The default refinement budget: 40 % of the machine's physical memory (bytes).
 size_t defaultMemoryBudget();
 

@@ -1,9 +1,9 @@
 #include "relight/pipeline/memory_need.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <stdexcept>
+
+#include "radiosity/solver.h"
 
 namespace relight {
 
@@ -27,15 +27,9 @@ double preparationMemoryNeed(size_t faces, size_t lights) {
            (kBytesPerFace + kBytesPerFaceLight * static_cast<double>(lights));
 }
 
-size_t machineMemory() {
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-    if (pages <= 0 || pageSize <= 0) return 0;
-    return static_cast<size_t>(pages) * static_cast<size_t>(pageSize);
-}
-
 std::string checkPreparationMemory(const radiosity::Scene& scene, const std::string& what,
                                    size_t available) {
-    if (available == 0) available = machineMemory();
+    if (available == 0) available = radiosity::physicalMemory();
     if (available == 0) return {};  // the system does not say: nothing to compare with
     const double need = preparationMemoryNeed(scene.polygons.size(), scene.lights.size());
     const double have = static_cast<double>(available);

@@ -21,13 +21,10 @@ namespace relight {
 /// 9) is expected to peak at.
 double preparationMemoryNeed(size_t faces, size_t lights);
 
-/// This machine's physical memory in bytes (0 when the system does not say).
-size_t machineMemory();
-
 /// Throws std::runtime_error, naming `what` (the scene's folder), the faces and the bytes
 /// needed and available, when the preparation's need exceeds kMemoryRefuseShare of
-/// `available` bytes (0: this machine's physical memory). Returns a warning line when it
-/// exceeds kMemoryWarnShare of them, else an empty string.
+/// `available` bytes (0: this machine's physical memory, radiosity::physicalMemory()). Returns a
+/// warning line when it exceeds kMemoryWarnShare of them, else an empty string.
 std::string checkPreparationMemory(const radiosity::Scene& scene, const std::string& what,
                                    size_t available = 0);
 

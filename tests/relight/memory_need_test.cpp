@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "radiosity/solver.h"
 #include "relight/pipeline/memory_need.h"
 #include "relight/relighting.h"
 #include "room_fixture.h"
@@ -23,7 +24,7 @@ TEST(MemoryNeed, GrowsWithTheFacesAndTheLights) {
     // the model is what the refusal below compares, so it must not drift from them.
     EXPECT_NEAR(preparationMemoryNeed(6'287'926, 3) / 15.8e9, 1.0, 0.10);
     EXPECT_NEAR(preparationMemoryNeed(1'571'867, 3) / 3.93e9, 1.0, 0.10);
-    EXPECT_GT(machineMemory(), size_t{1} << 28);  // any machine that runs the suite
+    EXPECT_GT(radiosity::physicalMemory(), size_t{1} << 28);  // any machine that runs the suite
 }
 
 TEST(MemoryNeed, AMeshTooLargeForTheMachineIsRefusedAtOnceNamingItsNeed) {
