@@ -2,6 +2,7 @@
 
 #include "radiosity/detail/rng.h"
 #include "radiosity/light_response.h"
+#include "radiosity/machine_memory.h"
 #include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
 #include "radiosity/tree_walks.h"
@@ -13,8 +14,6 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
-
-#include <unistd.h>
 
 namespace radiosity {
 
@@ -66,14 +65,8 @@ HierarchicalSolver::HierarchicalSolver(Scene scene, SolverOptions options)
     }
 }
 
-size_t physicalMemory() {
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-    if (pages <= 0 || pageSize <= 0) return 0;
-    return static_cast<size_t>(pages) * static_cast<size_t>(pageSize);
-}
-
 size_t defaultMemoryBudget() {
-    const size_t memory = physicalMemory();
+    const size_t memory = usableMemory();
     // Unknown (an unusual system): 4 GiB, what the 200 k-triangle room needs.
     if (memory == 0) return size_t{4} << 30;
     return static_cast<size_t>(0.4 * static_cast<double>(memory));

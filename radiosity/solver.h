@@ -100,7 +100,7 @@
 //   tolerance  relative change of the total radiosity power (sum B A) between two
 //            gather/push-pull sweeps below which the sweeps stop (typ. 1e-4).
 //   maxLinks, maxMemory  the refinement budget (links; bytes of nodes and links); 0 selects
-//            the default: maxMemory 40 % of the machine's physical memory, maxLinks what
+//            the default: maxMemory 40 % of usableMemory(), maxLinks what
 //            fits in it.
 #pragma once
 
@@ -132,9 +132,8 @@ struct SolverError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-/// The machine's physical memory in bytes (0 when the system does not say).
-size_t physicalMemory();
-/// The default refinement budget: 40 % of the machine's physical memory (bytes).
+/// The default refinement budget: 40 % of the memory this process may count on
+/// (usableMemory(), radiosity/machine_memory.h), in bytes.
 size_t defaultMemoryBudget();
 
 struct SolverOptions {

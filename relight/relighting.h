@@ -96,9 +96,11 @@ struct RelightOptions {
     /// 1.6 M-face model) is part of the budget, as it is part of what the user waits for.
     /// Unset (the clock's epoch): prepareRelighting()'s own start.
     radiosity::Clock::time_point budgetStart{};
-    /// Bytes of memory the preparation may count on (0: this machine's physical memory): a
-    /// scene whose expected need is larger is refused before the long work starts
-    /// (relight/pipeline/memory_need.h). Not part of the cache's key: it changes no result.
+    /// Bytes of memory the preparation may count on (0: radiosity::usableMemory(), the
+    /// machine's or its container's): a scene whose expected need is larger is refused before
+    /// the long work starts (relight/pipeline/memory_need.h). A caller that runs several
+    /// preparations side by side gives each its share. Not part of the cache's key: it
+    /// changes no result.
     size_t machineMemory = 0;
     /// `relight solve`'s default: the solve is the first look at a scene and the radiosity
     /// part of a preparation (its refinement and reflectance rounds, 65 % of the above).

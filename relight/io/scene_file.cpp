@@ -355,12 +355,15 @@ SceneFile readScene(const json& root, const fs::path& dir) {
 }  // namespace
 
 SceneFile copyWithoutPolygons(SceneFile& sf) {
-    // Set aside, so that the copy never holds them; put back once it is made.
-    std::vector<radiosity::Polygon> polygons = std::move(sf.scene.polygons);
-    sf.scene.polygons = {};
-    SceneFile copy = sf;
-    sf.scene.polygons = std::move(polygons);
-    return copy;
+    // Set aside, so that the copy never holds them; put back once it is made, or when the
+    // copy throws (out of memory): the caller's scene keeps its polygons either way.
+    struct SetAside {
+        std::vector<radiosity::Polygon>& slot;
+        std::vector<radiosity::Polygon> held = std::move(slot);
+        ~SetAside() { slot = std::move(held); }
+    } aside{sf.scene.polygons};
+    sf.scene.polygons.clear();  // a moved-from vector is valid but unspecified
+    return SceneFile(sf);
 }
 
 std::string contactSplitLine(const SceneFile& sf) {

@@ -3,18 +3,20 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "radiosity/solver.h"
+#include "radiosity/machine_memory.h"
 
 namespace relight {
 
 namespace {
 
+/// The peaks were read as /usr/bin/time's maximum resident size, in KiB: 1024 bytes each.
+constexpr double kKiB = 1024;
 /// Per face and light: the per-light responses' arrays (relight/prepared.h), measured as the
-/// growth of the x4 hall's peak when they are made (1.2 GB for 1.57 M leaves, 3 lights).
-constexpr double kBytesPerFaceLight = 255;
+/// growth of the x4 hall's peak when they are made (1.2e6 KiB for 1.57 M leaves, 3 lights).
+constexpr double kBytesPerFaceLight = 0.255 * kKiB;
 /// Per face, the rest: node, links, measurements, the vertex lighting, the loaded mesh
-/// (2.5 kB a face at 3 lights, less the responses).
-constexpr double kBytesPerFace = 2500 - 3 * kBytesPerFaceLight;
+/// (2.5 KiB a face at 3 lights, less the responses).
+constexpr double kBytesPerFace = 2.5 * kKiB - 3 * kBytesPerFaceLight;
 
 double gigabytes(double bytes) {
     return bytes / 1e9;
@@ -29,7 +31,7 @@ double preparationMemoryNeed(size_t faces, size_t lights) {
 
 std::string checkPreparationMemory(const radiosity::Scene& scene, const std::string& what,
                                    size_t available) {
-    if (available == 0) available = radiosity::physicalMemory();
+    if (available == 0) available = radiosity::usableMemory();
     if (available == 0) return {};  // the system does not say: nothing to compare with
     const double need = preparationMemoryNeed(scene.polygons.size(), scene.lights.size());
     const double have = static_cast<double>(available);
@@ -40,11 +42,12 @@ std::string checkPreparationMemory(const radiosity::Scene& scene, const std::str
         std::snprintf(msg, sizeof msg,
                       "%s: %zu faces and %zu lights: preparing them needs about %.1f GB "
                       "(%.1f kB a face, measured on real meshes), more than this machine's "
-                      "%.1f GB can give (%.0f %% of it); a mesh of at most %.0f k faces fits "
-                      "(decimate it, or prepare it on a machine with more memory)",
+                      "%.1f GB can give (%.0f %% of it); a mesh of at most %.0f k faces fits in "
+                      "%.0f %% of it (decimate it, or prepare it on a machine with more memory)",
                       what.c_str(), scene.polygons.size(), scene.lights.size(), gigabytes(need),
                       perFace / 1e3, gigabytes(have), 100 * kMemoryRefuseShare,
-                      perFace > 0 ? kMemoryWarnShare * have / perFace / 1e3 : 0.0);
+                      perFace > 0 ? kMemoryWarnShare * have / perFace / 1e3 : 0.0,
+                      100 * kMemoryWarnShare);
         throw std::runtime_error(msg);
     }
     if (!(need > kMemoryWarnShare * have)) return {};

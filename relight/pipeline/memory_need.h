@@ -7,7 +7,7 @@
 // the solver's unit is still the input face (issue 30), so every face is a leaf with its
 // node, links, measurements and per-light responses. Per face, measured on the stair hall
 // subdivided x4 (1.57 M faces, 3.93 GB peak) and x16 (6.29 M faces, 15.8 GB), 3 lights:
-// 2.5 kB, of which the per-light responses are about 255 bytes per light.
+// 2.5 KiB, of which the per-light responses are about 0.26 KiB per light.
 #pragma once
 
 #include <cstddef>
@@ -23,8 +23,8 @@ double preparationMemoryNeed(size_t faces, size_t lights);
 
 /// Throws std::runtime_error, naming `what` (the scene's folder), the faces and the bytes
 /// needed and available, when the preparation's need exceeds kMemoryRefuseShare of
-/// `available` bytes (0: this machine's physical memory, radiosity::physicalMemory()). Returns a
-/// warning line when it exceeds kMemoryWarnShare of them, else an empty string.
+/// `available` bytes (0: the memory this process may count on, radiosity::usableMemory()). Returns
+/// a warning line when it exceeds kMemoryWarnShare of them, else an empty string.
 std::string checkPreparationMemory(const radiosity::Scene& scene, const std::string& what,
                                    size_t available = 0);
 
