@@ -201,6 +201,7 @@ size_t HierarchicalSolver::refineAll() {
                 sumA += n.area;
             }
         meanB_ = sumA > 0 ? sumBA / sumA : 0;
+        measureDimmestLeaves();
     }
     std::vector<Link> old = links_.take();
     links_.reserve(old.size() * 2);

@@ -138,9 +138,9 @@ size_t defaultMemoryBudget();
 
 struct SolverOptions {
     double epsilon = kDefaultEpsilon;  ///< radiosity/defaults.h says why relight's is finer
-    /// Relative accuracy where it is dark: a receiver whose radiosity is below the mean of
-    /// the reflecting leaves has its threshold lowered in proportion, down to this fraction
-    /// of epsilon (1: the plain BF criterion). See oracle().
+    /// Relative accuracy where it is dark: a receiver whose dimmest leaf's radiosity is below
+    /// the mean of the reflecting leaves has its threshold lowered in proportion, down to
+    /// this fraction of epsilon (1: the plain BF criterion). See oracle(), receiverScale().
     double darkFloor = 1.0;
     /// Per-light refinement (issue 30, "light round corners"): from the second round on, a
     /// link is weighed by the largest of its source's radiosities from each light alone,
@@ -522,9 +522,12 @@ class HierarchicalSolver {
     /// relight/pipeline/shadow_refinement.h).
     static constexpr double kShadowMinShare = 0.02;
     Verdict oracle(const Link& link) const;
-    /// The factor on the power threshold for links to R: clamp(B_R / meanB_, darkFloor, 1)
-    /// (max channel), 1 before there is a solution.
-    double receiverScale(const Node& R) const;
+    /// The factor on the power threshold for links to node r: clamp(B / meanB_, darkFloor,
+    /// 1), B for an element the radiosity of the dimmest reflecting leaf below it (dimB_; its
+    /// own where smaller), for a cluster its own (max channel); 1 before there is a solution.
+    double receiverScale(int r) const;
+    /// dimB_ from the leaves' radiosities as they stand (refineAll, before the oracle).
+    void measureDimmestLeaves();
     /// The source radiosity the oracle weighs for s: the largest of its lights' scaled
     /// radiosities (lightShareB_, of its nearest ancestor that has one for a node made
     /// since), 0 without them.
@@ -702,6 +705,9 @@ class HierarchicalSolver {
     /// Per node: max over lights l of k_l |L_l R_l(node)| (max channel), k_l = (sum over
     /// lights of their reflected power) / (light l's), at most perLightOracle; empty: off.
     std::vector<float> lightShareB_;
+    /// Per node: the radiosity of the dimmest reflecting leaf below it (max channel; +inf
+    /// where none reflects), as the last refinement round began; empty with darkFloor 1.
+    std::vector<float> dimB_;
     double meanB_ = 0;  ///< area-weighted mean radiosity of the reflecting leaves (max channel)
     size_t maxLinks_ = 0, maxMemory_ = 0;  ///< the budget in force
     bool budgetReached_ = false;

@@ -273,9 +273,10 @@ namespace {
 
 /// Mean radiosity of the L-shaped room's arm B far half (y > 2.5: floor, ceiling and
 /// walls) in the hierarchical solution at `epsilon`, over the full-matrix reference's.
-double lRoomArmBRatio(const ReferenceSolver& ref, double epsilon) {
+double lRoomArmBRatio(const ReferenceSolver& ref, double epsilon, double darkFloor = 1.0) {
     SolverOptions o;
     o.epsilon = epsilon;
+    o.darkFloor = darkFloor;
     HierarchicalSolver solver(lRoom(), o);
     solver.solve();
     double hr = 0, truth = 0, area = 0;
@@ -317,10 +318,25 @@ TEST(Leaks, LShapedRoomConvergesToTheReferenceAsEpsilonFalls) {
     EXPECT_NEAR(r5, 1.0, 0.6);
 }
 
+// At relight's preparation (epsilon 1e-4, darkFloor 0.1, RelightOptions) a receiver's
+// threshold is lowered by its dimmest leaf, not its mean (receiverScale): the elements of the
+// wall that runs from the bright arm round the corner weighed the links into the dark arm as
+// if they were bright, and accepted them coarse. Measured (bench/leak_l_room --dark-floor
+// 0.1 1e-4): 1.649 x by the mean, 1.520 x by the dimmest leaf. Asserted: below 1.6, which
+// the mean fails. The 10 % is the disabled test below.
+TEST(Leaks, LShapedRoomsDarkArmIsWeighedByItsDimmestLeaf) {
+    ReferenceSolver ref(lRoom(), lRoomReference());
+    ref.solve();
+    const double r = lRoomArmBRatio(ref, 1e-4, 0.1);
+    EXPECT_LT(r, 1.6);
+    EXPECT_GT(r, 1.0);  // still too bright: the excess is the balance's and the coarse links'
+}
+
 // Not yet met, so not run: at the default epsilon (1e-3) the hierarchical solution lights
-// arm B 6.2 times as brightly as the reference. Arm B holds 0.3 % of the light, and the BF
-// criterion weighs each link against the lamps' whole power, so arm B is resolved by a few
-// coarse links (bench/RESULTS.md, "light round a corner"). The bound: within 10 %.
+// arm B 6.2 times as brightly as the reference (at relight's preparation, above: 1.52). Arm B holds
+// 0.3 % of the light, and the BF criterion weighs each link against the lamps' whole power, so arm
+// B is resolved by a few coarse links (bench/RESULTS.md, "light round a corner"). The issue's
+// bound: within 10 %.
 TEST(Leaks, DISABLED_LShapedRoomLitInOneArmMatchesTheReference) {
     ReferenceSolver ref(lRoom(), lRoomReference());
     ref.solve();
