@@ -80,8 +80,10 @@ struct PrepareOptionArgs {
     /// Cut the per-pixel display's indirect rays when its share of the time budget is spent.
     bool pixelGatherCut = RelightOptions{}.pixelGatherCut;
 
-    /// The pipeline's options, with progress lines on stderr.
-    RelightOptions relightOptions() const;
+    /// The pipeline's options, with progress lines on stderr. `budgetStart`: the command's
+    /// start, taken before the scene is loaded, from which --time-budget counts
+    /// (RelightOptions::budgetStart).
+    RelightOptions relightOptions(radiosity::Clock::time_point budgetStart) const;
 };
 
 /// `relight render`: the relit photo for an edit.

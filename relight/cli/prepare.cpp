@@ -29,10 +29,9 @@ std::string fitsScene(const PreparedImage& p, const SceneFile& sf) {
 
 }  // namespace
 
-RelightOptions PrepareOptionArgs::relightOptions() const {
+RelightOptions PrepareOptionArgs::relightOptions(Clock::time_point budgetStart) const {
     RelightOptions o;
-    // Made at the command's start, before the scene is loaded: the budget counts from here.
-    o.budgetStart = Clock::now();
+    o.budgetStart = budgetStart;
     o.epsilon = epsilon;
     o.darkFloor = darkFloor;
     o.perLightOracle = perLightOracle;
@@ -106,7 +105,8 @@ PreparedState loadOrPrepare(SceneFile sf, const RelightOptions& o, const CacheAr
 }
 
 int runPrepare(const PrepareArgs& a) {
-    const RelightOptions o = a.prep.relightOptions();
+    // Taken before the scene is loaded: the budget counts from the command's start.
+    const RelightOptions o = a.prep.relightOptions(Clock::now());
     std::fprintf(stderr, "relight prepare %s\n", a.scene.c_str());
     SceneFile sf = loadScene(a.scene);
     for (const auto& w : sf.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());

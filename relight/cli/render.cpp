@@ -210,7 +210,7 @@ nlohmann::json renderReport(const RenderArgs& a, const SceneFile& sf, const Prep
 
 int runRender(const RenderArgs& a) {
     const auto tAll = Clock::now();
-    RelightOptions o = a.prep.relightOptions();
+    RelightOptions o = a.prep.relightOptions(tAll);  // the budget counts from the start
     const DisplayMode mode = parseDisplayMode(a.display);
     if (drawsPerPixel(mode)) o.pixelLight = true;
     std::fprintf(stderr, "relight render %s\n", a.scene.c_str());

@@ -370,12 +370,13 @@ TEST(ViewerSession, ADraggedBoxsQuickFramesSettleToTheEditsImage) {
         // The quick frame was near it (linear values; DynamicRelighting's test bounds the
         // difference against the truth: the indirect light as without the box, one camera
         // sample per pixel where the box may shade it). Bounds: 2 % of the values beyond
-        // 1/255 (seen: 0.4-0.5 %), none beyond 12/255. The worst is on the box's shaded
-        // side near its top (pixel 153, 169): the quick frame's indirect light there, as
-        // without the box, is 0.12; the settled image's 0.08 at every epsilon from 1e-4
-        // (0.078-0.083), and at 1e-3 since the oracle weighs an element by its dimmest leaf:
-        // 0.042-0.043 = 10.7-10.9/255 is the quick frame's own error. At 1e-3 weighed by the
-        // mean the settled image was 0.12 too there, and the worst 7.1/255 elsewhere.
+        // 1/255 (seen: 0.4-0.5 %), none beyond 12/255. The worst is on the box's top face
+        // at the edge of a shadow across it (pixel 153, 169): the quick frame, with 16 rays
+        // at one point of the pixel, has it lit (0.12; the pixel beside it, 157, 169, in the
+        // shadow); the settled image, its direct light interpolated from the box's leaf
+        // corners, 0.08 at every epsilon from 1e-4 (0.078-0.083), and at 1e-3 since the
+        // oracle weighs an element by its dimmest leaf: 10.5-10.9/255 apart. At 1e-3 weighed
+        // by the mean the settled image was 0.12 there too, and the worst 7.1/255 elsewhere.
         size_t beyond = 0;
         double worst = 0;
         for (size_t i = 0; i < quick.rgb.size(); ++i) {
