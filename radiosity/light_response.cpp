@@ -90,8 +90,8 @@ class PerLight {
 
 /// E_l, light l's emittance at radiance 1, at the leaves: a leaf of light l's faces has
 /// unit[l] for light l and nothing for the others. Found from the leaf's polygon rather than
-/// held as nodes x lights values (a sixth of the responses' memory, 0.9 GB for the stair
-/// hall cut into 6.3 M faces).
+/// held as nodes x lights values (a fifth of the responses' arrays: 182 MB of the peak of
+/// the stair hall cut into 1.57 M faces, bench/RESULTS.md).
 class UnitEmittance {
   public:
     UnitEmittance(const Hierarchy& h, const Scene& scene) : h_(h), scene_(scene) {
