@@ -94,25 +94,27 @@ class PerLight {
 /// the stair hall cut into 1.57 M faces, bench/RESULTS.md).
 class UnitEmittance {
   public:
-    UnitEmittance(const Hierarchy& h, const Scene& scene) : h_(h), scene_(scene) {
+    UnitEmittance(const Hierarchy& h, const Scene& scene) : light_(h.nodes.size(), -1) {
         for (const Light& light : scene.lights) {
             Light one = light;
             one.radiance = Rgb::gray(1.0);
             unit_.push_back(one.emittance());
         }
+        // One index a node, read by every sweep's push to the leaves: not the polygon's
+        // record, a cache line a leaf.
+        for (size_t n = 0; n < h.nodes.size(); ++n) {
+            const Node& e = h.nodes[n];
+            if (!e.isCluster() && e.isLeaf()) light_[n] = scene.polygons[e.polygon].light;
+        }
     }
-    /// The light whose face leaf `node` is, or -1.
-    int lightOf(size_t node) const {
-        const int p = h_.nodes[node].polygon;
-        return p < 0 ? -1 : scene_.polygons[static_cast<size_t>(p)].light;
-    }
-    Rgb at(size_t node, int l) const {
-        return lightOf(node) == l ? unit_[static_cast<size_t>(l)] : Rgb{};
-    }
+    /// The light whose face leaf element `node` is, or -1.
+    int lightOf(size_t node) const { return light_[node]; }
+    /// Light l's unit emittance, what a leaf of its faces emits at radiance 1.
+    const Rgb& unit(int l) const { return unit_[static_cast<size_t>(l)]; }
+    Rgb at(size_t node, int l) const { return lightOf(node) == l ? unit(l) : Rgb{}; }
 
   private:
-    const Hierarchy& h_;
-    const Scene& scene_;
+    std::vector<int> light_;
     std::vector<Rgb> unit_;
 };
 
@@ -227,7 +229,7 @@ class ResponseSweeps {
             }
             const int emits = E_.lightOf(static_cast<size_t>(node));
             if (emits >= 0) {
-                B[emits] += E_.at(static_cast<size_t>(node), emits);
+                B[emits] += E_.unit(emits);
                 S[emits] = B[emits] * n.sendScale;
             }
             if (X_) {  // the emitters' direct light reflected (HierarchicalSolver::Node::Hx)
@@ -379,8 +381,8 @@ LightResponses::LightResponses(HierarchicalSolver& solver, std::unique_ptr<Light
     // R = B - E in B's storage, at the leaves; above them, the area means of the leaves' R,
     // as B's and E's are of theirs.
     for (size_t n = 0; n < N; ++n) {
-        const int l = nodes[n].isLeaf() && !nodes[n].isCluster() ? E.lightOf(n) : -1;
-        if (l >= 0) B[n][l] = B[n][l] - E.at(n, l);
+        const int l = E.lightOf(n);
+        if (l >= 0) B[n][l] = B[n][l] - E.unit(l);
     }
     sweeps.pullAll(B);
     R_ = std::move(B.values());

@@ -218,29 +218,24 @@ double HierarchicalSolver::receiverScale(int r) const {
 }
 
 void HierarchicalSolver::measureDimmestLeaves() {
-    // Post-order over an explicit stack: a node's value once all its children have theirs.
+    // Per polygon, its element tree (receiverScale reads elements only; clusters keep +inf).
     const auto& nodes = h_.nodes;
     dimB_.assign(nodes.size(), std::numeric_limits<float>::infinity());
-    std::vector<std::pair<int, bool>> stack{{Hierarchy::kRoot, false}};
-    while (!stack.empty()) {
-        const auto [n, childrenDone] = stack.back();
-        stack.pop_back();
+    const auto dimmestBelow = [&](const auto& self, int n) -> float {
         const Node& e = nodes[static_cast<size_t>(n)];
-        if (e.isLeaf()) {
-            if (!e.isCluster() && !e.emitting && e.rho.maxComponent() > 0)
-                dimB_[static_cast<size_t>(n)] = static_cast<float>(e.B.maxComponent());
-            continue;
-        }
-        if (!childrenDone) {
-            stack.push_back({n, true});
-            for (int k = 0; k < e.childCount; ++k) stack.push_back({e.firstChild + k, false});
-            continue;
-        }
         float dimmest = std::numeric_limits<float>::infinity();
-        for (int k = 0; k < e.childCount; ++k)
-            dimmest = std::min(dimmest, dimB_[static_cast<size_t>(e.firstChild + k)]);
-        dimB_[static_cast<size_t>(n)] = dimmest;
-    }
+        if (e.isLeaf()) {
+            if (!e.emitting && e.rho.maxComponent() > 0)
+                dimmest = static_cast<float>(e.B.maxComponent());
+        } else {
+            for (int k = 0; k < e.childCount; ++k)
+                dimmest = std::min(dimmest, self(self, e.firstChild + k));
+        }
+        return dimB_[static_cast<size_t>(n)] = dimmest;
+    };
+    parallelFor(h_.polygonRoot.size(), 256, [&](size_t p) {
+        if (h_.polygonRoot[p] >= 0) dimmestBelow(dimmestBelow, h_.polygonRoot[p]);
+    });
 }
 
 double HierarchicalSolver::lightShareB(int s) const {

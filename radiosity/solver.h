@@ -705,8 +705,9 @@ class HierarchicalSolver {
     /// Per node: max over lights l of k_l |L_l R_l(node)| (max channel), k_l = (sum over
     /// lights of their reflected power) / (light l's), at most perLightOracle; empty: off.
     std::vector<float> lightShareB_;
-    /// Per node: the radiosity of the dimmest reflecting leaf below it (max channel; +inf
-    /// where none reflects), as the last refinement round began; empty with darkFloor 1.
+    /// Per element node: the radiosity of the dimmest reflecting leaf below it (max channel;
+    /// +inf where none reflects, and for clusters), as the last refinement round began;
+    /// empty with darkFloor 1.
     std::vector<float> dimB_;
     double meanB_ = 0;  ///< area-weighted mean radiosity of the reflecting leaves (max channel)
     size_t maxLinks_ = 0, maxMemory_ = 0;  ///< the budget in force
