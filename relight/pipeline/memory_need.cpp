@@ -12,11 +12,13 @@ namespace {
 /// The peaks were read as /usr/bin/time's maximum resident size, in KiB: 1024 bytes each.
 constexpr double kKiB = 1024;
 /// Per face and light: the per-light responses' arrays (relight/prepared.h), measured as the
-/// growth of the x4 hall's peak when they are made (1.2e6 KiB for 1.57 M leaves, 3 lights).
-constexpr double kBytesPerFaceLight = 0.255 * kKiB;
+/// growth of the x4 hall's peak when they are made (1.2e6 KiB for 1.57 M leaves, 3 lights:
+/// 0.255 KiB), less the unit emittance those arrays no longer hold (24 bytes a node and
+/// light; the x4 hall's peak fell by 182 264 KiB at 3 lights: 38.6 bytes a face and light).
+constexpr double kBytesPerFaceLight = 0.255 * kKiB - 38.6;
 /// Per face, the rest: node, links, measurements, the vertex lighting, the loaded mesh
-/// (2.5 KiB a face at 3 lights, less the responses).
-constexpr double kBytesPerFace = 2.5 * kKiB - 3 * kBytesPerFaceLight;
+/// (2.40 KiB a face at 3 lights, the x16 hall's peak, less the responses).
+constexpr double kBytesPerFace = 2.40 * kKiB - 3 * kBytesPerFaceLight;
 
 double gigabytes(double bytes) {
     return bytes / 1e9;

@@ -6,8 +6,8 @@
 // The need is linear in the input (bench/RESULTS.md, 2026-11-29 (twentieth session)):
 // the solver's unit is still the input face (issue 30), so every face is a leaf with its
 // node, links, measurements and per-light responses. Per face, measured on the stair hall
-// subdivided x4 (1.57 M faces, 3.93 GB peak) and x16 (6.29 M faces, 15.8 GB), 3 lights:
-// 2.5 KiB, of which the per-light responses are about 0.26 KiB per light.
+// subdivided x4 (1.57 M faces, 3.75e6 KiB peak) and x16 (6.29 M faces, 15.10e6 KiB), 3
+// lights: 2.4 KiB, of which the per-light responses are about 0.22 KiB per light.
 #pragma once
 
 #include <cstddef>
