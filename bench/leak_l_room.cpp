@@ -2,7 +2,8 @@
 // solution against the full-matrix reference (radiosity/reference_solver.h), per epsilon.
 //
 //   ./build/bench/leak_l_room [--cut N] [--arm A|B] [--no-balance] [--rays MIN MAX]
-//                             [--dark-floor F] [epsilons...]   (default 1e-3 1e-4 1e-5)
+//                             [--dark-floor F] [--scales] [epsilons...]
+//                             (default 1e-3 1e-4 1e-5)
 //   ./build/bench/leak_l_room --reference-areas 0.02 0.01
 //
 // --reference-areas checks the yardstick instead: the reference solved again with
@@ -15,6 +16,10 @@
 // send (radiosity/solver.h). --rays sets the links' visibility rays: MIN first, MAX in all
 // in penumbra (TransferOptions). --dark-floor sets SolverOptions::darkFloor (relight's
 // preparation uses 0.1, RelightOptions; the solver's own default 1 is the plain criterion).
+// --scales prints, per region (arm A's far and near halves, the corner square, arm B's near
+// and far parts), the area means of the energy bound's gather and send scales and of what
+// the leaves see, what they hand to the lamp's face through their links against what they
+// gather from it (equal by reciprocity), and each region's ratio to the reference.
 //
 // The enclosure is 1 m high: arm A along x ([0,4] x [0,1]), arm B along y ([0,1] x [1,4]);
 // rho 0.6, one 0.4 m lamp under the ceiling at the far end of arm A. Arm B is lit only by
@@ -86,6 +91,59 @@ bool armAFar(const Vec3& c) {
     return c.x >= 2.0;
 }
 
+/// The regions of --scales: arm B (y > 1, its wall at x = 1 included) near (y < 2.5) and
+/// far; arm A (x > 1, its wall at y = 1 included) near (x < 2) and far; the corner square.
+constexpr int kRegions = 5;
+const char* const kRegionNames[kRegions] = {"arm A far", "arm A near", "corner", "arm B near",
+                                            "arm B far"};
+int regionOf(const Vec3& c) {
+    constexpr double kSide = 1 + 1e-9;  // the arms' inner walls lie on x = 1 and y = 1
+    if (c.y > kSide) return c.y < 2.5 ? 3 : 4;
+    if (c.x > kSide) return c.x < 2 ? 1 : 0;
+    return 2;
+}
+
+/// --scales: the energy bound's scales per region, and the lamp's exchange both ways.
+void printScales(const HierarchicalSolver& solver, const ReferenceSolver& ref) {
+    const auto& nodes = solver.hierarchy().nodes;
+    // Per node, what its links from reflecting sources hand to the lamp's face (F V A_r)
+    // and what its links from the lamp bring it (F V); summed down to the leaves (parents
+    // come before their children in the node array), a leaf's per unit area.
+    std::vector<double> toLamp(nodes.size(), 0.0), fromLamp(nodes.size(), 0.0);
+    for (const Link& l : solver.links()) {
+        const Node& R = nodes[l.receiver];
+        const double FV = l.F * static_cast<double>(l.V);
+        if (R.emitting && !R.isCluster() && reflects(nodes[l.source]))
+            toLamp[l.source] += FV * R.area;
+        if (!reflects(nodes[l.source])) fromLamp[l.receiver] += FV;
+    }
+    double A[kRegions] = {}, gather[kRegions] = {}, send[kRegions] = {}, seen[kRegions] = {};
+    double to[kRegions] = {}, from[kRegions] = {};
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        const Node& e = nodes[n];
+        toLamp[n] = (e.area > 0 ? toLamp[n] / e.area : 0.0) +  // guard: a zero-area node
+                    (e.parent >= 0 ? toLamp[static_cast<size_t>(e.parent)] : 0.0);
+        fromLamp[n] += e.parent >= 0 ? fromLamp[static_cast<size_t>(e.parent)] : 0.0;
+        if (e.isCluster() || !e.isLeaf() || e.emitting) continue;
+        const int k = regionOf(e.centre);
+        A[k] += e.area;
+        gather[k] += e.area * e.gatherScale;
+        send[k] += e.area * e.sendScale;
+        seen[k] += e.area * e.seen;
+        to[k] += e.area * toLamp[n];
+        from[k] += e.area * fromLamp[n];
+    }
+    const auto B = [&](int p, const Vec3& x) { return solver.radiosityAt(p, x).r; };
+    for (int k = 0; k < kRegions; ++k) {
+        if (!(A[k] > 0)) continue;  // guard: an empty region
+        const double ratio = regionRatio(ref, B, [k](const Vec3& c) { return regionOf(c) == k; });
+        std::printf("  %-10s gather scale %.3f  send scale %.3f  seen %.3f  to the lamp %.4f"
+                    "  from it %.4f  %.3fx\n",
+                    kRegionNames[k], gather[k] / A[k], send[k] / A[k], seen[k] / A[k],
+                    to[k] / A[k], from[k] / A[k], ratio);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,7 +153,7 @@ int main(int argc, char** argv) {
     std::vector<double> eps;
     int cut = 1;
     char arm = 0;
-    bool balance = true, referenceAreas = false;
+    bool balance = true, referenceAreas = false, scales = false;
     double darkFloor = SolverOptions{}.darkFloor;
     int minRays = TransferOptions{}.minRays, maxRays = TransferOptions{}.maxRays;
     for (int i = 1; i < argc; ++i) {
@@ -110,6 +168,8 @@ int main(int argc, char** argv) {
             darkFloor = std::atof(argv[++i]);
         else if (a == "--no-balance")
             balance = false;
+        else if (a == "--scales")
+            scales = true;
         else if (a == "--rays" && i + 2 < argc) {
             minRays = std::atoi(argv[++i]);
             maxRays = std::atoi(argv[++i]);
@@ -161,6 +221,7 @@ int main(int argc, char** argv) {
         const SolverStats st = solver.stats();
         std::printf("%8.0e %13.3fx %13.3fx %9d %8d %8.1f%%\n", e, ratioB, ratioA, st.links,
                     st.leaves, 100 * st.absorbedPower.r / st.emittedPower.r);
+        if (scales) printScales(solver, ref);
     }
     return 0;
 }
