@@ -27,6 +27,7 @@
 // half (y > 2.5) to the reference's, the same for arm A's far half (x > 2), links,
 // leaves and the share of the lamp's power absorbed (the enclosure is closed).
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -133,14 +134,47 @@ void printScales(const HierarchicalSolver& solver, const ReferenceSolver& ref) {
         to[k] += e.area * toLamp[n];
         from[k] += e.area * fromLamp[n];
     }
+    // The exchange between regions through the links from reflecting sources, per unit
+    // radiosity: T[a][b] = sum F V A_r over the receiver's leaves in a, times the share of
+    // the source's area in b (a cluster receiver's light taken by area, as an estimate).
+    // Reciprocity: T[a][b] = T[b][a].
+    std::vector<std::array<double, kRegions>> areaIn(nodes.size());
+    for (size_t n = nodes.size(); n-- > 0;) {
+        const Node& e = nodes[n];
+        if (e.isLeaf() && !e.isCluster() && !e.emitting)
+            areaIn[n][static_cast<size_t>(regionOf(e.centre))] += e.area;
+        if (e.parent >= 0)
+            for (size_t k = 0; k < kRegions; ++k)
+                areaIn[static_cast<size_t>(e.parent)][k] += areaIn[n][k];
+    }
+    double T[kRegions][kRegions] = {};
+    for (const Link& l : solver.links()) {
+        const Node& S = nodes[l.source];
+        if (!reflects(S) || !(S.area > 0)) continue;
+        const double FV = l.F * static_cast<double>(l.V);
+        for (int a = 0; a < kRegions; ++a)
+            for (int b = 0; b < kRegions; ++b)
+                T[a][b] += FV * areaIn[static_cast<size_t>(l.receiver)][static_cast<size_t>(a)] *
+                           areaIn[static_cast<size_t>(l.source)][static_cast<size_t>(b)] / S.area;
+    }
+    std::printf("  reciprocity, T[a][b] / T[b][a] (a: the row's region, b: the column's):\n");
+    for (int a = 0; a < kRegions; ++a) {
+        std::printf("  %-10s", kRegionNames[a]);
+        for (int b = 0; b < kRegions; ++b)
+            std::printf(" %7.3f", T[b][a] > 0 ? T[a][b] / T[b][a] : 0.0);
+        double row = 0;
+        for (int b = 0; b < kRegions; ++b) row += T[a][b];
+        std::printf("   gathered %.4f m^2\n", row);
+    }
     const auto B = [&](int p, const Vec3& x) { return solver.radiosityAt(p, x).r; };
     for (int k = 0; k < kRegions; ++k) {
         if (!(A[k] > 0)) continue;  // guard: an empty region
         const double ratio = regionRatio(ref, B, [k](const Vec3& c) { return regionOf(c) == k; });
-        std::printf("  %-10s gather scale %.3f  send scale %.3f  seen %.3f  to the lamp %.4f"
-                    "  from it %.4f  %.3fx\n",
-                    kRegionNames[k], gather[k] / A[k], send[k] / A[k], seen[k] / A[k],
-                    to[k] / A[k], from[k] / A[k], ratio);
+        std::printf(
+            "  %-10s gather scale %.3f  send scale %.3f  seen %.3f  to the lamp %.4f"
+            "  from it %.4f  %.3fx\n",
+            kRegionNames[k], gather[k] / A[k], send[k] / A[k], seen[k] / A[k], to[k] / A[k],
+            from[k] / A[k], ratio);
     }
 }
 
