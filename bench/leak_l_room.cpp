@@ -162,9 +162,18 @@ void printScales(const HierarchicalSolver& solver, const ReferenceSolver& ref) {
         std::printf("  %-10s", kRegionNames[a]);
         for (int b = 0; b < kRegions; ++b)
             std::printf(" %7.3f", T[b][a] > 0 ? T[a][b] / T[b][a] : 0.0);
-        double row = 0;
-        for (int b = 0; b < kRegions; ++b) row += T[a][b];
-        std::printf("   gathered %.4f m^2\n", row);
+        double row = 0, column = 0, area = 0;
+        for (int b = 0; b < kRegions; ++b) {
+            row += T[a][b];
+            column += T[b][a];
+            area += areaIn[0][static_cast<size_t>(a)];
+        }
+        area /= kRegions;
+        // Per unit area: what the region gathers from reflecting sources and hands to
+        // reflecting receivers, per unit radiosity (by reciprocity both are what it sees
+        // of the reflecting surfaces).
+        std::printf("   gathers %.3f, hands out %.3f\n", area > 0 ? row / area : 0.0,
+                    area > 0 ? column / area : 0.0);
     }
     const auto B = [&](int p, const Vec3& x) { return solver.radiosityAt(p, x).r; };
     for (int k = 0; k < kRegions; ++k) {
