@@ -128,6 +128,9 @@ class Sun final : public SingleEmitter {
     void unitUnoccluded(const ReceiverPoint& p, double* out) const override {
         out[0] = std::max(0.0, glm::dot(p.n, d_));
     }
+    std::optional<ShadowSource> shadowSource() const override {
+        return ShadowSource{ShadowSource::Kind::direction, d_};
+    }
     void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
                     Rng& rng, double* out) const override {
         // The disc's directions as unitIrradiance draws them, each weighed by the lobe.
@@ -224,6 +227,9 @@ class PointLamp final : public SingleEmitter {
         if (!(d2 > 1e-18)) return;  // guard: the lamp on the point itself
         const double c = glm::dot(p.n, v) / std::sqrt(d2);
         if (c > 0) out[0] = c / d2;  // cos(theta) / d^2
+    }
+    std::optional<ShadowSource> shadowSource() const override {
+        return ShadowSource{ShadowSource::Kind::point, pos_};
     }
     void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
                     Rng& rng, double* out) const override {

@@ -76,6 +76,18 @@ struct ReceiverPoint {
 /// The most components a light has (a sky's 9 coefficients).
 inline constexpr int kMaxEmitterComponents = 9;
 
+/// A light seen from a point as one point or one direction, whose shadows one shadow map
+/// holds (the viewer's frames of a light being moved, viewer/gpu_moved_light.h). Its
+/// unit irradiance at a point x of normal n, unoccluded, is then
+///   a point at `at`:           max(0, n.v) / |v|^3,  v = at - x   (cos / d^2)
+///   a direction `at` (unit):   max(0, n.at)                        (cos)
+/// as unitUnoccluded() gives it.
+struct ShadowSource {
+    enum class Kind { point, direction };
+    Kind kind = Kind::point;
+    Vec3 at{0, 0, 0};  ///< the point (metres), or the unit direction towards the light
+};
+
 class Emitter {
   public:
     explicit Emitter(std::string name) : name_(std::move(name)) {}
@@ -109,6 +121,10 @@ class Emitter {
                                 double* out) const = 0;
     /// The same without blockers.
     virtual void unitUnoccluded(const ReceiverPoint& p, double* out) const = 0;
+    /// The light as one point or direction (ShadowSource), for a light of one component
+    /// whose shadows are hard, as unitIrradiance() casts them from one ray: a point lamp, a
+    /// sun (its disc's centre). Empty for the others (a quad's soft shadows, a sky).
+    virtual std::optional<ShadowSource> shadowSource() const { return std::nullopt; }
     /// A weight per direction of arrival: w is the unit direction from the point towards
     /// the light. A BRDF lobe (the specular pass, relight/dynamic/specular.h).
     using Lobe = std::function<double(const Vec3& w)>;

@@ -156,6 +156,51 @@ Image DynamicRelighting::render(DisplayMode mode) {
     return img;
 }
 
+std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
+    const PreparedImage& P = r_.prepared;
+    const auto& lights = solver_.scene().lights;
+    if (objectPreview_ || !P.pixelReflectance.empty() || P.pixelDirect.empty() || light < 0 ||
+        static_cast<size_t>(light) >= lights.size())
+        return std::nullopt;
+    const auto& emitter = lights[static_cast<size_t>(light)].emitter;
+    const std::optional<radiosity::ShadowSource> source =
+        emitter ? emitter->shadowSource() : std::nullopt;
+    if (!source) return std::nullopt;
+    MovedLightFrame f;
+    f.source = *source;
+    for (const Preview& q : previews_)  // shown moved: where previewEmitter() put it
+        if (q.light == light && q.emitter) f.source = *q.emitter->shadowSource();
+    // The ratio display's pixels and the overlay as render() makes them; the pixels drawn
+    // per pixel are replaced below.
+    const Image img = render(DisplayMode::pixel);
+    f.terms = pixelLightTerms(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
+                              P.photoRadiance, ratioFloor(P.D),
+                              PixelLightChange{pixelDirect(), pixelIndirect()}, light,
+                              P.pixelReflectance, &P.photoPixels);
+    f.receivers = quickReceivers(r_.items, solver_.scene());
+    const size_t pixels = f.terms.drawn.size();
+    f.scale.assign(3 * pixels, 1.0f);
+    f.offset.assign(3 * pixels, 0.0f);
+    const VirtualOverlay o = overlay();
+    for (int y = 0; y < o.height; ++y)
+        for (int x = 0; x < o.width; ++x) {
+            const float* a = &o.rgba[(static_cast<size_t>(y) * o.width + x) * 4];
+            const size_t px = static_cast<size_t>(o.y0 + y) * static_cast<size_t>(img.width) +
+                              static_cast<size_t>(o.x0 + x);
+            for (size_t c = 0; c < 3; ++c) {
+                f.scale[3 * px + c] = a[3];
+                f.offset[3 * px + c] = a[c];
+            }
+        }
+    for (size_t px = 0; px < pixels; ++px)
+        if (!f.terms.drawn[px])
+            for (size_t c = 0; c < 3; ++c) {
+                f.scale[3 * px + c] = 0.0f;
+                f.offset[3 * px + c] = img.rgb[3 * px + c];
+            }
+    return f;
+}
+
 void applyOverlay(Image& img, const VirtualOverlay& o) {
     for (int y = 0; y < o.height; ++y)
         for (int x = 0; x < o.width; ++x) {

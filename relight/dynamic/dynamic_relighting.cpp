@@ -505,10 +505,13 @@ void DynamicRelighting::previewEmitter(int light, const radiosity::Emitter& move
         quickPixelLight(r_.items, solver_.scene(), solver_.visibility(), moved);
     const auto it = std::find_if(previews_.begin(), previews_.end(),
                                  [&](const Preview& q) { return q.light == light; });
-    if (it != previews_.end())
+    std::shared_ptr<const radiosity::Emitter> shown = moved.clone();
+    if (it != previews_.end()) {
         it->direct = std::move(direct);
-    else
-        previews_.push_back({light, count, std::move(direct)});
+        it->emitter = std::move(shown);
+    } else {
+        previews_.push_back({light, count, std::move(direct), std::move(shown)});
+    }
     times_ = FrameTimes{};
     times_.display = secondsSince(t0);
 }

@@ -42,6 +42,7 @@
 #include "relight/dynamic/specular.h"
 #include "relight/io/edit_file.h"
 #include "relight/io/image.h"
+#include "relight/pipeline/pixel_light.h"
 #include "relight/relighting.h"
 
 namespace relight {
@@ -99,6 +100,22 @@ struct GeometryCache {
     std::vector<double> vertexG;
     std::vector<int> vertexFrom;
     uint64_t pixelHits = 0, vertexHits = 0;  ///< entries taken from here (for tests, benches)
+};
+
+/// The per-pixel display of a DynamicRelighting as a function of one sun's or point lamp's
+/// direct light alone (DynamicRelighting::movedLightFrame): for a display that measures that
+/// light itself at every frame while the light moves (the viewer's GPU frames,
+/// viewer/gpu_moved_light.h). With g the light's unit irradiance at each pixel's receiver
+/// (`receivers`: relight/dynamic/quick_light.h, quickReceivers), per pixel and channel
+///   image = scale * out(g) + offset     (out: pipeline/pixel_light.h, evalPixelLightTerms)
+/// `scale` is 0 where the per-pixel display does not draw (`offset` then holds the ratio
+/// display's value), the overlay's realShare in the virtual parts' box (`offset` its added
+/// radiance), else 1 (and `offset` 0).
+struct MovedLightFrame {
+    PixelLightTerms terms;
+    std::vector<float> receivers;      ///< 6 per pixel: point, normal (0: no receiver)
+    std::vector<float> scale, offset;  ///< 3 per pixel
+    radiosity::ShadowSource source;    ///< the light as it stands (Emitter::shadowSource)
 };
 
 class DynamicRelighting {
@@ -160,6 +177,13 @@ class DynamicRelighting {
     /// stays). Throws std::invalid_argument for a light that is not a sun, point lamp or
     /// sky, or a component count that differs.
     void previewEmitter(int light, const radiosity::Emitter& moved);
+    /// The image as it stands as a function of light `light`'s direct light alone
+    /// (MovedLightFrame): render(DisplayMode::pixel) is scale * out(g) + offset with g the
+    /// light's quick measurement (previewEmitter()'s, or the preparation's where it was not
+    /// moved), to float rounding. nullopt where that form does not hold: a merged
+    /// reflectance (several photos), an object dragged (previewLastObject), a light that is
+    /// not one point or direction (Emitter::shadowSource: a quad, a sky), no per-pixel light.
+    std::optional<MovedLightFrame> movedLightFrame(int light);
     /// Whether a light is shown by previewEmitter() (the image is a quick one).
     bool previewing() const { return !previews_.empty() || objectPreview_ != nullptr; }
     /// A quick look at the object added last moved to `polygons` (same faces, world space),
@@ -322,6 +346,7 @@ class DynamicRelighting {
     struct Preview {
         int light = 0, count = 0;
         std::vector<float> direct;
+        std::shared_ptr<const radiosity::Emitter> emitter;  ///< the light as shown
     };
     std::vector<Preview> previews_;
     /// previewLastObject()'s object: where it is shown, its faces' reflectance and indirect

@@ -74,6 +74,25 @@ std::vector<float> quickPixelLight(const ItemBuffer& items, const radiosity::Sce
     return out;
 }
 
+std::vector<float> quickReceivers(const ItemBuffer& items, const radiosity::Scene& scene) {
+    const size_t pixels = static_cast<size_t>(items.width) * static_cast<size_t>(items.height);
+    std::vector<float> out(6 * pixels, 0.0f);
+    radiosity::parallelFor(pixels, 256, [&](size_t px) {
+        const int x = static_cast<int>(px % static_cast<size_t>(items.width));
+        const int y = static_cast<int>(px / static_cast<size_t>(items.width));
+        const int idx = quickSample(items, scene, x, y);
+        if (idx < 0) return;
+        const radiosity::Vec3& at = items.point[static_cast<size_t>(idx)];
+        const radiosity::Vec3& n =
+            scene.polygons[static_cast<size_t>(items.polygon[static_cast<size_t>(idx)])].normal;
+        for (int c = 0; c < 3; ++c) {
+            out[6 * px + static_cast<size_t>(c)] = static_cast<float>(at[c]);
+            out[6 * px + 3 + static_cast<size_t>(c)] = static_cast<float>(n[c]);
+        }
+    });
+    return out;
+}
+
 BoundingSphere boundingSphere(std::span<const radiosity::Polygon> polygons) {
     BoundingSphere s;
     radiosity::Vec3 lo(1e300), hi(-1e300);

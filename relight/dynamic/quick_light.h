@@ -36,6 +36,12 @@ std::vector<float> quickPixelLight(const ItemBuffer& items, const radiosity::Sce
                                    const radiosity::Visibility& vis,
                                    const radiosity::Emitter& light);
 
+/// Per pixel, the receiver quickPixelLight() lights: the point and the front normal of the
+/// camera sample it takes, [pixel * 6 + 0..2] and [pixel * 6 + 3..5] (metres; unit), the
+/// normal 0 where no sample sees a reflecting surface (its light is 0 there). What a
+/// display that measures the light itself (the viewer's GPU frames) reads.
+std::vector<float> quickReceivers(const ItemBuffer& items, const radiosity::Scene& scene);
+
 /// A sphere that bounds a moved object (its polygons' corners), to tell the points whose
 /// light it may block.
 struct BoundingSphere {

@@ -89,11 +89,30 @@ std::vector<Rgb> vertexIndirect(const VertexLighting& lighting, const VertexDire
     return ind;
 }
 
-void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
-                      std::span<const Rgb> indirect, std::span<const Rgb> radianceNow,
-                      std::span<const Rgb> radianceInPhoto, const Rgb& delta, Image& out,
-                      PixelLightChange change, std::span<const float> reflectance,
-                      const PhotoPixels* pool) {
+namespace {
+
+/// What renderPixelLight() sums at a pixel: the light of the photo's lamps now (kept), the
+/// light the photo did not hold (fresh: lamps off in it, virtual lamps, what virtual
+/// objects change) and the photo's (before).
+struct PixelSums {
+    Rgb kept, fresh, before;
+};
+
+/// renderPixelLight()'s arguments, checked, as the per-pixel sums read them.
+struct PixelSumInputs {
+    const DisplayMap& map;
+    std::span<const float> pixelDirect, directNow;
+    std::span<const Rgb> indirect, radianceNow, radianceInPhoto, changeIndirect;
+    const PhotoPixels* pool;
+    size_t L, Lnow;
+    bool derived;  ///< the pool's per-pixel indirect parts (photoPixels()) are read
+};
+
+PixelSumInputs checkedInputs(const DisplayMap& map, std::span<const float> pixelDirect,
+                             std::span<const Rgb> indirect, std::span<const Rgb> radianceNow,
+                             std::span<const Rgb> radianceInPhoto, PixelLightChange change,
+                             std::span<const float> reflectance, const PhotoPixels* pool,
+                             int outWidth, int outHeight) {
     const size_t L = radianceInPhoto.size();  // the photo's lights
     const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
     const std::span<const float> directNow = change.direct.empty() ? pixelDirect : change.direct;
@@ -102,61 +121,79 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
     if (Lnow < L || pixelDirect.size() != pixels * L || directNow.size() != pixels * Lnow ||
         (L > 0 && indirect.size() % L != 0) ||
         (!change.indirect.empty() && change.indirect.size() != vertices) ||
-        (!reflectance.empty() && reflectance.size() != pixels * 3) || out.width != map.width ||
-        out.height != map.height)
+        (!reflectance.empty() && reflectance.size() != pixels * 3) || outWidth != map.width ||
+        outHeight != map.height)
         throw std::invalid_argument("renderPixelLight: sizes do not match (" +
                                     std::to_string(pixelDirect.size()) + " direct values for " +
                                     std::to_string(pixels) + " pixels x " + std::to_string(L) +
                                     " lights, " + std::to_string(directNow.size()) + " for " +
                                     std::to_string(Lnow) + " lights now)");
+    const bool derived = pool && pool->indirect.size() == 3 * pixels * L;
+    return {map,  pixelDirect, directNow, indirect, radianceNow, radianceInPhoto, change.indirect,
+            pool, L,           Lnow,      derived};
+}
+
+/// The sums at pixel px (drawn per pixel), light `skip`'s direct light now read as 0 (-1:
+/// none; light being moved, pixelLightTerms()).
+PixelSums pixelSums(const PixelSumInputs& in, size_t px, int skip) {
+    const DisplayMap& map = in.map;
+    const int k0 = map.start[px], k1 = map.start[px + 1];
+    // The vertices' weights are read only to interpolate what the derived values lack.
+    double wsum = 0;
+    if (!in.derived || !in.changeIndirect.empty())
+        for (int k = k0; k < k1; ++k)
+            wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
+    auto interpolate = [&](auto&& value) {
+        Rgb sum;
+        for (int k = k0; k < k1; ++k)
+            sum += value(static_cast<size_t>(map.vertex[static_cast<size_t>(k)])) *
+                   (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
+        return sum;
+    };
+    const auto directNow = [&](size_t l) {
+        return static_cast<int>(l) == skip ? 0.0
+                                           : static_cast<double>(in.directNow[px * in.Lnow + l]);
+    };
+    // h_l(p) once per light, weighed by the edit's radiances and the photo's. The light
+    // of the photo's lamps (kept) and the light the photo did not hold (fresh) apart, for
+    // a merged reflectance.
+    PixelSums s;
+    for (size_t l = 0; l < in.L; ++l) {
+        Rgb ind;
+        if (in.derived) {  // the same sums from the derived per-pixel values (photoPixels())
+            const float* f = in.pool->indirect.data() + (px * in.L + l) * 3;
+            ind = Rgb{f[0], f[1], f[2]};
+        } else {
+            ind = interpolate([&](size_t v) { return in.indirect[v * in.L + l]; });
+        }
+        const Rgb h = in.radianceNow[l] * (Rgb::gray(directNow(l)) + ind);
+        (in.radianceInPhoto[l].maxComponent() > 0 ? s.kept : s.fresh) += h;
+        s.before += in.radianceInPhoto[l] *
+                    (Rgb::gray(static_cast<double>(in.pixelDirect[px * in.L + l])) + ind);
+    }
+    for (size_t l = in.L; l < in.Lnow; ++l) s.fresh += in.radianceNow[l] * directNow(l);
+    if (!in.changeIndirect.empty())
+        s.fresh += interpolate([&](size_t v) { return in.changeIndirect[v]; });
+    return s;
+}
+
+}  // namespace
+
+void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const float> pixelDirect,
+                      std::span<const Rgb> indirect, std::span<const Rgb> radianceNow,
+                      std::span<const Rgb> radianceInPhoto, const Rgb& delta, Image& out,
+                      PixelLightChange change, std::span<const float> reflectance,
+                      const PhotoPixels* pool) {
+    const PixelSumInputs in =
+        checkedInputs(map, pixelDirect, indirect, radianceNow, radianceInPhoto, change, reflectance,
+                      pool, out.width, out.height);
+    const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
     const bool pooling = reflectance.empty() && pool && pool->rho.size() == 3 * pixels &&
                          pool->light.size() == pixels;
-    const bool derived = pool && pool->indirect.size() == 3 * pixels * L;
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
         // A lamp's face, samples that see nothing, or no leaf: the ratio display's value.
         if (!shownPerPixel(map, px)) return;
-        const int k0 = map.start[px], k1 = map.start[px + 1];
-        // The vertices' weights are read only to interpolate what the derived values lack.
-        double wsum = 0;
-        if (!derived || !change.indirect.empty())
-            for (int k = k0; k < k1; ++k)
-                wsum += static_cast<double>(map.weight[static_cast<size_t>(k)]);
-        auto interpolate = [&](auto&& value) {
-            Rgb sum;
-            for (int k = k0; k < k1; ++k)
-                sum += value(static_cast<size_t>(map.vertex[static_cast<size_t>(k)])) *
-                       (static_cast<double>(map.weight[static_cast<size_t>(k)]) / wsum);
-            return sum;
-        };
-        // h_l(p) once per light, weighed by the edit's radiances and the photo's. The light
-        // of the photo's lamps (kept) and the light the photo did not hold (fresh: lamps off
-        // in it, virtual lamps, what virtual objects change) apart, for a merged reflectance.
-        Rgb kept, fresh, before;
-        if (derived) {
-            // The same sums from the derived per-pixel values (photoPixels()).
-            const float* f = pool->indirect.data() + px * L * 3;
-            for (size_t l = 0; l < L; ++l, f += 3) {
-                const Rgb ind{f[0], f[1], f[2]};
-                const Rgb h = radianceNow[l] *
-                              (Rgb::gray(static_cast<double>(directNow[px * Lnow + l])) + ind);
-                (radianceInPhoto[l].maxComponent() > 0 ? kept : fresh) += h;
-                before += radianceInPhoto[l] *
-                          (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
-            }
-        } else {
-            for (size_t l = 0; l < L; ++l) {
-                const Rgb ind = interpolate([&](size_t v) { return indirect[v * L + l]; });
-                const Rgb h = radianceNow[l] *
-                              (Rgb::gray(static_cast<double>(directNow[px * Lnow + l])) + ind);
-                (radianceInPhoto[l].maxComponent() > 0 ? kept : fresh) += h;
-                before += radianceInPhoto[l] *
-                          (Rgb::gray(static_cast<double>(pixelDirect[px * L + l])) + ind);
-            }
-        }
-        for (size_t l = L; l < Lnow; ++l)
-            fresh += radianceNow[l] * static_cast<double>(directNow[px * Lnow + l]);
-        if (!change.indirect.empty())
-            fresh += interpolate([&](size_t v) { return change.indirect[v]; });
+        const PixelSums s = pixelSums(in, px, -1);
         const float* t = photo.rgb.data() + px * 3;
         float* o = out.rgb.data() + px * 3;
         if (!reflectance.empty()) {
@@ -165,20 +202,94 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
             // from all photos (photo_merge.h).
             const float* R = reflectance.data() + px * 3;
             for (int c = 0; c < 3; ++c) {
-                const double r = guardedRatio(kept[c], before[c], delta[c]);
+                const double r = guardedRatio(s.kept[c], s.before[c], delta[c]);
                 o[c] = std::max(static_cast<float>(static_cast<double>(t[c]) * r +
-                                                   static_cast<double>(R[c]) * fresh[c]),
+                                                   static_cast<double>(R[c]) * s.fresh[c]),
                                 0.0f);
             }
             return;
         }
-        const Rgb now = kept + fresh;
-        if (pooling && pooledPixel(map, *pool, px, now, before.luminance(), delta, o)) return;
+        const Rgb now = s.kept + s.fresh;
+        if (pooling && pooledPixel(map, *pool, px, now, s.before.luminance(), delta, o)) return;
         for (int c = 0; c < 3; ++c) {
-            const double r = guardedRatio(now[c], before[c], delta[c]);
+            const double r = guardedRatio(now[c], s.before[c], delta[c]);
             o[c] = std::max(static_cast<float>(static_cast<double>(t[c]) * r), 0.0f);
         }
     });
+}
+
+PixelLightTerms pixelLightTerms(const DisplayMap& map, const Image& photo,
+                                std::span<const float> pixelDirect, std::span<const Rgb> indirect,
+                                std::span<const Rgb> radianceNow,
+                                std::span<const Rgb> radianceInPhoto, const Rgb& delta,
+                                PixelLightChange change, int light,
+                                std::span<const float> reflectance, const PhotoPixels* pool) {
+    if (!reflectance.empty())
+        throw std::invalid_argument(
+            "pixelLightTerms: a merged reflectance reads the fresh light "
+            "through it; draw it with renderPixelLight()");
+    if (light < 0 || static_cast<size_t>(light) >= radianceNow.size())
+        throw std::invalid_argument("pixelLightTerms: light " + std::to_string(light) + " of " +
+                                    std::to_string(radianceNow.size()));
+    const PixelSumInputs in =
+        checkedInputs(map, pixelDirect, indirect, radianceNow, radianceInPhoto, change, reflectance,
+                      pool, photo.width, photo.height);
+    const size_t pixels = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
+    const bool pooling = pool && pool->rho.size() == 3 * pixels && pool->light.size() == pixels;
+    PixelLightTerms t;
+    t.width = map.width;
+    t.height = map.height;
+    t.delta = delta;
+    t.radiance = radianceNow[static_cast<size_t>(light)];
+    for (auto* v : {&t.rest, &t.rho, &t.rhoPool}) v->assign(3 * pixels, 0.0f);
+    t.photoLight.assign(pixels, 0.0f);
+    t.drawn.assign(pixels, 0);
+    if (pooling) {
+        t.pooled = pooledByRadius(map, *pool);
+        std::copy(pool->rho.begin(), pool->rho.end(), t.rhoPool.begin());
+    }
+    radiosity::parallelFor(pixels, 256, [&](size_t px) {
+        if (!shownPerPixel(map, px)) return;
+        const PixelSums s = pixelSums(in, px, light);
+        const Rgb rest = s.kept + s.fresh;
+        for (size_t c = 0; c < 3; ++c) {
+            t.rest[3 * px + c] = static_cast<float>(rest[static_cast<int>(c)]);
+            t.rho[3 * px + c] = static_cast<float>(
+                static_cast<double>(photo.rgb[3 * px + c]) /
+                (std::max(s.before[static_cast<int>(c)], 0.0) + delta[static_cast<int>(c)]));
+        }
+        t.photoLight[px] = pooling ? static_cast<float>(s.before.luminance()) : 0.0f;
+        t.drawn[px] = 1;
+    });
+    return t;
+}
+
+void evalPixelLightTerms(const PixelLightTerms& t, size_t px, double g, float* o) {
+    const size_t pixels = static_cast<size_t>(t.width) * static_cast<size_t>(t.height);
+    const float* r = t.rest.data() + 3 * px;
+    const Rgb now = Rgb{r[0], r[1], r[2]} + t.radiance * g;
+    const double photoLight = static_cast<double>(t.photoLight[px]);
+    if (photoLight > 0 && now.luminance() > kPoolAbove * photoLight && !t.pooled.empty()) {
+        // pooledPixel()'s reflectance, from the table of pooled values by radius.
+        const double w = kPoolAbove * photoLight / now.luminance();
+        const int radius = std::min(
+            kMaxPoolRadius, static_cast<int>(std::lround(kPoolRadius * std::sqrt(1.0 / w))));
+        const float* pooled =
+            t.pooled.data() + 3 * (static_cast<size_t>(radius - kPoolRadius) * pixels + px);
+        for (size_t c = 0; c < 3; ++c) {
+            const double R = w * static_cast<double>(t.rhoPool[3 * px + c]) +
+                             (1 - w) * static_cast<double>(pooled[c]);
+            o[c] = std::max(static_cast<float>(R * (std::max(now[static_cast<int>(c)], 0.0) +
+                                                    t.delta[static_cast<int>(c)])),
+                            0.0f);
+        }
+        return;
+    }
+    for (size_t c = 0; c < 3; ++c)
+        o[c] = std::max(static_cast<float>(static_cast<double>(t.rho[3 * px + c]) *
+                                           (std::max(now[static_cast<int>(c)], 0.0) +
+                                            t.delta[static_cast<int>(c)])),
+                        0.0f);
 }
 
 bool pooledPixel(const DisplayMap& map, const PhotoPixels& pool, size_t px, const Rgb& now,

@@ -17,6 +17,7 @@
 // Real shadows divide out at the pixel, so no shadow removal is needed for it.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -107,6 +108,46 @@ void renderPixelLight(const DisplayMap& map, const Image& photo, std::span<const
                       std::span<const radiosity::Rgb> radianceInPhoto, const radiosity::Rgb& delta,
                       Image& out, PixelLightChange change = {},
                       std::span<const float> reflectance = {}, const PhotoPixels* pool = nullptr);
+
+/// The per-pixel display as a function of one light's direct light alone: the frames of a
+/// sun or point lamp being moved (DynamicRelighting::movedLightTerms), which the viewer
+/// draws on the GPU from a shadow map (viewer/gpu_moved_light.h). With g the light's unit
+/// irradiance at a pixel (its column of PixelLightChange::direct), renderPixelLight()
+/// without a merged reflectance is, at a pixel it draws,
+///   H = rest + L_m g,   out = max(0, R (max(H, 0) + delta))
+///   R = rho                                    where the pool does not apply,
+///   R = w rhoPool + (1 - w) pooled[radius(w)]  where lum(H) > kPoolAbove photoLight > 0
+/// (pooledPixel(), below: w = kPoolAbove photoLight / lum(H), radius = min(kMaxPoolRadius,
+/// round(kPoolRadius / sqrt(w)))).
+struct PixelLightTerms {
+    int width = 0, height = 0;
+    std::vector<float> rest;        ///< 3 per pixel: H_now with light m's direct light at 0
+    std::vector<float> rho;         ///< 3 per pixel: T / (max(H_photo, 0) + delta)
+    std::vector<float> rhoPool;     ///< 3 per pixel: the pool's (PhotoPixels::rho); 0: none
+    std::vector<float> photoLight;  ///< per pixel: lum(H_photo) where the pool applies, else 0
+    /// pooledByRadius(): 3 per pixel for each radius from kPoolRadius to kMaxPoolRadius;
+    /// empty without a pool.
+    std::vector<float> pooled;
+    std::vector<uint8_t> drawn;  ///< per pixel: 1 where renderPixelLight() draws it
+    radiosity::Rgb delta;        ///< the ratio display's floor, as renderPixelLight() is given it
+    radiosity::Rgb radiance;     ///< L_m: light m's radiance now (radianceNow[m])
+};
+
+/// The terms (above) of renderPixelLight()'s image with these arguments, for light `light`
+/// (an index into radianceNow). Throws std::invalid_argument with a merged reflectance
+/// (the fresh light is then read through it, not through the photo: not this form) or a
+/// light out of range.
+PixelLightTerms pixelLightTerms(const DisplayMap& map, const Image& photo,
+                                std::span<const float> pixelDirect,
+                                std::span<const radiosity::Rgb> indirect,
+                                std::span<const radiosity::Rgb> radianceNow,
+                                std::span<const radiosity::Rgb> radianceInPhoto,
+                                const radiosity::Rgb& delta, PixelLightChange change, int light,
+                                std::span<const float> reflectance, const PhotoPixels* pool);
+
+/// One pixel of the terms at unit irradiance g into o[0..2] (what the GPU's shader does;
+/// for a pixel drawn per pixel): renderPixelLight()'s value for that g, up to float rounding.
+void evalPixelLightTerms(const PixelLightTerms& t, size_t px, double g, float* o);
 
 /// Pooled reflectance where an edit brightens what the photo showed dim (Loscos et al.
 /// 1999, §4.2-4.3: where confidence is low, lean on a steadier estimate than the pixel's).

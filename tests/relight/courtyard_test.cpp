@@ -156,6 +156,58 @@ TEST(Courtyard, AMovedSunsQuickDirectLightIsTheExactOneAwayFromItsShadowEdges) {
     EXPECT_NEAR(sumQuick, sumExact, 0.01 * sumExact);
 }
 
+TEST(Courtyard, AMovedSunsFrameIsAFunctionOfItsDirectLightAlone) {
+    // DynamicRelighting::movedLightFrame: the per-pixel display of a sun being moved as
+    // scale * out(g) + offset, g the sun's unit irradiance per pixel, which the viewer's GPU
+    // measures from a shadow map at each frame. Given the quick frame's own g (its one ray
+    // per pixel), it must give the quick frame's image: the same sums, regrouped, in float
+    // where render() sums in double (relative rounding about 1e-6; 1e-4 of the image's
+    // largest value allows a sum of tens of float terms).
+    Relighting& r = courtyard();
+    const EditFile e = loadEdit(kCourtyard + "/edits/sun_moved.json", r.scene);
+    const auto radiance = editRadiance(r.scene, e, r.prepared.photoRadiance);
+    const std::vector<VirtualLight> moved = movedLights(r.scene, e);
+    ASSERT_EQ(moved.size(), 1u);
+    DynamicRelighting dyn(r, radiance);
+    const int light = dyn.addLight(moved[0]);
+    // Turned further, shown quickly (the frames of a drag).
+    std::unique_ptr<radiosity::Emitter> turned = moved[0].emitter->clone();
+    radiosity::EmitterEdit turn;
+    turn.direction = radiosity::Vec3{0.3, -0.5, 0.8};
+    turned->apply(turn);
+    dyn.previewEmitter(light, *turned);
+    const Image quick = dyn.render(DisplayMode::pixel);
+    const std::optional<MovedLightFrame> f = dyn.movedLightFrame(light);
+    ASSERT_TRUE(f.has_value());
+    EXPECT_EQ(f->source.kind, radiosity::ShadowSource::Kind::direction);
+    EXPECT_NEAR(glm::dot(f->source.at, glm::normalize(*turn.direction)), 1.0, 1e-12);
+    const size_t L = dyn.radiance().size(), pixels = f->terms.drawn.size();
+    const std::span<const float> direct = dyn.pixelDirect();
+    float top = 0;
+    for (float v : quick.rgb) top = std::max(top, v);
+    double worst = 0;
+    size_t drawn = 0;
+    for (size_t px = 0; px < pixels; ++px) {
+        float out[3] = {0, 0, 0};
+        if (f->terms.drawn[px]) {
+            ++drawn;
+            evalPixelLightTerms(f->terms, px, direct[px * L + static_cast<size_t>(light)], out);
+        }
+        for (size_t c = 0; c < 3; ++c) {
+            const float v = f->scale[3 * px + c] * out[c] + f->offset[3 * px + c];
+            worst = std::max(worst, static_cast<double>(std::abs(v - quick.rgb[3 * px + c])));
+        }
+    }
+    std::printf(
+        "moved sun's frame from its terms: %zu of %zu pixels drawn per pixel; worst "
+        "difference %.3g (image max %.3g)\n",
+        drawn, pixels, worst, static_cast<double>(top));
+    EXPECT_GT(drawn, pixels / 2);
+    EXPECT_LE(worst, 1e-4 * static_cast<double>(top));
+    // A sky has no one direction: no such frame.
+    EXPECT_FALSE(dyn.movedLightFrame(1).has_value());
+}
+
 TEST(Courtyard, WensDisplayOfASessionWithoutPartsIsTheLightEdit) {
     // DynamicRelighting's wen display (relight/display/wen_display.h) with no virtual part:
     // the photo's direct light per pixel and no indirect change, so the light edit's sums
