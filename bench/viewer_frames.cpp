@@ -290,27 +290,40 @@ void lightSlider(const char* scenario, Session& session, FrameRenderer& frame, i
 /// exactly (quick moves off: what the viewer did before, per turn), then the quick frames
 /// (Session::setQuickMoves: the sun's direct light per pixel from one ray), the drag
 /// resting (Session::settle: the exact image) and how far the last quick image was from it.
+/// How a drag of a sun or point lamp is shown: each move solved as `relight render` solves
+/// it; the quick frames with the light's direct light per pixel on the CPU (one shadow ray
+/// a pixel); the same frames on the GPU from the light's shadow map (gpu_moved_light.h).
+struct Variant {
+    const char* name;
+    bool quick, gpu;
+};
+constexpr Variant kDragVariants[] = {
+    {"each exact", false, false}, {"quick, CPU", true, false}, {"quick, GPU", true, true}};
+
 void sunDrag(Session& session, FrameRenderer& frame, int frames, int upscale) {
     std::string sun;
     for (const LightControl& l : session.lights())
         if (l.emitter && radiosity::findField(*l.emitter, "direction")) sun = l.name;
     if (sun.empty()) throw std::runtime_error("the scene has no sun to drag");
     const Display& display = kDisplays[2];  // per-pixel
-    for (const bool quick : {false, true}) {
-        session.setQuickMoves(quick);
+    for (const Variant& v : kDragVariants) {
+        session.setQuickMoves(v.quick);
+        frame.gpuLights = v.gpu;
         const Samples s = timeFrames(frame, display, frames, [&](int) {
             session.dragSun(sun, 1.0 * upscale, 0.5 * upscale);
         });
-        printRow(quick ? "sun drag, quick" : "sun drag, each exact", display, s);
+        printRow((std::string("sun drag, ") + v.name).c_str(), display, s);
         if (session.exactPending()) printAtRest(session, frame, "drag");
     }
+    frame.gpuLights = true;
 }
 
 /// A point lamp dragged over the floor and quad lamps inserted, in the per-pixel display
 /// (issue 32 item 5's "lamp drag" and "lamp insertion"): the lamp is put 0.3 m above the
 /// floor at pixel `at` and follows the pointer along `step` (the box's line, one pass),
 /// each move first solved exactly, then with the window's quick frames
-/// (Session::setQuickMoves) and the drag at rest; then a virtual quad lamp inserted on the
+/// (Session::setQuickMoves; kDragVariants: the light per pixel on the CPU, then on the GPU)
+/// and the drag at rest; then a virtual quad lamp inserted on the
 /// floor and taken out again, min(frames, 8) times: the frame of each insertion.
 void lampDragAndInsertion(Session& session, FrameRenderer& frame, int frames,
                           std::array<double, 2> at, std::array<double, 2> step) {
@@ -321,8 +334,9 @@ void lampDragAndInsertion(Session& session, FrameRenderer& frame, int frames,
     frame.render();
     int misses = 0;
     bool forwards = true;
-    for (const bool quick : {false, true}) {
-        session.setQuickMoves(quick);
+    for (const Variant& v : kDragVariants) {
+        session.setQuickMoves(v.quick);
+        frame.gpuLights = v.gpu;
         const Samples s = timeFrames(frame, display, frames, [&](int i) {
             const double f = static_cast<double>(i + 1) / frames, t = forwards ? f : 1 - f;
             const Pick p = session.pick(at[0] + t * step[0], at[1] + t * step[1]);
@@ -331,10 +345,11 @@ void lampDragAndInsertion(Session& session, FrameRenderer& frame, int frames,
             else
                 ++misses;
         });
-        printRow(quick ? "point lamp drag, quick" : "point lamp drag, each exact", display, s);
+        printRow((std::string("point lamp drag, ") + v.name).c_str(), display, s);
         if (session.exactPending()) printAtRest(session, frame, "lamp drag");
         forwards = !forwards;
     }
+    frame.gpuLights = true;
     session.setQuickMoves(false);
     session.removeLight(static_cast<int>(session.lights().size()) - 1);
     frame.render();

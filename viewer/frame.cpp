@@ -67,6 +67,33 @@ Image FrameRenderer::relitImage() {
     return session_.relitPerPixel(perPixelMode);
 }
 
+bool FrameRenderer::drawMovedLight(float gain, FrameStats& s) {
+    const std::optional<radiosity::ShadowSource> source = session_.movingSource();
+    if (!source) return false;
+    const auto t0 = Clock::now();
+    if (movedEpoch_ != session_.movingEpoch()) {
+        // Once per drag: everything but the light's direct light, and what blocks it.
+        movedEpoch_ = session_.movingEpoch();
+        const std::optional<MovedLightFrame> f = session_.movedLightFrame();
+        movedValid_ = f.has_value();
+        if (movedValid_) {
+            if (!moved_)
+                moved_ = std::make_unique<GpuMovedLight>(display_.width(), display_.height());
+            moved_->setFrame(*f);
+        }
+    }
+    if (!movedValid_) return false;
+    glFinish();
+    s.upload = secondsSince(t0);
+    const auto t1 = Clock::now();
+    display_.bindFloatTarget();
+    moved_->draw(*source, gain);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glFinish();
+    s.draw = secondsSince(t1);
+    return true;
+}
+
 FrameStats FrameRenderer::render() {
     const bool valuesChanged = session_.generation() != generation_;
     const bool viewChanged = view != lastView_ || generation_ < 0;
@@ -78,6 +105,18 @@ FrameStats FrameRenderer::render() {
     const auto t0 = Clock::now();
     double gain = std::exp2(exposure);
     const bool cpuRelit = view == ViewKind::relit && perPixel;
+    drewOnGpu_ = cpuRelit && gpuLights && perPixelMode == DisplayMode::pixel &&
+                 session_.movingLight() >= 0 && drawMovedLight(static_cast<float>(gain), s);
+    if (drewOnGpu_) {
+        generation_ = session_.generation();
+        lastView_ = view;
+        lastFramebuffer_ = framebuffer;
+        lastExposure_ = exposure;
+        lastPerPixel_ = perPixel;
+        lastPerPixelMode_ = perPixelMode;
+        last_ = s;
+        return s;
+    }
     if (cpuRelit) {
         if (valuesChanged || viewChanged || modeChanged) display_.setImage(relitImage());
     } else if (view == ViewKind::relit || view == ViewKind::B) {

@@ -9,6 +9,7 @@
 
 #include "relight/display/debug_views.h"
 #include "viewer/gpu_display.h"
+#include "viewer/gpu_moved_light.h"
 #include "viewer/session.h"
 
 namespace relight::viewer {
@@ -41,6 +42,10 @@ class FrameRenderer {
     bool perPixel = false;
     /// Which per-pixel display it is: pixel (relight render's default), ratio-map or wen.
     DisplayMode perPixelMode = DisplayMode::pixel;
+    /// In the per-pixel display (DisplayMode::pixel), the frames of a sun or point lamp being
+    /// moved (Session::movingLight) drawn on the GPU from its shadow map
+    /// (gpu_moved_light.h) rather than measured per pixel on the CPU.
+    bool gpuLights = true;
 
     /// Uploads what changed since the last call and draws the photo area into the display's
     /// offscreen target. Returns the times.
@@ -60,9 +65,15 @@ class FrameRenderer {
     /// frame 2 s with a virtual lamp in the room (bench/RESULTS.md, 2026-11-29).
     void prepareImage(DisplayMode mode);
 
+    /// Whether the last render() drew the moving light's frame on the GPU (gpuLights).
+    bool drewOnGpu() const { return drewOnGpu_; }
+
   private:
     /// The per-pixel image: prepareImage()'s when it is of this state, else made now.
     Image relitImage();
+    /// The moving light's frame on the GPU (gpuLights) into the display's float target;
+    /// false, drawing nothing, where the session has no such frame.
+    bool drawMovedLight(float gain, FrameStats& s);
 
     Session& session_;
     GpuRatioDisplay& display_;
@@ -73,7 +84,10 @@ class FrameRenderer {
     double lastExposure_ = 0;
     bool lastPerPixel_ = false;
     DisplayMode lastPerPixelMode_ = DisplayMode::pixel;
-    bool drew_ = false;
+    bool drew_ = false, drewOnGpu_ = false;
+    std::unique_ptr<GpuMovedLight> moved_;
+    int movedEpoch_ = -1;      ///< the session's movingEpoch() whose frame moved_ holds
+    bool movedValid_ = false;  ///< whether that epoch has a frame
     FrameStats last_;
     Image prepared_;               ///< prepareImage()'s
     int preparedGeneration_ = -1;  ///< the session's generation it shows; -1: none

@@ -6,20 +6,14 @@
 #include <string>
 
 #include "relight/display/multipass.h"
+#include "viewer/gl_util.h"
 
 namespace relight::viewer {
 
 namespace {
 
-// A triangle that covers the viewport; uv in [0, 1] over it.
-const char* kVertexShader = R"(#version 330 core
-const vec2 corner[3] = vec2[3](vec2(-1.0, -1.0), vec2(3.0, -1.0), vec2(-1.0, 3.0));
-out vec2 uv;
-void main() {
-    gl_Position = vec4(corner[gl_VertexID], 0.0, 1.0);
-    uv = 0.5 * corner[gl_VertexID] + 0.5;
-}
-)";
+using gl::bindUnit;
+using gl::makeTexture2D;
 
 // The per-pixel work of renderRatio() (relight/display/ratio_display.cpp) and applyOverlay()
 // (relight/dynamic/dynamic_relighting.h); see gpu_display.h. Image row y is fragment row
@@ -110,39 +104,8 @@ void main() {
 }
 )";
 
-GLuint compile(GLenum type, const char* source) {
-    const GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &source, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        glDeleteShader(s);
-        throw std::runtime_error(std::string("viewer: a shader does not compile: ") + log);
-    }
-    return s;
-}
-
 GLuint link(const char* fragment) {
-    const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
-    const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment);
-    const GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetProgramInfoLog(p, sizeof log, nullptr, log);
-        glDeleteProgram(p);
-        throw std::runtime_error(std::string("viewer: a shader program does not link: ") + log);
-    }
-    return p;
+    return gl::link(gl::kFullScreenVertexShader, fragment);
 }
 
 /// A texture buffer over `bytes` of data (at least one element, so that an empty list
@@ -161,20 +124,6 @@ void makeTextureBuffer(GLuint& buf, GLuint& tex, GLenum format, const void* data
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_BUFFER, tex);
     glTexBuffer(GL_TEXTURE_BUFFER, format, buf);
-}
-
-GLuint makeTexture2D(GLenum internalFormat, int w, int h, GLenum format, GLenum type,
-                     const void* data) {
-    GLuint t = 0;
-    glGenTextures(1, &t);
-    glBindTexture(GL_TEXTURE_2D, t);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internalFormat), w, h, 0, format, type, data);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
 }
 
 void makeTarget(GLuint& fbo, GLuint& tex, GLenum internalFormat, int w, int h) {
@@ -196,11 +145,6 @@ std::vector<float> rgba(const Image& img, float alpha) {
         out[i * 4 + 3] = alpha;
     }
     return out;
-}
-
-void bindUnit(int unit, GLenum target, GLuint tex) {
-    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
-    glBindTexture(target, tex);
 }
 
 }  // namespace
@@ -428,6 +372,12 @@ int GpuRatioDisplay::draw(View view, Framebuffer fb, float gain) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     lastTex_ = multi ? byteTex_ : floatTex_;
     return passes;
+}
+
+void GpuRatioDisplay::bindFloatTarget() {
+    glBindFramebuffer(GL_FRAMEBUFFER, floatFbo_);
+    glViewport(0, 0, width_, height_);
+    lastTex_ = floatTex_;
 }
 
 Image GpuRatioDisplay::read() {

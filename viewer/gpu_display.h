@@ -77,6 +77,10 @@ class GpuRatioDisplay {
     /// the values (exposure 2^stops; for the B view also its display scale). Returns the
     /// passes drawn (1 with the float target).
     int draw(View view, Framebuffer fb, float gain);
+    /// Binds the float target at the photo's size, viewport set, for a pass that another
+    /// program draws (a moved light's frames, gpu_moved_light.h); read() and present() then
+    /// show what it drew.
+    void bindFloatTarget();
     /// Passes the multipass target needs for the current values and gain.
     int passesNeeded(float gain) const;
 

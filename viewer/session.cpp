@@ -360,7 +360,13 @@ bool Session::apply(bool quickOnly) {
         appliedEmitters_.push_back(
             l.emitter ? std::shared_ptr<radiosity::Emitter>(l.emitter->clone()) : nullptr);
     updateSeconds_ = secondsSince(t0);
+    const int wasMoving = movingLight_, epoch = movingEpoch_;
     changed();
+    // One light moved quickly, and the same as the last change's: the frames of one drag.
+    if (quickMove && previewed_ >= 0) {
+        movingLight_ = previewed_;
+        if (previewed_ == wasMoving) movingEpoch_ = epoch;
+    }
     return true;
 }
 
@@ -397,6 +403,7 @@ bool Session::previewMoves() {
     for (const size_t i : movedNow)
         if (i >= solverLight_.size() || solverLight_[i] < 0) return false;
     for (const size_t i : movedNow) dyn_->previewEmitter(solverLight_[i], *lights_[i].emitter);
+    previewed_ = movedNow.size() == 1 ? solverLight_[movedNow[0]] : -1;
     return true;
 }
 
@@ -767,6 +774,16 @@ std::vector<Rgb> Session::vertexIrradiance() const {
 std::vector<Rgb> Session::vertexRatios() const {
     if (dyn_) return dyn_->vertexRatios();
     return vertexRatio(r_->prepared, relight::vertexIrradiance(r_->prepared, realRadiance()));
+}
+
+std::optional<MovedLightFrame> Session::movedLightFrame() {
+    if (movingLight_ < 0 || !dyn_) return std::nullopt;
+    return dyn_->movedLightFrame(movingLight_);
+}
+
+std::optional<radiosity::ShadowSource> Session::movingSource() const {
+    if (movingLight_ < 0 || !dyn_) return std::nullopt;
+    return dyn_->shownSource(movingLight_);
 }
 
 Image Session::relitPerPixel(DisplayMode mode) {

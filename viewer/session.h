@@ -217,6 +217,18 @@ class Session {
 
     /// Changes whenever what the display shows changes.
     int generation() const { return generation_; }
+    /// The solver light being moved quickly when it alone is shown so (a sun turned or a
+    /// point lamp moved, setQuickMoves): the window may then draw its frames on the GPU
+    /// (viewer/gpu_moved_light.h); -1 otherwise.
+    int movingLight() const { return movingLight_; }
+    /// Changes whenever anything but that light's place changes: a movedLightFrame() holds
+    /// for every frame of one epoch.
+    int movingEpoch() const { return movingEpoch_; }
+    /// The image as a function of the moving light's direct light alone
+    /// (DynamicRelighting::movedLightFrame); nullopt where there is none or it does not hold.
+    std::optional<MovedLightFrame> movedLightFrame();
+    /// Where the moving light is now (its ShadowSource as shown); nullopt without one.
+    std::optional<radiosity::ShadowSource> movingSource() const;
     /// The display ratio k H/D per leaf vertex; the irradiance H per leaf vertex.
     std::vector<Rgb> vertexRatios() const;
     std::vector<Rgb> vertexIrradiance() const;
@@ -247,7 +259,13 @@ class Session {
     void rebuild();  ///< inserts every virtual part again, in render's order
     /// update(); with `quickOnly`, updateQuickly().
     bool apply(bool quickOnly);
-    void changed() { ++generation_; }
+    /// Every change but the frames of one light's drag ends that drag's frames
+    /// (movingLight(); apply() starts them again).
+    void changed() {
+        ++generation_;
+        movingLight_ = -1;
+        ++movingEpoch_;
+    }
     bool displayFinite() const;  ///< every display ratio fits a 32-bit float
     /// Puts the lights' radiances back to `before` (one per light) and throws InputError
     /// naming the lights that changed.
@@ -291,6 +309,9 @@ class Session {
     int realLights_ = 0;
     size_t realPolygons_ = 0;
     double diagonal_ = 1;  ///< of the scene's bounding box (metres)
+    /// movingLight(), movingEpoch(); the solver light previewMoves() showed last when it
+    /// showed one (-1: several).
+    int movingLight_ = -1, movingEpoch_ = 0, previewed_ = -1;
     int generation_ = 0, dragging_ = -1, nextLight_ = 1, nextBox_ = 1, nextLamp_ = 1;
     int nextPoint_ = 1;
     Vec3 grab_{0, 0, 0}, dragUp_{0, 0, 1};

@@ -156,6 +156,15 @@ Image DynamicRelighting::render(DisplayMode mode) {
     return img;
 }
 
+std::optional<radiosity::ShadowSource> DynamicRelighting::shownSource(int light) const {
+    const auto& lights = solver_.scene().lights;
+    if (light < 0 || static_cast<size_t>(light) >= lights.size()) return std::nullopt;
+    for (const Preview& q : previews_)  // shown moved: where previewEmitter() put it
+        if (q.light == light && q.emitter) return q.emitter->shadowSource();
+    const auto& emitter = lights[static_cast<size_t>(light)].emitter;
+    return emitter ? emitter->shadowSource() : std::nullopt;
+}
+
 std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
     const PreparedImage& P = r_.prepared;
     const auto& lights = solver_.scene().lights;
@@ -167,9 +176,7 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
         emitter ? emitter->shadowSource() : std::nullopt;
     if (!source) return std::nullopt;
     MovedLightFrame f;
-    f.source = *source;
-    for (const Preview& q : previews_)  // shown moved: where previewEmitter() put it
-        if (q.light == light && q.emitter) f.source = *q.emitter->shadowSource();
+    f.source = *shownSource(light);
     // The ratio display's pixels and the overlay as render() makes them; the pixels drawn
     // per pixel are replaced below.
     const Image img = render(DisplayMode::pixel);
@@ -178,6 +185,15 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
                               PixelLightChange{pixelDirect(), pixelIndirect()}, light,
                               P.pixelReflectance, &P.photoPixels);
     f.receivers = quickReceivers(r_.items, solver_.scene());
+    const auto& polygons = solver_.scene().polygons;
+    for (size_t p = 0; p < polygons.size(); ++p) {
+        if (solver_.visibility().hidden(static_cast<int>(p))) continue;
+        const radiosity::Polygon& poly = polygons[p];
+        for (int k = 1; k + 1 < poly.vertexCount; ++k)  // a fan: the polygons are convex
+            for (const int i : {0, k, k + 1})
+                for (int c = 0; c < 3; ++c)
+                    f.blockers.push_back(static_cast<float>(poly.v[static_cast<size_t>(i)][c]));
+    }
     const size_t pixels = f.terms.drawn.size();
     f.scale.assign(3 * pixels, 1.0f);
     f.offset.assign(3 * pixels, 0.0f);

@@ -475,7 +475,14 @@ std::span<const float> DynamicRelighting::pixelDirect() {
     if (cache) cache->pixelHits += hits.load();
     std::fill(leafPending_.begin(), leafPending_.end(), 0);
     if (previews_.empty() && !objectPreview_) return pixelDirect_;
-    // The lights shown moved (previewEmitter): their columns from the quick measurement.
+    // The lights shown moved (previewEmitter): their columns from the quick measurement,
+    // made now where it was not yet.
+    for (Preview& q : previews_)
+        if (q.direct.empty()) {
+            const auto t0 = Clock::now();
+            q.direct = quickPixelLight(r_.items, solver_.scene(), solver_.visibility(), *q.emitter);
+            times_.display += secondsSince(t0);
+        }
     pixelShown_ = pixelDirect_;
     for (const Preview& q : previews_)
         for (size_t px = 0; px < pixels; ++px)
@@ -500,20 +507,18 @@ void DynamicRelighting::previewEmitter(int light, const radiosity::Emitter& move
         static_cast<size_t>(light + count) > lights.size())
         throw std::invalid_argument("previewEmitter: \"" + moved.name() +
                                     "\" has another number of components");
-    const auto t0 = Clock::now();
-    std::vector<float> direct =
-        quickPixelLight(r_.items, solver_.scene(), solver_.visibility(), moved);
+    // Measured when the image is made (pixelDirect()): a display that measures the light
+    // itself (the viewer's GPU frames, movedLightFrame) never asks for it.
     const auto it = std::find_if(previews_.begin(), previews_.end(),
                                  [&](const Preview& q) { return q.light == light; });
     std::shared_ptr<const radiosity::Emitter> shown = moved.clone();
     if (it != previews_.end()) {
-        it->direct = std::move(direct);
+        it->direct.clear();
         it->emitter = std::move(shown);
     } else {
-        previews_.push_back({light, count, std::move(direct), std::move(shown)});
+        previews_.push_back({light, count, {}, std::move(shown)});
     }
     times_ = FrameTimes{};
-    times_.display = secondsSince(t0);
 }
 
 void DynamicRelighting::afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices) {

@@ -116,6 +116,9 @@ struct MovedLightFrame {
     std::vector<float> receivers;      ///< 6 per pixel: point, normal (0: no receiver)
     std::vector<float> scale, offset;  ///< 3 per pixel
     radiosity::ShadowSource source;    ///< the light as it stands (Emitter::shadowSource)
+    /// What casts its shadows: the solver's polygons that its visibility holds (the virtual
+    /// parts in, the objects taken out not), as triangles, 9 floats each (metres).
+    std::vector<float> blockers;
 };
 
 class DynamicRelighting {
@@ -184,6 +187,9 @@ class DynamicRelighting {
     /// reflectance (several photos), an object dragged (previewLastObject), a light that is
     /// not one point or direction (Emitter::shadowSource: a quad, a sky), no per-pixel light.
     std::optional<MovedLightFrame> movedLightFrame(int light);
+    /// Light `light` as one point or direction where it is shown (previewEmitter()'s place
+    /// while it moves); nullopt for a light without one (Emitter::shadowSource).
+    std::optional<radiosity::ShadowSource> shownSource(int light) const;
     /// Whether a light is shown by previewEmitter() (the image is a quick one).
     bool previewing() const { return !previews_.empty() || objectPreview_ != nullptr; }
     /// A quick look at the object added last moved to `polygons` (same faces, world space),
@@ -345,7 +351,7 @@ class DynamicRelighting {
     /// with those columns replaced (what pixelDirect() returns while there are any).
     struct Preview {
         int light = 0, count = 0;
-        std::vector<float> direct;
+        std::vector<float> direct;  ///< empty until pixelDirect() measures it
         std::shared_ptr<const radiosity::Emitter> emitter;  ///< the light as shown
     };
     std::vector<Preview> previews_;

@@ -192,6 +192,96 @@ TEST_F(ViewerGpu, VirtualPartsMatchTheCpuDisplay) {
     EXPECT_LE(maxStepDifference(gpu, cpuDisplay(session), kAllPixels), 1);
 }
 
+// The frames of a point lamp being moved, drawn on the GPU (viewer/gpu_moved_light.h): its
+// direct light from a cube shadow map at each frame, the rest of the image from the
+// session's movedLightFrame, against the CPU's quick frame of the same place (the same
+// receiver per pixel, one shadow ray). They differ where the map and the ray disagree: at
+// a shadow's edge, by up to two of the map's texels.
+TEST_F(ViewerGpu, AMovedPointLampsFramesOnTheGpuAreItsQuickFramesOnTheCpu) {
+    const std::unique_ptr<Relighting> r = preparePerPixelRoom();
+    GpuRatioDisplay display(r->prepared);
+    Session session(*r, loadEdit(kRoom + "/edits/virtual_box.json", r->scene));
+    session.setQuickMoves(true);
+    FrameRenderer frame(session, display);
+    frame.perPixel = true;
+    double u = 0, v = 0, depth = 0;
+    ASSERT_TRUE(r->scene.camera.project({2.0, 1.5, 0.0}, u, v, depth));
+    const std::string lamp = session.addPointLampAt(session.pick(u, v), 0.6);
+    EXPECT_LT(session.movingLight(), 0);  // inserted: the exact image
+    frame.render();
+    EXPECT_FALSE(frame.drewOnGpu());
+    int epoch = -1;
+    for (int k = 1; k <= 3; ++k) {
+        SCOPED_TRACE(k);
+        session.movePointLampTo(lamp, session.pick(u - 12 * k, v - 4 * k), 0.6);
+        ASSERT_GE(session.movingLight(), 0);
+        if (k > 1) {
+            EXPECT_EQ(session.movingEpoch(), epoch);  // one drag: one upload
+        }
+        epoch = session.movingEpoch();
+        frame.render();
+        ASSERT_TRUE(frame.drewOnGpu());
+        const Image gpu = frame.read();
+        const Image cpu = session.relitPerPixel();
+        int differing = 0;
+        const int worst = maxStepDifference(gpu, cpu, kAllPixels, &differing);
+        size_t beyond = 0;
+        for (int y = 0; y < gpu.height; ++y)
+            for (int x = 0; x < gpu.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    beyond += std::abs(code8(gpu.at(x, y)[c]) - code8(cpu.at(x, y)[c])) > 2;
+        std::printf(
+            "point lamp moved %d: GPU frame against the CPU's quick frame: %d pixels "
+            "differ, %zu values by more than 2 steps, at most %d\n",
+            k, differing, beyond, worst);
+        EXPECT_LE(beyond, static_cast<size_t>(gpu.width * gpu.height) / 100);
+    }
+    // At rest the exact image, made on the CPU as before.
+    EXPECT_TRUE(session.settle());
+    EXPECT_LT(session.movingLight(), 0);
+    frame.render();
+    EXPECT_FALSE(frame.drewOnGpu());
+}
+
+// The same for a sun turned (its orthographic shadow map): the courtyard's sun dragged as
+// the window's sun tool does.
+TEST_F(ViewerGpu, ATurnedSunsFramesOnTheGpuAreItsQuickFramesOnTheCpu) {
+    RelightOptions o;
+    o.epsilon = 1e-3;
+    o.spp = 4;
+    o.reflectanceRounds = 3;
+    o.pixelLight = true;
+    const std::unique_ptr<Relighting> r =
+        prepareRelighting(loadScene(RELIGHT_DATA_DIR "/courtyard"), o);
+    GpuRatioDisplay display(r->prepared);
+    Session session(*r, EditFile{});
+    session.setQuickMoves(true);
+    FrameRenderer frame(session, display);
+    frame.perPixel = true;
+    frame.render();
+    for (int k = 1; k <= 3; ++k) {
+        SCOPED_TRACE(k);
+        session.dragSun("sun", 6.0, 2.0);
+        ASSERT_GE(session.movingLight(), 0);
+        frame.render();
+        ASSERT_TRUE(frame.drewOnGpu());
+        const Image gpu = frame.read();
+        const Image cpu = session.relitPerPixel();
+        int differing = 0;
+        const int worst = maxStepDifference(gpu, cpu, kAllPixels, &differing);
+        size_t beyond = 0;
+        for (int y = 0; y < gpu.height; ++y)
+            for (int x = 0; x < gpu.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    beyond += std::abs(code8(gpu.at(x, y)[c]) - code8(cpu.at(x, y)[c])) > 2;
+        std::printf(
+            "sun turned %d: GPU frame against the CPU's quick frame: %d pixels differ, "
+            "%zu values by more than 2 steps, at most %d\n",
+            k, differing, beyond, worst);
+        EXPECT_LE(beyond, static_cast<size_t>(gpu.width * gpu.height) / 100);
+    }
+}
+
 TEST_F(ViewerGpu, DebugViewBMatchesTheCpuView) {
     const PreparedImage& P = relighting_->prepared;
     GpuRatioDisplay display(P);
