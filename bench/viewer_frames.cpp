@@ -300,6 +300,13 @@ struct Variant {
 constexpr Variant kDragVariants[] = {
     {"each exact", false, false}, {"quick, CPU", true, false}, {"quick, GPU", true, true}};
 
+/// The first frame of a drag's quick variants: on the GPU it makes and uploads the frame's
+/// terms (DynamicRelighting::movedLightFrame), once a drag.
+void printFirst(const Samples& s, const Variant& v) {
+    if (!v.quick || s.frame.empty()) return;
+    std::printf("  its first frame: %.1f ms (upload %.1f ms)\n", s.frame.front(), s.upload.front());
+}
+
 void sunDrag(Session& session, FrameRenderer& frame, int frames, int upscale) {
     std::string sun;
     for (const LightControl& l : session.lights())
@@ -313,6 +320,7 @@ void sunDrag(Session& session, FrameRenderer& frame, int frames, int upscale) {
             session.dragSun(sun, 1.0 * upscale, 0.5 * upscale);
         });
         printRow((std::string("sun drag, ") + v.name).c_str(), display, s);
+        printFirst(s, v);
         if (session.exactPending()) printAtRest(session, frame, "drag");
     }
     frame.gpuLights = true;
@@ -346,6 +354,7 @@ void lampDragAndInsertion(Session& session, FrameRenderer& frame, int frames,
                 ++misses;
         });
         printRow((std::string("point lamp drag, ") + v.name).c_str(), display, s);
+        printFirst(s, v);
         if (session.exactPending()) printAtRest(session, frame, "lamp drag");
         forwards = !forwards;
     }

@@ -215,7 +215,7 @@ void GpuMovedLight::setFrame(const MovedLightFrame& f) {
         f.scale.size() != 3 * pixels || f.offset.size() != 3 * pixels)
         throw std::invalid_argument("GpuMovedLight: a frame of another size than the photo");
     for (GLuint* tex : {&pointTex_, &normalTex_, &restTex_, &rhoTex_, &rhoPoolTex_, &photoLightTex_,
-                        &scaleTex_, &offsetTex_, &pooledTex_})
+                        &scaleTex_, &offsetTex_})
         if (*tex) glDeleteTextures(1, tex);
     pointTex_ = rgbTexture(width_, height_, f.receivers, 6, 0);
     normalTex_ = rgbTexture(width_, height_, f.receivers, 6, 3);
@@ -227,14 +227,20 @@ void GpuMovedLight::setFrame(const MovedLightFrame& f) {
     photoLightTex_ = gl::makeTexture2D(GL_R32F, width_, height_, GL_RED, GL_FLOAT,
                                        t.photoLight.data(), GL_NEAREST);
     const int radii = kMaxPoolRadius - kPoolRadius + 1;
-    pooled_ = t.pooled.size() == 3 * pixels * static_cast<size_t>(radii);
-    const std::vector<float> none(3 * pixels, 0.0f);
-    glGenTextures(1, &pooledTex_);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, pooledTex_);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGB32F, width_, height_, pooled_ ? radii : 1, 0, GL_RGB,
-                 GL_FLOAT, pooled_ ? t.pooled.data() : none.data());
-    setNearest(GL_TEXTURE_2D_ARRAY);
+    pooled_ = t.pooled && t.pooled->size() == 3 * pixels * static_cast<size_t>(radii);
+    // The pooled reflectance does not change with the edit: uploaded again only when the
+    // frame's table is another one (74 MB at 1280 x 960).
+    if (!pooledTex_ || t.pooled != pooledData_) {
+        if (pooledTex_) glDeleteTextures(1, &pooledTex_);
+        const std::vector<float> none(pooled_ ? 0 : 3 * pixels, 0.0f);
+        glGenTextures(1, &pooledTex_);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, pooledTex_);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGB32F, width_, height_, pooled_ ? radii : 1, 0,
+                     GL_RGB, GL_FLOAT, pooled_ ? t.pooled->data() : none.data());
+        setNearest(GL_TEXTURE_2D_ARRAY);
+        pooledData_ = t.pooled;
+    }
     for (int c = 0; c < 3; ++c) {
         radiance_[c] = static_cast<float>(t.radiance[c]);
         delta_[c] = static_cast<float>(t.delta[c]);

@@ -32,6 +32,9 @@
 
 #include <epoxy/gl.h>
 
+#include <memory>
+#include <vector>
+
 #include "radiosity/emitter.h"
 #include "relight/dynamic/dynamic_relighting.h"
 
@@ -72,6 +75,7 @@ class GpuMovedLight {
     GLuint pointTex_ = 0, normalTex_ = 0, restTex_ = 0, rhoTex_ = 0, rhoPoolTex_ = 0;
     GLuint photoLightTex_ = 0, scaleTex_ = 0, offsetTex_ = 0, pooledTex_ = 0;
     bool pooled_ = false;
+    std::shared_ptr<const std::vector<float>> pooledData_;  ///< what pooledTex_ holds
     float radiance_[3] = {0, 0, 0}, delta_[3] = {0, 0, 0};
     // Shadow maps: a cube of distances (point lamps), a square of distances (suns).
     GLuint cubeTex_ = 0, cubeDepth_ = 0, cubeFbo_[6] = {};

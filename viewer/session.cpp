@@ -395,7 +395,7 @@ bool Session::previewMoves() {
         std::vector<Rgb> real;
         for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
             real.push_back(lights_[l].radiance());
-        dyn_ = std::make_unique<DynamicRelighting>(*r_, real);
+        dyn_ = std::make_unique<DynamicRelighting>(*r_, real, &geometry_);
         solverLight_.assign(lights_.size(), -1);
         for (size_t l = 0; l < static_cast<size_t>(realLights_); ++l)
             solverLight_[l] = static_cast<int>(l);

@@ -177,13 +177,18 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
     if (!source) return std::nullopt;
     MovedLightFrame f;
     f.source = *shownSource(light);
-    // The ratio display's pixels and the overlay as render() makes them; the pixels drawn
-    // per pixel are replaced below.
-    const Image img = render(DisplayMode::pixel);
-    f.terms = pixelLightTerms(P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_,
-                              P.photoRadiance, ratioFloor(P.D),
-                              PixelLightChange{pixelDirect(), pixelIndirect()}, light,
-                              P.pixelReflectance, &P.photoPixels);
+    // The ratio display where the per-pixel display does not draw, as render() makes it.
+    const auto t0 = Clock::now();
+    completeVertexGather(&ratioPixelVertices());
+    const std::span<const Rgb> real(radiance_.data(), static_cast<size_t>(realLights_));
+    Image img;
+    renderRatio(P.display, P.photo, vertexRatio(P, irradianceAsItStands()), real, P.photoRadiance,
+                img, {}, /*leafRuns=*/false);
+    f.terms = pixelLightTerms(
+        P.display, P.photo, P.pixelDirect, P.vertexIndirect, radiance_, P.photoRadiance,
+        ratioFloor(P.D), PixelLightChange{pixelDirectExcept(light), pixelIndirect()}, light,
+        P.pixelReflectance, &P.photoPixels, cache_ ? cache_->pooledByRadius : nullptr);
+    if (cache_) cache_->pooledByRadius = f.terms.pooled;
     f.receivers = quickReceivers(r_.items, solver_.scene());
     const auto& polygons = solver_.scene().polygons;
     for (size_t p = 0; p < polygons.size(); ++p) {
@@ -194,9 +199,17 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
                 for (int c = 0; c < 3; ++c)
                     f.blockers.push_back(static_cast<float>(poly.v[static_cast<size_t>(i)][c]));
     }
+    // image = scale * out + offset: out where drawn per pixel, the ratio display's value
+    // elsewhere; the overlay (applyOverlay) on both.
     const size_t pixels = f.terms.drawn.size();
     f.scale.assign(3 * pixels, 1.0f);
     f.offset.assign(3 * pixels, 0.0f);
+    for (size_t px = 0; px < pixels; ++px)
+        if (!f.terms.drawn[px])
+            for (size_t c = 0; c < 3; ++c) {
+                f.scale[3 * px + c] = 0.0f;
+                f.offset[3 * px + c] = img.rgb[3 * px + c];
+            }
     const VirtualOverlay o = overlay();
     for (int y = 0; y < o.height; ++y)
         for (int x = 0; x < o.width; ++x) {
@@ -204,16 +217,11 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
             const size_t px = static_cast<size_t>(o.y0 + y) * static_cast<size_t>(img.width) +
                               static_cast<size_t>(o.x0 + x);
             for (size_t c = 0; c < 3; ++c) {
-                f.scale[3 * px + c] = a[3];
-                f.offset[3 * px + c] = a[c];
+                f.scale[3 * px + c] *= a[3];
+                f.offset[3 * px + c] = a[3] * f.offset[3 * px + c] + a[c];
             }
         }
-    for (size_t px = 0; px < pixels; ++px)
-        if (!f.terms.drawn[px])
-            for (size_t c = 0; c < 3; ++c) {
-                f.scale[3 * px + c] = 0.0f;
-                f.offset[3 * px + c] = img.rgb[3 * px + c];
-            }
+    times_.display += secondsSince(t0);
     return f;
 }
 

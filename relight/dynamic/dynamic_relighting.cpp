@@ -381,6 +381,10 @@ void DynamicRelighting::markChangedLeaves(const std::vector<int>& leaves) {
 }
 
 std::span<const float> DynamicRelighting::pixelDirect() {
+    return pixelDirectExcept(-1);
+}
+
+std::span<const float> DynamicRelighting::pixelDirectExcept(int unmeasured) {
     const PreparedImage& P = r_.prepared;
     const ItemBuffer& items = r_.items;
     const auto& scene = solver_.scene();
@@ -478,7 +482,7 @@ std::span<const float> DynamicRelighting::pixelDirect() {
     // The lights shown moved (previewEmitter): their columns from the quick measurement,
     // made now where it was not yet.
     for (Preview& q : previews_)
-        if (q.direct.empty()) {
+        if (q.direct.empty() && q.light != unmeasured) {
             const auto t0 = Clock::now();
             q.direct = quickPixelLight(r_.items, solver_.scene(), solver_.visibility(), *q.emitter);
             times_.display += secondsSince(t0);
@@ -488,7 +492,9 @@ std::span<const float> DynamicRelighting::pixelDirect() {
         for (size_t px = 0; px < pixels; ++px)
             for (int c = 0; c < q.count; ++c)
                 pixelShown_[px * L + static_cast<size_t>(q.light + c)] =
-                    q.direct[px * static_cast<size_t>(q.count) + static_cast<size_t>(c)];
+                    q.direct.empty()
+                        ? 0.0f
+                        : q.direct[px * static_cast<size_t>(q.count) + static_cast<size_t>(c)];
     // The object shown moved (previewLastObject): the share of each light it lets through.
     if (objectPreview_ && objectPreview_->transmission.size() == pixelShown_.size())
         for (size_t i = 0; i < pixelShown_.size(); ++i)

@@ -100,6 +100,10 @@ struct GeometryCache {
     std::vector<double> vertexG;
     std::vector<int> vertexFrom;
     uint64_t pixelHits = 0, vertexHits = 0;  ///< entries taken from here (for tests, benches)
+    /// The prepared photo's pooled reflectance per radius (pipeline/pixel_light.h,
+    /// pooledByRadius), which no edit changes (kept whatever the geometry): made by the
+    /// first movedLightFrame(), 30 ms at 320 x 240, and read by the others.
+    std::shared_ptr<const std::vector<float>> pooledByRadius;
 };
 
 /// The per-pixel display of a DynamicRelighting as a function of one sun's or point lamp's
@@ -255,6 +259,9 @@ class DynamicRelighting {
     const radiosity::DynamicUpdate& lastUpdate() const { return last_; }
 
   private:
+    /// pixelDirect(), the column of a light previewEmitter() shows left unmeasured (0) when
+    /// it is light `unmeasured`: what movedLightFrame() reads, which skips that column.
+    std::span<const float> pixelDirectExcept(int unmeasured);
     void afterUpdate(const radiosity::DynamicUpdate& u, bool allVertices);
     void refreshDirect(const std::vector<int>& vertices, bool virtualOnly);
     void refreshIndirect(bool full);  ///< and the virtual objects' surfaces

@@ -223,7 +223,8 @@ PixelLightTerms pixelLightTerms(const DisplayMap& map, const Image& photo,
                                 std::span<const Rgb> radianceNow,
                                 std::span<const Rgb> radianceInPhoto, const Rgb& delta,
                                 PixelLightChange change, int light,
-                                std::span<const float> reflectance, const PhotoPixels* pool) {
+                                std::span<const float> reflectance, const PhotoPixels* pool,
+                                std::shared_ptr<const std::vector<float>> pooled) {
     if (!reflectance.empty())
         throw std::invalid_argument(
             "pixelLightTerms: a merged reflectance reads the fresh light "
@@ -245,7 +246,10 @@ PixelLightTerms pixelLightTerms(const DisplayMap& map, const Image& photo,
     t.photoLight.assign(pixels, 0.0f);
     t.drawn.assign(pixels, 0);
     if (pooling) {
-        t.pooled = pooledByRadius(map, *pool);
+        constexpr size_t radii = static_cast<size_t>(kMaxPoolRadius - kPoolRadius + 1);
+        t.pooled = pooled && pooled->size() == 3 * pixels * radii
+                       ? std::move(pooled)
+                       : std::make_shared<const std::vector<float>>(pooledByRadius(map, *pool));
         std::copy(pool->rho.begin(), pool->rho.end(), t.rhoPool.begin());
     }
     radiosity::parallelFor(pixels, 256, [&](size_t px) {
@@ -269,13 +273,13 @@ void evalPixelLightTerms(const PixelLightTerms& t, size_t px, double g, float* o
     const float* r = t.rest.data() + 3 * px;
     const Rgb now = Rgb{r[0], r[1], r[2]} + t.radiance * g;
     const double photoLight = static_cast<double>(t.photoLight[px]);
-    if (photoLight > 0 && now.luminance() > kPoolAbove * photoLight && !t.pooled.empty()) {
+    if (photoLight > 0 && now.luminance() > kPoolAbove * photoLight && t.pooled) {
         // pooledPixel()'s reflectance, from the table of pooled values by radius.
         const double w = kPoolAbove * photoLight / now.luminance();
         const int radius = std::min(
             kMaxPoolRadius, static_cast<int>(std::lround(kPoolRadius * std::sqrt(1.0 / w))));
         const float* pooled =
-            t.pooled.data() + 3 * (static_cast<size_t>(radius - kPoolRadius) * pixels + px);
+            t.pooled->data() + 3 * (static_cast<size_t>(radius - kPoolRadius) * pixels + px);
         for (size_t c = 0; c < 3; ++c) {
             const double R = w * static_cast<double>(t.rhoPool[3 * px + c]) +
                              (1 - w) * static_cast<double>(pooled[c]);

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -126,24 +127,27 @@ struct PixelLightTerms {
     std::vector<float> rhoPool;     ///< 3 per pixel: the pool's (PhotoPixels::rho); 0: none
     std::vector<float> photoLight;  ///< per pixel: lum(H_photo) where the pool applies, else 0
     /// pooledByRadius(): 3 per pixel for each radius from kPoolRadius to kMaxPoolRadius;
-    /// empty without a pool.
-    std::vector<float> pooled;
+    /// null without a pool. It does not depend on the edit: shared by every frame made
+    /// from one preparation (GeometryCache::pooledByRadius).
+    std::shared_ptr<const std::vector<float>> pooled;
     std::vector<uint8_t> drawn;  ///< per pixel: 1 where renderPixelLight() draws it
     radiosity::Rgb delta;        ///< the ratio display's floor, as renderPixelLight() is given it
     radiosity::Rgb radiance;     ///< L_m: light m's radiance now (radianceNow[m])
 };
 
 /// The terms (above) of renderPixelLight()'s image with these arguments, for light `light`
-/// (an index into radianceNow). Throws std::invalid_argument with a merged reflectance
-/// (the fresh light is then read through it, not through the photo: not this form) or a
-/// light out of range.
+/// (an index into radianceNow). `pooled`: pooledByRadius(map, *pool) when the caller keeps
+/// it (null: made here). Throws std::invalid_argument with a merged reflectance (the fresh
+/// light is then read through it, not through the photo: not this form) or a light out of
+/// range.
 PixelLightTerms pixelLightTerms(const DisplayMap& map, const Image& photo,
                                 std::span<const float> pixelDirect,
                                 std::span<const radiosity::Rgb> indirect,
                                 std::span<const radiosity::Rgb> radianceNow,
                                 std::span<const radiosity::Rgb> radianceInPhoto,
                                 const radiosity::Rgb& delta, PixelLightChange change, int light,
-                                std::span<const float> reflectance, const PhotoPixels* pool);
+                                std::span<const float> reflectance, const PhotoPixels* pool,
+                                std::shared_ptr<const std::vector<float>> pooled = nullptr);
 
 /// One pixel of the terms at unit irradiance g into o[0..2] (what the GPU's shader does;
 /// for a pixel drawn per pixel): renderPixelLight()'s value for that g, up to float rounding.
