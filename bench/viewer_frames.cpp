@@ -418,6 +418,13 @@ int run(const Args& a) {
     Session session(*r, EditFile{});
     GpuRatioDisplay gpu(session.prepared());
     FrameRenderer frame(session, gpu);
+    {
+        // As the viewer does when its window opens (viewer/main.cpp).
+        const auto t1 = Clock::now();
+        session.prepareMovedLightFrames();
+        std::printf("the GPU frames of a moved sun or point lamp prepared: %.1f ms\n",
+                    1e3 * secondsSince(t1));
+    }
     std::printf(
         "%d frames per row; ms: median (90th percentile). update: Session::update or dragTo "
         "(the solver, on the CPU); upload: the values per vertex computed and sent to the GPU, "

@@ -42,6 +42,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "radiosity/stopwatch.h"
 #include "relight/cli/validators.h"
 #include "relight/errors.h"
 #include "relight/io/edit_file.h"
@@ -446,6 +447,14 @@ int run(const Args& a) {
     }
     if (!a.saveEdit.empty()) ao.saveFile = a.saveEdit;
     ao.windowShot = a.windowShot;
+    if (frame.perPixel && frame.gpuLights && frame.perPixelMode == DisplayMode::pixel) {
+        const auto t0 = radiosity::Clock::now();
+        if (session.prepareMovedLightFrames())
+            std::printf(
+                "the GPU frames of a sun or point lamp being moved: the photo's pooled "
+                "reflectance made (%.0f ms)\n",
+                1e3 * radiosity::secondsSince(t0));
+    }
     return runApp(window, session, frame, ao);
 }
 

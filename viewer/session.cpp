@@ -781,6 +781,18 @@ std::optional<MovedLightFrame> Session::movedLightFrame() {
     return dyn_->movedLightFrame(movingLight_);
 }
 
+bool Session::prepareMovedLightFrames() {
+    const PreparedImage& P = r_->prepared;
+    const size_t pixels =
+        static_cast<size_t>(P.display.width) * static_cast<size_t>(P.display.height);
+    if (geometry_.pooledByRadius || P.pixelDirect.empty() ||
+        P.photoPixels.rho.size() != 3 * pixels || P.photoPixels.light.size() != pixels)
+        return false;
+    geometry_.pooledByRadius =
+        std::make_shared<const std::vector<float>>(pooledByRadius(P.display, P.photoPixels));
+    return true;
+}
+
 std::optional<radiosity::ShadowSource> Session::movingSource() const {
     if (movingLight_ < 0 || !dyn_) return std::nullopt;
     return dyn_->shownSource(movingLight_);
