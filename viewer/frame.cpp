@@ -107,16 +107,7 @@ FrameStats FrameRenderer::render() {
     const bool cpuRelit = view == ViewKind::relit && perPixel;
     drewOnGpu_ = cpuRelit && gpuLights && perPixelMode == DisplayMode::pixel &&
                  session_.movingLight() >= 0 && drawMovedLight(static_cast<float>(gain), s);
-    if (drewOnGpu_) {
-        generation_ = session_.generation();
-        lastView_ = view;
-        lastFramebuffer_ = framebuffer;
-        lastExposure_ = exposure;
-        lastPerPixel_ = perPixel;
-        lastPerPixelMode_ = perPixelMode;
-        last_ = s;
-        return s;
-    }
+    if (drewOnGpu_) return drawn(s);
     if (cpuRelit) {
         if (valuesChanged || viewChanged || modeChanged) display_.setImage(relitImage());
     } else if (view == ViewKind::relit || view == ViewKind::B) {
@@ -168,6 +159,10 @@ FrameStats FrameRenderer::render() {
     s.passes = display_.draw(gpuView, framebuffer, static_cast<float>(gain));
     glFinish();
     s.draw = secondsSince(t1);
+    return drawn(s);
+}
+
+FrameStats FrameRenderer::drawn(const FrameStats& s) {
     generation_ = session_.generation();
     lastView_ = view;
     lastFramebuffer_ = framebuffer;

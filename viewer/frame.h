@@ -74,6 +74,9 @@ class FrameRenderer {
     /// The moving light's frame on the GPU (gpuLights) into the display's float target;
     /// false, drawing nothing, where the session has no such frame.
     bool drawMovedLight(float gain, FrameStats& s);
+    /// Remembers what the frame just drawn shows (render() draws again when it changes);
+    /// returns its times.
+    FrameStats drawn(const FrameStats& s);
 
     Session& session_;
     GpuRatioDisplay& display_;
