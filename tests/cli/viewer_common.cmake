@@ -16,13 +16,26 @@ find_program(IDIFF idiff REQUIRED)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
-# Runs the viewer under xvfb-run (run_checked). With an X authority file of its own (-f),
-# xvfb-run makes no temporary folder: its removal at exit raced the X server's reset on a
-# loaded machine ("problem while cleaning up temporary directory", exit code 5, in place of
-# the viewer's own).
+# Runs the viewer under xvfb-run (run_checked), with an X authority file of its own (-f).
+# xvfb-run still removes a temporary folder at its exit, which can race the X server's reset
+# on a loaded machine: it then exits with 5 ("problem while cleaning up temporary
+# directory") in place of the viewer's own code (seen in the CI of 2026-11-29, the viewer's
+# screenshot written). That exit says nothing of the viewer, so the run is made once more;
+# any other code, or a second such exit, is checked as it is.
 function(viewer out expected_rc)
-  run_checked(o ${expected_rc} "${XVFB_RUN}" -a -f "${WORK}/Xauthority" -s "-screen 0 1280x1024x24"
-              ${viewer_cmd} ${ARGN})
+  set(cmd "${XVFB_RUN}" -a -f "${WORK}/Xauthority" -s "-screen 0 1280x1024x24" ${viewer_cmd}
+      ${ARGN})
+  execute_process(COMMAND ${cmd} OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
+  if(rc EQUAL 5 AND NOT expected_rc EQUAL 5 AND e MATCHES "xvfb-run: error: problem while cleaning up")
+    message(STATUS "xvfb-run failed to clean up after the viewer (exit code 5): run again")
+  else()
+    if(NOT rc EQUAL expected_rc)
+      message(FATAL_ERROR "${cmd}: exit code ${rc}, expected ${expected_rc}\n${o}${e}")
+    endif()
+    set(${out} "${o}${e}" PARENT_SCOPE)
+    return()
+  endif()
+  run_checked(o ${expected_rc} ${cmd})
   set(${out} "${o}" PARENT_SCOPE)
 endfunction()
 
