@@ -245,9 +245,11 @@ void compare(const Image& a, const Image& b, double& worst, double& rel) {
 }
 
 /// The pointer or slider resting after quick frames (Session::settle: the exact image):
-/// the time of that one frame and how far the last quick image was from it, printed.
+/// the time of that one frame and how far the last quick image was from it (the GPU's frame
+/// where the last one was drawn there), printed.
 void printAtRest(Session& session, FrameRenderer& frame, const char* what) {
-    const Image quick = session.relitPerPixel();
+    const bool gpu = frame.drewOnGpu();
+    const Image quick = gpu ? frame.read() : session.relitPerPixel();
     const auto rest = Clock::now();
     session.settle();
     frame.render();
@@ -256,9 +258,9 @@ void printAtRest(Session& session, FrameRenderer& frame, const char* what) {
     double worst = 0, rel = 0;
     compare(quick, exact, worst, rel);
     std::printf(
-        "  the %s at rest: the exact image in %.1f ms (one frame); the last quick one against "
+        "  the %s at rest: the exact image in %.1f ms (one frame); the last quick one%s against "
         "it: at most %.4f, rel_rmse %.5f (per-pixel display)\n",
-        what, ms, worst, rel);
+        what, ms, gpu ? " (GPU)" : "", worst, rel);
 }
 
 /// The light slider in every display: light 0 from 0.2x its intensity up to 2x and
@@ -326,13 +328,48 @@ void sunDrag(Session& session, FrameRenderer& frame, int frames, int upscale) {
     frame.gpuLights = true;
 }
 
+/// A lamp (a point lamp `offset` metres above the floor, or a quad lamp on it) following the
+/// pointer from pixel `at` along `step` in each of kDragVariants (Session::moveLightTo, the
+/// pick through the lamp's own face), back and forth, one pass each, and the drag at rest.
+struct LampDrag {
+    Session& session;
+    FrameRenderer& frame;
+    int frames;
+    std::array<double, 2> at, step;
+    int misses = 0;
+    bool forwards = true;
+
+    void run(const std::string& what, const std::string& lamp, double offset) {
+        const Display& display = kDisplays[2];  // per-pixel
+        for (const Variant& v : kDragVariants) {
+            session.setQuickMoves(v.quick);
+            frame.gpuLights = v.gpu;
+            const Samples s = timeFrames(frame, display, frames, [&](int i) {
+                const double f = static_cast<double>(i + 1) / frames, t = forwards ? f : 1 - f;
+                const Pick p = session.pick(at[0] + t * step[0], at[1] + t * step[1], lamp);
+                if (p.hit)
+                    session.moveLightTo(lamp, p, offset);
+                else
+                    ++misses;
+            });
+            printRow((what + ", " + v.name).c_str(), display, s);
+            printFirst(s, v);
+            if (session.exactPending()) printAtRest(session, frame, what.c_str());
+            forwards = !forwards;
+        }
+        frame.gpuLights = true;
+        session.setQuickMoves(false);
+    }
+};
+
 /// A point lamp dragged over the floor and quad lamps inserted, in the per-pixel display
 /// (issue 32 item 5's "lamp drag" and "lamp insertion"): the lamp is put 0.3 m above the
 /// floor at pixel `at` and follows the pointer along `step` (the box's line, one pass),
 /// each move first solved exactly, then with the window's quick frames
 /// (Session::setQuickMoves; kDragVariants: the light per pixel on the CPU, then on the GPU)
-/// and the drag at rest; then a virtual quad lamp inserted on the
-/// floor and taken out again, min(frames, 8) times: the frame of each insertion.
+/// and the drag at rest; then a virtual quad lamp inserted on the floor and taken out again,
+/// min(frames, 8) times: the frame of each insertion; then the last one dragged as the point
+/// lamp was (its GPU frames: four cube shadow maps).
 void lampDragAndInsertion(Session& session, FrameRenderer& frame, int frames,
                           std::array<double, 2> at, std::array<double, 2> step) {
     const Display& display = kDisplays[2];  // per-pixel
@@ -340,26 +377,8 @@ void lampDragAndInsertion(Session& session, FrameRenderer& frame, int frames,
     frame.perPixel = display.perPixel;
     const std::string lamp = session.addPointLampAt(session.pick(at[0], at[1]), 0.3);
     frame.render();
-    int misses = 0;
-    bool forwards = true;
-    for (const Variant& v : kDragVariants) {
-        session.setQuickMoves(v.quick);
-        frame.gpuLights = v.gpu;
-        const Samples s = timeFrames(frame, display, frames, [&](int i) {
-            const double f = static_cast<double>(i + 1) / frames, t = forwards ? f : 1 - f;
-            const Pick p = session.pick(at[0] + t * step[0], at[1] + t * step[1]);
-            if (p.hit)
-                session.movePointLampTo(lamp, p, 0.3);
-            else
-                ++misses;
-        });
-        printRow((std::string("point lamp drag, ") + v.name).c_str(), display, s);
-        printFirst(s, v);
-        if (session.exactPending()) printAtRest(session, frame, "lamp drag");
-        forwards = !forwards;
-    }
-    frame.gpuLights = true;
-    session.setQuickMoves(false);
+    LampDrag drag{session, frame, frames, at, step};
+    drag.run("point lamp drag", lamp, 0.3);
     session.removeLight(static_cast<int>(session.lights().size()) - 1);
     frame.render();
     const Pick floor = session.pick(at[0], at[1]);
@@ -373,10 +392,15 @@ void lampDragAndInsertion(Session& session, FrameRenderer& frame, int frames,
     }
     printRow("quad lamp insertion", display, s);
     if (session.exactPending()) printAtRest(session, frame, "insertion");
+    // The last quad lamp inserted, dragged over the floor as the point lamp was
+    // (Session::moveLightTo): each move inserted again, then the quick frames (its direct
+    // light per pixel from one ray on the CPU; on the GPU from four cube shadow maps).
+    drag.run("quad lamp drag", session.lights().back().name, 0);
     std::printf(
         "point lamp: 0.3 m over the floor, dragged %.0f px%s; quad lamp: on the floor at "
-        "(%.1f, %.1f), inserted min(frames, 8) times (the last one taken out between, untimed)\n",
-        std::hypot(step[0], step[1]), misses ? " (some pointer positions missed)" : "", at[0],
+        "(%.1f, %.1f), inserted min(frames, 8) times (the last one taken out between, untimed), "
+        "then dragged as the point lamp\n",
+        std::hypot(step[0], step[1]), drag.misses ? " (some pointer positions missed)" : "", at[0],
         at[1]);
 }
 

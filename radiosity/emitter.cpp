@@ -129,7 +129,7 @@ class Sun final : public SingleEmitter {
         out[0] = std::max(0.0, glm::dot(p.n, d_));
     }
     std::optional<ShadowSource> shadowSource() const override {
-        return ShadowSource{ShadowSource::Kind::direction, d_};
+        return ShadowSource{ShadowSource::Kind::direction, d_, {}};
     }
     void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
                     Rng& rng, double* out) const override {
@@ -229,7 +229,7 @@ class PointLamp final : public SingleEmitter {
         if (c > 0) out[0] = c / d2;  // cos(theta) / d^2
     }
     std::optional<ShadowSource> shadowSource() const override {
-        return ShadowSource{ShadowSource::Kind::point, pos_};
+        return ShadowSource{ShadowSource::Kind::point, pos_, {}};
     }
     void unitGlossy(const Visibility& vis, const ReceiverPoint& p, const Lobe& lobe, int rays,
                     Rng& rng, double* out) const override {
@@ -383,6 +383,22 @@ Vec3 polygonPoint(const std::vector<Vec3>& c, double u, double v) {
     return (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
 }
 
+}  // namespace
+
+std::array<Vec3, ShadowSource::kFacePoints> ShadowSource::facePoints() const {
+    std::array<Vec3, kFacePoints> out{};
+    if (kind != Kind::face || (corners.size() != 3 && corners.size() != 4)) {
+        out.fill(at);
+        return out;
+    }
+    for (int k = 0; k < kFacePoints; ++k)
+        out[static_cast<size_t>(k)] =
+            polygonPoint(corners, 0.25 + 0.5 * (k % 2), 0.25 + 0.5 * (k / 2));
+    return out;
+}
+
+namespace {
+
 class QuadLamp final : public SingleEmitter {
   public:
     QuadLamp(std::string name, std::vector<std::vector<Vec3>> faces, std::vector<int> polygons,
@@ -409,6 +425,12 @@ class QuadLamp final : public SingleEmitter {
         set(radiance, "radiance");
     }
     const char* type() const override { return "quad"; }
+    std::optional<ShadowSource> shadowSource() const override {
+        if (faces_.size() != 1) return std::nullopt;  // one face: one set of shadow maps
+        ShadowSource s{ShadowSource::Kind::face, {0, 0, 0}, faces_[0]};
+        for (const Vec3& c : faces_[0]) s.at += c / static_cast<double>(faces_[0].size());
+        return s;
+    }
 
     void unitIrradiance(const Visibility& vis, const ReceiverPoint& p, int rays, Rng& rng,
                         double* out) const override {

@@ -23,6 +23,7 @@
 // in the layers that use them.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -76,16 +77,25 @@ struct ReceiverPoint {
 /// The most components a light has (a sky's 9 coefficients).
 inline constexpr int kMaxEmitterComponents = 9;
 
-/// A light seen from a point as one point or one direction, whose shadows one shadow map
-/// holds (the viewer's frames of a light being moved, viewer/gpu_moved_light.h). Its
-/// unit irradiance at a point x of normal n, unoccluded, is then
+/// A light seen from a point as one point, one direction or one planar face, whose shadows
+/// a few shadow maps hold (the viewer's frames of a light being moved,
+/// viewer/gpu_moved_light.h). Its unit irradiance at a point x of normal n, unoccluded, is
 ///   a point at `at`:           max(0, n.v) / |v|^3,  v = at - x   (cos / d^2)
 ///   a direction `at` (unit):   max(0, n.at)                        (cos)
-/// as unitUnoccluded() gives it.
+///   a face of `corners`:       pi F(x -> face)   (Lambert's contour integral, one-sided)
+/// as unitUnoccluded() gives it. A face's visibility is estimated as the mean over
+/// facePoints(), the centres of its 2 x 2 cells (a penumbra in five steps).
 struct ShadowSource {
-    enum class Kind { point, direction };
+    enum class Kind { point, direction, face };
     Kind kind = Kind::point;
-    Vec3 at{0, 0, 0};  ///< the point (metres), or the unit direction towards the light
+    /// The point (metres), the unit direction towards the light, or a face's centroid.
+    Vec3 at{0, 0, 0};
+    /// A face: its 3 or 4 corners, counter-clockwise seen from the side it lights.
+    std::vector<Vec3> corners;
+    static constexpr int kFacePoints = 4;
+    /// A face's points its shadows are cast from: the centres of the 2 x 2 cells of its
+    /// parameterisation (the quad lamp's stratified sampling, radiosity::makeQuadLamp).
+    std::array<Vec3, kFacePoints> facePoints() const;
 };
 
 class Emitter {
@@ -121,9 +131,10 @@ class Emitter {
                                 double* out) const = 0;
     /// The same without blockers.
     virtual void unitUnoccluded(const ReceiverPoint& p, double* out) const = 0;
-    /// The light as one point or direction (ShadowSource), for a light of one component
-    /// whose shadows are hard, as unitIrradiance() casts them from one ray: a point lamp, a
-    /// sun (its disc's centre). Empty for the others (a quad's soft shadows, a sky).
+    /// The light as one point, direction or face (ShadowSource), for a light of one
+    /// component: a point lamp, a sun (its disc's centre; hard shadows, as unitIrradiance()
+    /// casts them from one ray), a quad lamp of one face (its soft shadows from a few
+    /// points). Empty for the others (a lamp of several faces, a sky).
     virtual std::optional<ShadowSource> shadowSource() const { return std::nullopt; }
     /// A weight per direction of arrival: w is the unit direction from the point towards
     /// the light. A BRDF lobe (the specular pass, relight/dynamic/specular.h).

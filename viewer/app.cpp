@@ -236,6 +236,13 @@ void App::lightsPanel() {
             ImGui::SameLine();
             if (ImGui::SmallButton("remove")) remove = static_cast<int>(i);
         }
+        // A virtual quad lamp is dragged over the surfaces (Session::moveLightTo).
+        if (l.isVirtual && !l.emitter &&
+            ImGui::RadioButton("move it: drag on a surface",
+                               tools_.tool == Tool::movePoint && tools_.point == l.name)) {
+            tools_.tool = Tool::movePoint;
+            tools_.point = l.name;
+        }
         if (l.emitter) {
             for (LightControl& o : lights)  // its components follow its switch
                 if (o.emitter == l.emitter) o.on = l.on;
@@ -597,6 +604,8 @@ void App::statsOverlay(const PhotoRect& r) {
                     1e3 * t->shafts, 1e3 * t->visibility, 1e3 * t->links, 1e3 * t->radiosity);
     // What is shown: a slider's quick image, or what `relight render` draws of the edit.
     if (session_.exactPending()) ImGui::TextWrapped("%s", session_.stage().c_str());
+    if (session_.exactPending() && frame_.drewOnGpu()) ImGui::TextWrapped("drawn on the GPU");
+    if (!frame_.gpuNote().empty()) ImGui::TextWrapped("%s", frame_.gpuNote().c_str());
     ImGui::End();
 }
 

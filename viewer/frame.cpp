@@ -1,8 +1,10 @@
 #include "viewer/frame.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
+#include "radiosity/machine_memory.h"
 #include "radiosity/stopwatch.h"
 
 namespace relight::viewer {
@@ -67,6 +69,29 @@ Image FrameRenderer::relitImage() {
     return session_.relitPerPixel(perPixelMode);
 }
 
+bool FrameRenderer::movedFramesFit() {
+    const size_t pixels =
+        static_cast<size_t>(display_.width()) * static_cast<size_t>(display_.height());
+    const size_t need = GpuMovedLight::bytesNeeded(pixels);
+    size_t limit = gpuMemoryLimit;
+    if (limit == 0) limit = GpuMovedLight::driverFreeMemory() / 2;
+    if (limit == 0) limit = radiosity::usableMemory() / 2;
+    GLint side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &side);
+    if (need <= limit && display_.width() <= side && display_.height() <= side) return true;
+    if (gpuNote_.empty()) {
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      "a moved light's frames are drawn on the CPU: on the GPU a %dx%d photo "
+                      "needs %.0f MB, and %.0f MB (textures of %d pixels a side) are at hand",
+                      display_.width(), display_.height(), 1e-6 * static_cast<double>(need),
+                      1e-6 * static_cast<double>(limit), side);
+        gpuNote_ = text;
+        std::fprintf(stderr, "relight-viewer: %s\n", gpuNote_.c_str());
+    }
+    return false;
+}
+
 bool FrameRenderer::drawMovedLight(float gain, FrameStats& s) {
     const std::optional<radiosity::ShadowSource> source = session_.movingSource();
     if (!source) return false;
@@ -74,12 +99,21 @@ bool FrameRenderer::drawMovedLight(float gain, FrameStats& s) {
     if (movedEpoch_ != session_.movingEpoch()) {
         // Once per drag: everything but the light's direct light, and what blocks it.
         movedEpoch_ = session_.movingEpoch();
+        movedValid_ = false;
+        if (!movedFramesFit()) return false;
         const std::optional<MovedLightFrame> f = session_.movedLightFrame();
-        movedValid_ = f.has_value();
-        if (movedValid_) {
+        if (f) {
+            while (glGetError() != GL_NO_ERROR) {
+            }
             if (!moved_)
                 moved_ = std::make_unique<GpuMovedLight>(display_.width(), display_.height());
             moved_->setFrame(*f);
+            movedValid_ = glGetError() != GL_OUT_OF_MEMORY;
+            if (!movedValid_) {  // the driver ran out: the CPU's frames, its memory given back
+                moved_.reset();
+                gpuNote_ = "a moved light's frames are drawn on the CPU: the GPU ran out of memory";
+                std::fprintf(stderr, "relight-viewer: %s\n", gpuNote_.c_str());
+            }
         }
     }
     if (!movedValid_) return false;

@@ -46,6 +46,14 @@ class FrameRenderer {
     /// moved (Session::movingLight) drawn on the GPU from its shadow map
     /// (gpu_moved_light.h) rather than measured per pixel on the CPU.
     bool gpuLights = true;
+    /// The most GPU memory those frames may take (bytes); 0: half of what the driver says
+    /// is free, else half of the process's usable memory (radiosity::usableMemory: Mesa's
+    /// llvmpipe holds its textures there). Beyond it, or when the driver runs out, the
+    /// frames are the CPU's, and gpuNote() says why.
+    size_t gpuMemoryLimit = 0;
+    /// Why the moving light's frames are drawn on the CPU although gpuLights is on (a photo
+    /// too large for the GPU's memory), or empty.
+    const std::string& gpuNote() const { return gpuNote_; }
 
     /// Uploads what changed since the last call and draws the photo area into the display's
     /// offscreen target. Returns the times.
@@ -91,6 +99,9 @@ class FrameRenderer {
     std::unique_ptr<GpuMovedLight> moved_;
     int movedEpoch_ = -1;      ///< the session's movingEpoch() whose frame moved_ holds
     bool movedValid_ = false;  ///< whether that epoch has a frame
+    std::string gpuNote_;
+    /// Whether the GPU frames of the photo fit in gpuMemoryLimit (else gpuNote_ says so).
+    bool movedFramesFit();
     FrameStats last_;
     Image prepared_;               ///< prepareImage()'s
     int preparedGeneration_ = -1;  ///< the session's generation it shows; -1: none

@@ -55,14 +55,24 @@ uniform sampler2D offset;
 uniform sampler2DArray pooled;      // per radius from poolRadius
 uniform samplerCube cube;
 uniform sampler2D sunMap;
+uniform samplerCube face0;          // a face's cubes, one per point of ShadowSource::facePoints
+uniform samplerCube face1;
+uniform samplerCube face2;
+uniform samplerCube face3;
 uniform int height;
-uniform int kind;                   // 0 point lamp, 1 sun
+uniform int kind;                   // 0 point lamp, 1 sun, 2 face
 uniform vec3 at;
 uniform vec3 centre;
 uniform float radius;
 uniform mat4 sunViewProj;
 uniform float cubeTexel;            // radians per cube texel
 uniform float sunTexel;             // metres per sun texel
+uniform float faceTexel;            // radians per texel of a face's cubes
+uniform vec3 facePoint[4];
+uniform vec3 corner[4];             // the face, counter-clockwise seen from its front
+uniform int cornerCount;
+uniform vec3 faceNormal;
+uniform vec3 eye;                   // the camera's centre (a face is drawn where it is)
 uniform vec3 radiance;              // L_m
 uniform vec3 delta;
 uniform int havePooled;
@@ -72,13 +82,79 @@ uniform int maxPoolRadius;
 uniform float gain;
 out vec4 color;
 
-float visibleFraction(vec3 p, vec3 n) {
-    if (kind == 0) {
-        float d = length(p - at);
-        float texel = cubeTexel * d;
-        vec3 q = p + n * (1.5 * texel);
-        return length(q - at) - 2.0 * texel <= texture(cube, q - at).r ? 1.0 : 0.0;
+const float PI = 3.14159265358979;
+
+// Whether p (normal n) sees the point s, from s's cube of distances.
+float cubeVisible(samplerCube c, vec3 s, vec3 p, vec3 n, float texelAngle) {
+    float texel = texelAngle * length(p - s);
+    vec3 q = p + n * (1.5 * texel);
+    return length(q - s) - 2.0 * texel <= texture(c, q - s).r ? 1.0 : 0.0;
+}
+
+// One edge's term of Lambert's contour integral (radiosity/detail/form_factor.cpp).
+float edgeTerm(vec3 a, vec3 b, vec3 n) {
+    vec3 c = cross(b, a);
+    float cl = length(c);
+    if (cl <= 1e-30) return 0.0;
+    return atan(cl, dot(a, b)) * dot(n, c) / cl;
+}
+
+// F(x -> face), one-sided, the face clipped to x's hemisphere: pointToPolygon
+// (radiosity/detail/form_factor.h) in float, its clipping offset 1e-6 of the configuration's
+// size (float's rounding, where the CPU takes 1e-12).
+float faceFormFactor(vec3 x, vec3 n) {
+    float size = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        if (i >= cornerCount) break;
+        vec3 r = abs(corner[i] - x);
+        size = max(size, max(r.x, max(r.y, r.z)));
     }
+    float eps = 1e-6 * size;
+    if (!(dot(faceNormal, x - corner[0]) > eps)) return 0.0;
+    float sum = 0.0;
+    vec3 first = vec3(0.0), prev = vec3(0.0);
+    int k = 0;
+    vec3 a = corner[cornerCount - 1] - x;
+    float ha = dot(n, a) - eps;
+    for (int i = 0; i < 4; ++i) {
+        if (i >= cornerCount) break;
+        vec3 b = corner[i] - x;
+        float hb = dot(n, b) - eps;
+        for (int e = 0; e < 2; ++e) {  // the crossing, then b: Sutherland-Hodgman
+            bool emit = e == 0 ? (ha > 0.0) != (hb > 0.0) : hb > 0.0;
+            if (!emit) continue;
+            vec3 m = e == 0 ? a + ha / (ha - hb) * (b - a) : b;
+            if (k == 0) first = m; else sum += edgeTerm(prev, m, n);
+            prev = m;
+            ++k;
+        }
+        a = b;
+        ha = hb;
+    }
+    if (k < 3) return 0.0;
+    sum += edgeTerm(prev, first, n);
+    return clamp(sum / (2.0 * PI), 0.0, 1.0);
+}
+
+// The ray eye + t d meets the face at t (1e30: beside it); front: on the face's front.
+float rayFace(vec3 d, out bool front) {
+    front = false;
+    float dn = dot(faceNormal, d);
+    if (abs(dn) < 1e-30) return 1e30;
+    float t = dot(faceNormal, corner[0] - eye) / dn;
+    if (!(t > 0.0)) return 1e30;
+    vec3 x = eye + t * d;
+    for (int i = 0; i < 4; ++i) {
+        if (i >= cornerCount) break;
+        vec3 a = corner[i], b = corner[i + 1 < cornerCount ? i + 1 : 0];
+        if (dot(cross(b - a, x - a), faceNormal) < 0.0) return 1e30;
+    }
+    front = dn < 0.0;
+    return t;
+}
+
+float visibleFraction(vec3 p, vec3 n) {
+    if (kind == 0) return cubeVisible(cube, at, p, n, cubeTexel);
     vec3 q = p + n * (1.5 * sunTexel);
     vec4 c = sunViewProj * vec4(q, 1.0);
     vec2 uv = 0.5 * c.xy / c.w + 0.5;
@@ -101,9 +177,18 @@ void main() {
                 float d2 = dot(v, v);
                 float c = dot(n, v) / sqrt(d2);
                 if (d2 > 1e-18 && c > 0.0) g = c / d2 * visibleFraction(p, n);
-            } else {
+            } else if (kind == 1) {
                 float c = dot(n, at);
                 if (c > 0.0) g = c * visibleFraction(p, n);
+            } else {
+                // pi F times the mean visibility of the face's points (its unit radiance).
+                float F = faceFormFactor(p, n);
+                if (F > 0.0)
+                    g = PI * F * 0.25 *
+                        (cubeVisible(face0, facePoint[0], p, n, faceTexel) +
+                         cubeVisible(face1, facePoint[1], p, n, faceTexel) +
+                         cubeVisible(face2, facePoint[2], p, n, faceTexel) +
+                         cubeVisible(face3, facePoint[3], p, n, faceTexel));
             }
         }
         vec3 now = texelFetch(rest, xy, 0).rgb + radiance * g;
@@ -118,7 +203,14 @@ void main() {
         }
         value = max(R * (max(now, 0.0) + delta), 0.0);
     }
-    color = vec4(gain * (s * value + o), 1.0);
+    vec3 shown = s * value + o;
+    if (kind == 2) {  // the lamp's face, where it is: in front of the pixel's receiver
+        vec3 p = texelFetch(receiverPoint, xy, 0).rgb;
+        vec3 n = texelFetch(receiverNormal, xy, 0).rgb;
+        bool front;
+        if (dot(n, n) > 0.0 && rayFace(p - eye, front) < 1.0) shown = front ? radiance : vec3(0.0);
+    }
+    color = vec4(gain * shown, 1.0);
 }
 )";
 
@@ -159,6 +251,35 @@ void setNearest(GLenum target) {
 
 }  // namespace
 
+size_t GpuMovedLight::bytesNeeded(size_t pixels) {
+    // Per pixel: point and normal, rest, rho, rhoPool, scale and offset as RGB32F, photoLight
+    // as R32F, and the pooled reflectance's RGB32F layers (setFrame).
+    const size_t radii = static_cast<size_t>(kMaxPoolRadius - kPoolRadius + 1);
+    const size_t perPixel = 7 * 12 + 4 + radii * 12;
+    // A cube of distances and its depth (4 bytes each) per point lamp map and face point,
+    // and the sun's square.
+    const size_t cube = 6 * 8 * static_cast<size_t>(kCubeSide) * kCubeSide;
+    const size_t faces = kFacePoints * 6 * 4 * static_cast<size_t>(kFaceCubeSide) * kFaceCubeSide +
+                         8 * static_cast<size_t>(kFaceCubeSide) * kFaceCubeSide;
+    const size_t sun = 8 * static_cast<size_t>(kSunSide) * kSunSide;
+    return pixels * perPixel + cube + faces + sun;
+}
+
+size_t GpuMovedLight::driverFreeMemory() {
+    // Both extensions give KiB.
+    if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info")) {
+        GLint kib = 0;
+        glGetIntegerv(0x9049, &kib);  // GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX
+        return kib > 0 ? static_cast<size_t>(kib) * 1024 : 0;
+    }
+    if (epoxy_has_gl_extension("GL_ATI_meminfo")) {
+        GLint info[4] = {0, 0, 0, 0};
+        glGetIntegerv(0x87FC, info);  // TEXTURE_FREE_MEMORY_ATI: the free pool first
+        return info[0] > 0 ? static_cast<size_t>(info[0]) * 1024 : 0;
+    }
+    return 0;
+}
+
 GpuMovedLight::GpuMovedLight(int width, int height) : width_(width), height_(height) {
     if (width <= 0 || height <= 0)
         throw std::invalid_argument("GpuMovedLight: the photo has no pixels");
@@ -179,16 +300,30 @@ GpuMovedLight::GpuMovedLight(int width, int height) : width_(width), height_(hei
     for (int f = 0; f < 6; ++f)
         attachDistanceTarget(cubeFbo_[f], static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f),
                              cubeTex_, cubeDepth_);
+    faceDepth_ = depthBuffer(kFaceCubeSide);
+    for (int i = 0; i < kFacePoints; ++i) {
+        glGenTextures(1, &faceTex_[i]);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, faceTex_[i]);
+        for (int f = 0; f < 6; ++f)
+            glTexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_R32F,
+                         kFaceCubeSide, kFaceCubeSide, 0, GL_RED, GL_FLOAT, nullptr);
+        setNearest(GL_TEXTURE_CUBE_MAP);
+        glGenFramebuffers(6, faceFbo_[i]);
+        for (int f = 0; f < 6; ++f)
+            attachDistanceTarget(faceFbo_[i][f],
+                                 static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f),
+                                 faceTex_[i], faceDepth_);
+    }
     sunTex_ = gl::makeTexture2D(GL_R32F, kSunSide, kSunSide, GL_RED, GL_FLOAT, nullptr, GL_NEAREST);
     sunDepth_ = depthBuffer(kSunSide);
     glGenFramebuffers(1, &sunFbo_);
     attachDistanceTarget(sunFbo_, GL_TEXTURE_2D, sunTex_, sunDepth_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glUseProgram(program_);
-    const char* units[] = {"receiverPoint", "receiverNormal", "rest",  "rho",
-                           "rhoPool",       "photoLight",     "scale", "offset",
-                           "pooled",        "cube",           "sunMap"};
-    for (int u = 0; u < 11; ++u) glUniform1i(glGetUniformLocation(program_, units[u]), u);
+    const char* units[] = {"receiverPoint", "receiverNormal", "rest",   "rho",    "rhoPool",
+                           "photoLight",    "scale",          "offset", "pooled", "cube",
+                           "sunMap",        "face0",          "face1",  "face2",  "face3"};
+    for (int u = 0; u < 15; ++u) glUniform1i(glGetUniformLocation(program_, units[u]), u);
     glUniform1i(glGetUniformLocation(program_, "height"), height_);
     glUseProgram(0);
 }
@@ -197,6 +332,9 @@ GpuMovedLight::~GpuMovedLight() {
     for (GLuint t : {pointTex_, normalTex_, restTex_, rhoTex_, rhoPoolTex_, photoLightTex_,
                      scaleTex_, offsetTex_, pooledTex_, cubeTex_, sunTex_})
         if (t) glDeleteTextures(1, &t);
+    glDeleteTextures(kFacePoints, faceTex_);
+    for (int i = 0; i < kFacePoints; ++i) glDeleteFramebuffers(6, faceFbo_[i]);
+    glDeleteRenderbuffers(1, &faceDepth_);
     glDeleteRenderbuffers(1, &cubeDepth_);
     glDeleteRenderbuffers(1, &sunDepth_);
     glDeleteFramebuffers(6, cubeFbo_);
@@ -242,6 +380,7 @@ void GpuMovedLight::setFrame(const MovedLightFrame& f) {
         pooledData_ = t.pooled;
     }
     for (int c = 0; c < 3; ++c) {
+        eye_[c] = static_cast<float>(f.eye[c]);
         radiance_[c] = static_cast<float>(t.radiance[c]);
         delta_[c] = static_cast<float>(t.delta[c]);
     }
@@ -271,6 +410,25 @@ void GpuMovedLight::shadowPass(GLuint fbo, const float* viewProj, int side) {
     glDrawArrays(GL_TRIANGLES, 0, blockerVertices_);
 }
 
+void GpuMovedLight::renderCube(const glm::vec3& at, const GLuint* fbos, int side) {
+    // The cube map's faces as OpenGL orients them (the lookup direction's major axis).
+    const std::array<glm::vec3, 6> dir = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
+                                          glm::vec3(0, 1, 0), glm::vec3(0, -1, 0),
+                                          glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)};
+    const std::array<glm::vec3, 6> up = {glm::vec3(0, -1, 0), glm::vec3(0, -1, 0),
+                                         glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1),
+                                         glm::vec3(0, -1, 0), glm::vec3(0, -1, 0)};
+    glUniform1i(glGetUniformLocation(shadowProgram_, "kind"), 0);
+    glUniform3fv(glGetUniformLocation(shadowProgram_, "at"), 1, glm::value_ptr(at));
+    const float reach = glm::length(at - glm::vec3(centre_)) + static_cast<float>(radius_);
+    const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, 1e-4f * reach, 2.0f * reach);
+    for (int f = 0; f < 6; ++f) {
+        const glm::mat4 vp =
+            proj * glm::lookAt(at, at + dir[static_cast<size_t>(f)], up[static_cast<size_t>(f)]);
+        shadowPass(fbos[f], glm::value_ptr(vp), side);
+    }
+}
+
 void GpuMovedLight::renderShadowMap(const radiosity::ShadowSource& source) {
     GLint viewport[4];
     GLint target = 0;
@@ -289,21 +447,11 @@ void GpuMovedLight::renderShadowMap(const radiosity::ShadowSource& source) {
     glDisable(GL_CULL_FACE);  // one-sided faces block from either side, as Embree's rays
     glBindVertexArray(blockerVao_);
     if (point) {
-        // The cube map's faces as OpenGL orients them (the lookup direction's major axis).
-        const std::array<glm::vec3, 6> dir = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
-                                              glm::vec3(0, 1, 0), glm::vec3(0, -1, 0),
-                                              glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)};
-        const std::array<glm::vec3, 6> up = {glm::vec3(0, -1, 0), glm::vec3(0, -1, 0),
-                                             glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1),
-                                             glm::vec3(0, -1, 0), glm::vec3(0, -1, 0)};
-        const float reach = glm::length(at - centre) + R;
-        const glm::mat4 proj =
-            glm::perspective(glm::radians(90.0f), 1.0f, 1e-4f * reach, 2.0f * reach);
-        for (int f = 0; f < 6; ++f) {
-            const glm::mat4 vp = proj * glm::lookAt(at, at + dir[static_cast<size_t>(f)],
-                                                    up[static_cast<size_t>(f)]);
-            shadowPass(cubeFbo_[f], glm::value_ptr(vp), kCubeSide);
-        }
+        renderCube(at, cubeFbo_, kCubeSide);
+    } else if (source.kind == radiosity::ShadowSource::Kind::face) {
+        const auto points = source.facePoints();
+        for (int i = 0; i < kFacePoints; ++i)
+            renderCube(glm::vec3(points[static_cast<size_t>(i)]), faceFbo_[i], kFaceCubeSide);
     } else {
         const glm::vec3 side = std::abs(at.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
         const glm::mat4 vp =
@@ -317,9 +465,35 @@ void GpuMovedLight::renderShadowMap(const radiosity::ShadowSource& source) {
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
+void GpuMovedLight::setFaceUniforms(const radiosity::ShadowSource& source) {
+    if (source.kind != radiosity::ShadowSource::Kind::face) return;
+    const size_t count = source.corners.size();
+    if (count != 3 && count != 4)
+        throw std::invalid_argument("GpuMovedLight: a face of 3 or 4 corners");
+    float corners[12] = {}, points[12] = {};
+    const auto p = source.facePoints();
+    for (size_t i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) {
+            corners[3 * i + static_cast<size_t>(c)] =
+                static_cast<float>(source.corners[std::min(i, count - 1)][c]);
+            points[3 * i + static_cast<size_t>(c)] = static_cast<float>(p[i][c]);
+        }
+    const radiosity::Vec3 a =
+        glm::cross(source.corners[1] - source.corners[0], source.corners[2] - source.corners[0]);
+    const double length = glm::length(a);
+    if (!(length > 0)) throw std::invalid_argument("GpuMovedLight: a face of no area");
+    const glm::vec3 normal(a / length);
+    const auto uniform = [&](const char* name) { return glGetUniformLocation(program_, name); };
+    glUniform3fv(uniform("corner"), 4, corners);
+    glUniform3fv(uniform("facePoint"), 4, points);
+    glUniform1i(uniform("cornerCount"), static_cast<int>(count));
+    glUniform3fv(uniform("faceNormal"), 1, glm::value_ptr(normal));
+    glUniform1f(uniform("faceTexel"), 1.5707963f / kFaceCubeSide);
+    glUniform3fv(uniform("eye"), 1, eye_);
+}
+
 void GpuMovedLight::draw(const radiosity::ShadowSource& source, float gain) {
     if (!hasFrame_) throw std::logic_error("GpuMovedLight::draw before setFrame");
-    const bool point = source.kind == radiosity::ShadowSource::Kind::point;
     renderShadowMap(source);
     glUseProgram(program_);
     const GLuint textures[] = {pointTex_,   normalTex_,     restTex_,  rhoTex_,
@@ -328,10 +502,12 @@ void GpuMovedLight::draw(const radiosity::ShadowSource& source, float gain) {
     gl::bindUnit(8, GL_TEXTURE_2D_ARRAY, pooledTex_);
     gl::bindUnit(9, GL_TEXTURE_CUBE_MAP, cubeTex_);
     gl::bindUnit(10, GL_TEXTURE_2D, sunTex_);
+    for (int i = 0; i < kFacePoints; ++i) gl::bindUnit(11 + i, GL_TEXTURE_CUBE_MAP, faceTex_[i]);
     const auto uniform = [&](const char* name) { return glGetUniformLocation(program_, name); };
     const glm::vec3 at(source.at), centre(centre_);
-    glUniform1i(uniform("kind"), point ? 0 : 1);
+    glUniform1i(uniform("kind"), static_cast<int>(source.kind));
     glUniform3fv(uniform("at"), 1, glm::value_ptr(at));
+    setFaceUniforms(source);
     glUniform3fv(uniform("centre"), 1, glm::value_ptr(centre));
     glUniform1f(uniform("radius"), static_cast<float>(radius_));
     glUniformMatrix4fv(uniform("sunViewProj"), 1, GL_FALSE, sunViewProj_);

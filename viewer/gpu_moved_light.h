@@ -1,4 +1,4 @@
-// The frames of a sun or point lamp being moved, drawn on the GPU (the ratio-map paper,
+// The frames of a sun, point lamp or quad lamp being moved, drawn on the GPU (the ratio-map paper,
 // ../shared/seeds/000, §4: the new light rendered per frame by the graphics hardware, with
 // its cast shadows; issue 32: "every lamp's direct light per pixel is computed on the GPU
 // each frame").
@@ -14,23 +14,33 @@
 // the CPU's quick frames light, quickReceivers), is
 //   a point lamp:  max(0, n.v) / |v|^3 times its visibility,  v = lamp - x
 //   a sun:         max(0, n.s) times its visibility            (its disc's centre)
-// (radiosity::ShadowSource), the visibility from a shadow map of the frame's blockers:
+//   a quad lamp:   pi F(x -> face) times the mean visibility of its 4 points
+//                  (F by Lambert's contour integral, as radiosity::pointToPolygon)
+// (radiosity::ShadowSource), the visibility from shadow maps of the frame's blockers (the
+// lamp's own face not among them):
 //   a point lamp:  a cube map of the distance to the lamp, kCubeSide texels a face;
 //   a sun:         an orthographic map of the distance along the sun's direction over the
-//                  blockers' bounding sphere, kSunSide texels a side.
+//                  blockers' bounding sphere, kSunSide texels a side;
+//   a quad lamp:   a cube map per point of ShadowSource::facePoints (the centres of its
+//                  2 x 2 cells), kFaceCubeSide texels a face: a penumbra in five steps.
+// A quad lamp's face is drawn too, where it is at each frame (MovedLightFrame::eye): its
+// radiance where the camera's ray to a pixel's receiver meets its front first.
 // A receiver is lit when its point, moved 1.5 texels along its normal, is no farther from
 // the light than the map's nearest blocker plus two texels (acne and peter-panning both
 // within about two texels of the map).
 //
 // What differs from the CPU's quick frame (one ray per pixel, radiosity::Emitter::
 // unitIrradiance): a shadow's edge is where the map's texels put it, to about two texels,
-// and a blocker thinner than that may be missed. The image at rest is the exact one as
+// and a blocker thinner than that may be missed; a quad lamp's penumbra is the mean of four
+// points' shadows where the CPU's is one ray's 0 or 1. The image at rest is the exact one as
 // before (Session::settle).
 //
 // All methods need the OpenGL 3.3 context current on the calling thread.
 #pragma once
 
 #include <epoxy/gl.h>
+
+#include <glm/vec3.hpp>
 
 #include <memory>
 #include <vector>
@@ -44,9 +54,19 @@ class GpuMovedLight {
   public:
     static constexpr int kCubeSide = 512;  ///< texels per side of a point lamp's cube face
     static constexpr int kSunSide = 1024;  ///< texels per side of a sun's map
+    /// A face's cubes: one per point (ShadowSource::facePoints), texels per side of each face.
+    static constexpr int kFacePoints = radiosity::ShadowSource::kFacePoints;
+    static constexpr int kFaceCubeSide = 256;
 
     /// For a photo of `width` x `height` pixels.
     GpuMovedLight(int width, int height);
+    /// The GPU memory a photo of `pixels` pixels needs (bytes): 148 a pixel for the
+    /// receivers, the terms and the pooled reflectance per radius, and the shadow maps.
+    static size_t bytesNeeded(size_t pixels);
+    /// How much of it the OpenGL driver says is free (bytes; GL_NVX_gpu_memory_info or
+    /// GL_ATI_meminfo), or 0 where it does not say (Mesa's llvmpipe, which holds textures in
+    /// the process's memory, among others).
+    static size_t driverFreeMemory();
     ~GpuMovedLight();
     GpuMovedLight(const GpuMovedLight&) = delete;
     GpuMovedLight& operator=(const GpuMovedLight&) = delete;
@@ -62,6 +82,10 @@ class GpuMovedLight {
   private:
     /// The shadow map of the blockers seen from `source`; sets the uniforms that read it.
     void renderShadowMap(const radiosity::ShadowSource& source);
+    /// The cube of distances to `at` (the shadow program bound) into the 6 `fbos`.
+    void renderCube(const glm::vec3& at, const GLuint* fbos, int side);
+    /// A face's corners, normal and points (ShadowSource::Kind::face; nothing otherwise).
+    void setFaceUniforms(const radiosity::ShadowSource& source);
     void shadowPass(GLuint fbo, const float* viewProj, int side);
 
     int width_ = 0, height_ = 0;
@@ -76,10 +100,11 @@ class GpuMovedLight {
     GLuint photoLightTex_ = 0, scaleTex_ = 0, offsetTex_ = 0, pooledTex_ = 0;
     bool pooled_ = false;
     std::shared_ptr<const std::vector<float>> pooledData_;  ///< what pooledTex_ holds
-    float radiance_[3] = {0, 0, 0}, delta_[3] = {0, 0, 0};
+    float radiance_[3] = {0, 0, 0}, delta_[3] = {0, 0, 0}, eye_[3] = {0, 0, 0};
     // Shadow maps: a cube of distances (point lamps), a square of distances (suns).
     GLuint cubeTex_ = 0, cubeDepth_ = 0, cubeFbo_[6] = {};
     GLuint sunTex_ = 0, sunDepth_ = 0, sunFbo_ = 0;
+    GLuint faceTex_[kFacePoints] = {}, faceDepth_ = 0, faceFbo_[kFacePoints][6] = {};
     float sunViewProj_[16] = {};
 };
 

@@ -22,7 +22,8 @@
 //                      quad lamp: its intensity slider)
 //   sh9:NAME:K:R,G,B   the sky NAME's coefficient K (0..8) set to (R, G, B)
 //   point:U,V          a virtual point lamp above the surface under (U, V)
-//   movepoint:NAME:U,V the point lamp NAME moved above the surface under (U, V) (a drag's end)
+//   move:NAME:U,V      the point lamp or virtual quad lamp NAME moved onto the surface under
+//                      (U, V) (a drag's end; Session::moveLightTo); movepoint: the same
 // and the object panel's specular term (relight/dynamic/specular.h):
 //   specular:NAME:R,G,B:S  the virtual object NAME's ks (R, G, B) and shininess S
 //                      (ks 0,0,0: no term)
@@ -140,7 +141,7 @@ bool parseLightAction(Action& a, const std::string& kind, const std::string& res
         a.numbers = parseNumbers(tail, text, kind == "sun" ? 2 : 1);
         if (kind == "scale" && a.numbers[0] < 0)
             throw std::invalid_argument("--do " + text + ": a scale must not be negative");
-    } else if (kind == "movepoint") {
+    } else if (kind == "move" || kind == "movepoint") {
         a.kind = Action::Kind::movepoint;
         a.name = splitName(rest, text, tail);
         parsePoint(tail, text, a.u, a.v);
@@ -222,7 +223,7 @@ Action parseAction(const std::string& text) {
                                     "remove:U,V, restore:NAME, lamp:U,V[:W,H], sun:NAME:AZ,EL, "
                                     "sundrag:NAME:U0,V0:U1,V1, rotate:NAME:X,Y,Z:DEG, "
                                     "scale:NAME:S, sh9:NAME:K:R,G,B, point:U,V, "
-                                    "movepoint:NAME:U,V, specular:NAME:R,G,B:S)");
+                                    "move:NAME:U,V, specular:NAME:R,G,B:S)");
     }
     return a;
 }
@@ -283,7 +284,7 @@ bool runLightAction(Session& s, const Action& a) {
         }
         case Action::Kind::movepoint:
             try {
-                s.movePointLampTo(a.name, s.pick(a.u, a.v));
+                s.moveLightTo(a.name, s.pick(a.u, a.v, a.name));
             } catch (const std::invalid_argument& ex) {
                 throw InputError("--do " + a.text + ": " + ex.what());
             }

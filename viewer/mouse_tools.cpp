@@ -47,13 +47,13 @@ void MouseTools::pointTool(const Pointer& p, const Press& q) {
         session_.quickMoves() && p.down && pointDrag_ && (p.x != lastX_ || p.y != lastY_);
     if (!follow && (p.down || !pointDrag_)) return;
     pointDrag_ = p.down;
-    const Pick pick = session_.pick(q.u, q.v);  // one ray
+    const Pick pick = session_.pick(q.u, q.v, point);  // one ray, through the lamp's own face
     if (!pick.hit) return;
     if (follow)
-        host_.act("moving the point lamp", [&] { session_.movePointLampTo(point, pick); });
+        host_.act("moving the lamp", [&] { session_.moveLightTo(point, pick); });
     else
-        host_.inBackground("moving the point lamp",
-                           [this, name = point, pick] { session_.movePointLampTo(name, pick); });
+        host_.inBackground("moving the lamp",
+                           [this, name = point, pick] { session_.moveLightTo(name, pick); });
 }
 
 void MouseTools::click(const Pointer& p, const Press& q) {

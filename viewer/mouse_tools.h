@@ -17,7 +17,8 @@
 namespace relight::viewer {
 
 /// What a click on the image does: pick and drag an object, add a light, a box, a point lamp,
-/// take a real object out, place a real lamp, turn the sun (drag), move a point lamp.
+/// take a real object out, place a real lamp, turn the sun (drag), move a point lamp or a
+/// virtual quad lamp (drag).
 enum class Tool { select, light, box, remove, lamp, point, sun, movePoint };
 
 /// Where the photo is drawn in the window (window coordinates, y down): the area left of
@@ -60,7 +61,8 @@ class MouseTools {
     void handle(const PhotoRect& r, const Pointer& p);
 
     Tool tool = Tool::select;
-    std::string sun, point;         ///< the sun Tool::sun turns, the lamp Tool::movePoint moves
+    /// The sun Tool::sun turns; the point lamp or virtual quad lamp Tool::movePoint moves.
+    std::string sun, point;
     int movingLamp = -1;            ///< the real lamp the next click moves, or -1
     float newLampSize[2] = {0, 0};  ///< metres; 0: the size of the scene's lamps
     std::string status;             ///< what the last click could not do, for the panel
@@ -77,8 +79,8 @@ class MouseTools {
     /// go (each turn is solved again, as a saved "direction" is: a second or more on a large
     /// scene), on the worker thread.
     void sunTool(const PhotoRect& r, const Pointer& p, const Press& q);
-    /// Tool::movePoint: the point lamp goes above the surface where the button is let go (a
-    /// drag; a click is a drag of no length).
+    /// Tool::movePoint: the point lamp or virtual quad lamp goes onto the surface where the
+    /// button is let go (a drag; a click is a drag of no length; Session::moveLightTo).
     void pointTool(const Pointer& p, const Press& q);
     /// The other tools: a click adds, removes, places or grabs; a drag moves the grabbed object.
     void click(const Pointer& p, const Press& q);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "radiosity/emitter.h"
 #include "radiosity/stopwatch.h"
 #include "relight/errors.h"
 #include "relight/io/edit_writer.h"
@@ -27,6 +28,35 @@ namespace {
 Vec3 tangentOf(const Vec3& n) {
     const Vec3 a = std::abs(n.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
     return glm::normalize(a - n * glm::dot(a, n));
+}
+
+/// A lamp's face `corners` (a planar polygon) turned and moved onto the surface at `p`:
+/// parallel to it, facing along its normal, its centroid above p.point by 2 % of its size
+/// (addLightAt's rule), turned by the least rotation that takes its normal to the surface's
+/// (so that on the same surface it keeps its turn about the normal).
+std::vector<Vec3> faceAbove(const std::vector<Vec3>& corners, const Pick& p) {
+    Vec3 centroid{0, 0, 0}, area{0, 0, 0};
+    for (const Vec3& c : corners) centroid += c;
+    centroid /= static_cast<double>(corners.size());
+    for (size_t k = 1; k + 1 < corners.size(); ++k)  // a fan: the face is convex
+        area += 0.5 * glm::cross(corners[k] - corners[0], corners[k + 1] - corners[0]);
+    const double size = std::sqrt(glm::length(area));
+    if (!(size > 0)) throw std::invalid_argument("the lamp's face has no area");
+    const Vec3 from = area / glm::length(area), to = glm::normalize(p.normal);
+    // Rodrigues' rotation of `from` onto `to`; half a turn about any axis across `from`
+    // when they are opposite (the rotation is then not unique).
+    const Vec3 axis = glm::cross(from, to);
+    const double sine = glm::length(axis), cosine = glm::dot(from, to);
+    const Vec3 k = sine > 1e-9 ? axis / sine : tangentOf(from);
+    const double angle = std::atan2(sine, cosine);
+    const auto turn = [&](const Vec3& v) {
+        return v * std::cos(angle) + glm::cross(k, v) * std::sin(angle) +
+               k * (glm::dot(k, v) * (1 - std::cos(angle)));
+    };
+    const Vec3 centre = p.point + to * std::max(0.005, 0.02 * size);
+    std::vector<Vec3> out;
+    for (const Vec3& c : corners) out.push_back(centre + turn(c - centroid));
+    return out;
 }
 
 /// "V3": with snprintf, as GCC 12 warns wrongly (-Wrestrict) on "V" + std::to_string(3).
@@ -248,6 +278,40 @@ void Session::movePointLampTo(const std::string& name, const Pick& p, double off
     editLight(name, e);
 }
 
+void Session::moveLightTo(const std::string& name, const Pick& p, double offset) {
+    LightControl* c = findControl(name);
+    if (c && c->emitter) return movePointLampTo(name, p, offset);
+    if (!c || !c->isVirtual)
+        throw std::invalid_argument("no point lamp or virtual lamp \"" + name + "\" to move");
+    if (!p.hit) throw std::invalid_argument("no surface there to put the lamp on");
+    c->face.corners = faceAbove(c->face.corners, p);
+    if (previewFace(static_cast<size_t>(c - lights_.data()))) return;
+    stale_ = true;
+    update();
+}
+
+bool Session::previewFace(size_t i) {
+    // Shown quickly as the point lamps are (previewMoves): its direct light per pixel at the
+    // new place through the quad lamp's model (one ray per pixel on the CPU; the window's
+    // GPU frames, four shadow maps), its face drawn there, the rest as last solved. Its own
+    // face, still where it was in the solver, does not block it.
+    if (!quickMoves_ || stale_ || !dyn_ || dyn_->previewingObject() || i >= solverLight_.size() ||
+        solverLight_[i] < 0 || !lights_[i].on)
+        return false;
+    const int light = solverLight_[i];
+    const radiosity::Light& held = r_->solver->scene().lights[static_cast<size_t>(light)];
+    if (held.polygons.size() != 1) return false;  // a virtual lamp is one face
+    dyn_->previewEmitter(light, *radiosity::makeQuadLamp(lights_[i].name, {lights_[i].face.corners},
+                                                         held.polygons, Rgb{1, 1, 1}));
+    faceShownMoved_ = exactPending_ = true;
+    // The frames of one drag: the window may draw them on the GPU (movedLightFrame).
+    const int wasMoving = movingLight_, epoch = movingEpoch_;
+    changed();
+    movingLight_ = light;
+    if (light == wasMoving) movingEpoch_ = epoch;
+    return true;
+}
+
 Vec3 Session::sunDirection(double azimuth, double elevation) {
     constexpr double kDeg = 3.14159265358979323846 / 180;
     const double ce = std::cos(elevation * kDeg);
@@ -286,7 +350,7 @@ bool Session::settle() {
 }
 
 void Session::rebuild() {
-    exactPending_ = false;
+    exactPending_ = faceShownMoved_ = false;
     dyn_.reset();
     objectPolygons_.clear();
     const std::vector<Rgb> real = realRadiance();
@@ -328,11 +392,12 @@ bool Session::apply(bool quickOnly) {
     bool strengthsKept = now.size() == applied_.size();
     for (size_t i = 0; strengthsKept && i < now.size(); ++i) strengthsKept = now[i] == applied_[i];
     const bool radianceChanged = !strengthsKept || state != appliedState_;
-    if (!stale_ && !radianceChanged) return true;
+    if (!stale_ && !faceShownMoved_ && !radianceChanged) return true;
     const bool shapesKept = state == appliedState_;
     const bool sameCount = applied_.size() == now.size();
     // An object shown moved (dragTo's quick frames) is not in the solver: insert it again.
-    const bool stale = stale_ || (dyn_ && dyn_->previewingObject());
+    // So is a lamp's face shown moved (previewFace).
+    const bool stale = stale_ || faceShownMoved_ || (dyn_ && dyn_->previewingObject());
     // Without virtual parts (nor a moved light, nor any before) a radiance change is the
     // superposition path: nothing to solve. With virtual objects, the quick path while a
     // slider moves (settle() makes it exact); a sun or lamp moved, its quick path too.
@@ -484,11 +549,16 @@ void Session::setSpecular(int i, const std::optional<Specular>& specular) {
     update();
 }
 
-Pick Session::pick(double u, double v) const {
+Pick Session::pick(double u, double v, const std::string& through) const {
     const Camera& camera = r_->scene.camera;
     const Vec3 eye = camera.position();
     const Vec3 dir = camera.rayDirection(u, v);
-    const auto hit = r_->solver->visibility().intersect(eye, dir);
+    const auto& lights = r_->solver->scene().lights;
+    const int passed = through.empty() ? -1 : r_->solver->scene().findLight(through);
+    const int ignore = passed >= 0 && lights[static_cast<size_t>(passed)].polygons.size() == 1
+                           ? lights[static_cast<size_t>(passed)].polygons[0]
+                           : -1;
+    const auto hit = r_->solver->visibility().intersect(eye, dir, 0, 1e30, ignore);
     Pick p;
     const auto& polygons = r_->solver->scene().polygons;
     if (hit.polygon < 0 || hit.polygon >= static_cast<int>(polygons.size())) return p;
@@ -551,10 +621,6 @@ void Session::addLightAt(const Pick& p) {
     const double side = faces > 0 && area > 0 ? std::sqrt(area / faces) : 0.05 * diagonal_;
     radiance = lit > 0 ? radiance * (1.0 / lit) : Rgb{10, 10, 10};
     const Vec3 n = glm::normalize(p.normal);
-    const Vec3 t = tangentOf(n);
-    const Vec3 b = glm::cross(n, t);
-    const Vec3 c = p.point + n * std::max(0.005, 0.02 * side);
-    const double h = 0.5 * side;
     LightControl l;
     do {
         l.name = numbered("V", nextLight_++);
@@ -563,13 +629,16 @@ void Session::addLightAt(const Pick& p) {
     l.isVirtual = true;
     // Counter-clockwise seen from the side it emits to: (v1 - v0) x (v2 - v0) along n.
     l.face.name = l.name;
-    l.face.corners = {c + (-t - b) * h, c + (t - b) * h, c + (t + b) * h, c + (-t + b) * h};
+    l.face.corners = lampQuad(p.point + n * std::max(0.005, 0.02 * side), n, side, side);
     l.setRadiance(radiance);
     l.face.radiance = radiance;
-    const bool appendable = dyn_ && !stale_ && !dyn_->previewingObject() && objects_.empty();
+    const bool appendable =
+        dyn_ && !stale_ && !faceShownMoved_ && !dyn_->previewingObject() && objects_.empty();
     lights_.push_back(l);
     if (appendable) {
-        dyn_->addLight(l.face);
+        const int at = dyn_->addLight(l.face);
+        solverLight_.resize(lights_.size(), -1);
+        solverLight_.back() = at;
         applied_.push_back(l.radiance());
         appliedEmitters_.push_back(nullptr);
         changed();
@@ -650,7 +719,7 @@ void Session::addBoxAt(const Pick& p) {
     o.object.transform[3] = {0, 0, 0, 1};
     std::vector<std::string> warnings;
     placeObject(o.object, o.geometry, warnings);
-    const bool appendable = dyn_ && !stale_ && !dyn_->previewingObject();
+    const bool appendable = dyn_ && !stale_ && !faceShownMoved_ && !dyn_->previewingObject();
     objects_.push_back(std::move(o));
     if (appendable) {
         const size_t first = r_->solver->scene().polygons.size();
@@ -728,8 +797,10 @@ void Session::removeLight(int i) {
     const bool last = objects_.empty() && i == static_cast<int>(lights_.size()) - 1 &&
                       !lights_[static_cast<size_t>(i)].emitter;
     lights_.erase(lights_.begin() + i);
-    if (last && dyn_ && !stale_ && !dyn_->previewingObject()) {
+    if (last && dyn_ && !stale_ && !faceShownMoved_ && !dyn_->previewingObject()) {
         dyn_->removeLast();
+        if (static_cast<size_t>(i) < solverLight_.size())
+            solverLight_.erase(solverLight_.begin() + i);
         applied_.erase(applied_.begin() + i);
         if (static_cast<size_t>(i) < appliedEmitters_.size())
             appliedEmitters_.erase(appliedEmitters_.begin() + i);
@@ -746,7 +817,7 @@ void Session::removeObject(int i) {
     const bool last = i == static_cast<int>(objects_.size()) - 1;
     objects_.erase(objects_.begin() + i);
     dragging_ = -1;
-    if (last && dyn_ && !stale_ && !dyn_->previewingObject()) {
+    if (last && dyn_ && !stale_ && !faceShownMoved_ && !dyn_->previewingObject()) {
         dyn_->removeLast();
         objectPolygons_.pop_back();
         if (!hasVirtualParts()) dyn_.reset();

@@ -140,8 +140,10 @@ class Session {
     /// its name. Throws std::invalid_argument for ks < 0 or a shininess that is not > 0.
     void setSpecular(int i, const std::optional<Specular>& specular);
 
-    /// What the camera ray through pixel (u, v) hits (OpenCV pixel coordinates).
-    Pick pick(double u, double v) const;
+    /// What the camera ray through pixel (u, v) hits (OpenCV pixel coordinates). `through`:
+    /// a light whose face (a lamp of one face, as the solver holds it) the ray passes, so
+    /// that a lamp being dragged is not put onto itself.
+    Pick pick(double u, double v, const std::string& through = {}) const;
     /// A virtual quad light on the face picked, facing out of it: the size of the scene's
     /// lights (their mean area), their mean radiance, a few millimetres off the face.
     void addLightAt(const Pick& p);
@@ -205,6 +207,15 @@ class Session {
     std::string addPointLampAt(const Pick& p, double offset = 0);
     /// Moves point lamp `name` (real or virtual) above the face picked, as addPointLampAt.
     void movePointLampTo(const std::string& name, const Pick& p, double offset = 0);
+    /// Moves light `name` onto the face picked: a point lamp as movePointLampTo; a virtual
+    /// quad lamp's face, its shape kept, parallel to the surface 2 % of its size above it
+    /// (as addLightAt puts one), turned by the least rotation that takes its normal to the
+    /// surface's. With quick moves (setQuickMoves) the lamp is shown there quickly, its
+    /// direct light per pixel through the quad lamp's model (DynamicRelighting::
+    /// previewEmitter; movedLightFrame for the window's GPU), the rest as last solved,
+    /// exactPending() until settle(); else it is inserted there again. Throws
+    /// std::invalid_argument for a sun, a sky, a real quad lamp or an unknown name.
+    void moveLightTo(const std::string& name, const Pick& p, double offset = 0);
     /// The direction towards a sun of azimuth `azimuth` (degrees from +x towards +y) and
     /// elevation `elevation` (degrees above the horizontal plane; the world's z is up, as
     /// in the bundled scenes), and back.
@@ -217,9 +228,9 @@ class Session {
 
     /// Changes whenever what the display shows changes.
     int generation() const { return generation_; }
-    /// The solver light being moved quickly when it alone is shown so (a sun turned or a
-    /// point lamp moved, setQuickMoves): the window may then draw its frames on the GPU
-    /// (viewer/gpu_moved_light.h); -1 otherwise.
+    /// The solver light being moved quickly when it alone is shown so (a sun turned, a
+    /// point lamp or virtual quad lamp moved, setQuickMoves): the window may then draw its
+    /// frames on the GPU (viewer/gpu_moved_light.h); -1 otherwise.
     int movingLight() const { return movingLight_; }
     /// Changes whenever anything but that light's place changes: a movedLightFrame() holds
     /// for every frame of one epoch.
@@ -288,6 +299,9 @@ class Session {
     /// update()'s quick path for lights moved (setQuickMoves); false, showing nothing,
     /// where a change is not a move of a sun or point lamp that the solution holds.
     bool previewMoves();
+    /// Shows virtual quad light i's face where it now is quickly (moveLightTo); false where
+    /// it cannot (quick moves off, the parts to insert again, the light off).
+    bool previewFace(size_t i);
     double offsetOrDefault(double offset) const { return offset > 0 ? offset : 0.02 * diagonal_; }
 
     Relighting* r_;
@@ -305,9 +319,10 @@ class Session {
     std::vector<double> appliedState_;  ///< emitterState() the solution was computed for
     /// Per light, a copy of its emitter as last applied (null for quads), for undo().
     std::vector<std::shared_ptr<radiosity::Emitter>> appliedEmitters_;
-    bool stale_ = false;         ///< the parts changed in a way only rebuild() follows
-    bool exactPending_ = false;  ///< the solution is setRealRadiances' or previewMoves' quick one
-    bool quickMoves_ = false;    ///< setQuickMoves
+    bool stale_ = false;           ///< the parts changed in a way only rebuild() follows
+    bool exactPending_ = false;    ///< the solution is setRealRadiances' or previewMoves' quick one
+    bool faceShownMoved_ = false;  ///< a lamp's face shown moved (previewFace): insert it again
+    bool quickMoves_ = false;      ///< setQuickMoves
     /// Per light control: the solver's first light that rebuild() gave its light (the scene's
     /// index for a real light in place, addLight's for a moved or virtual one); -1: none.
     std::vector<int> solverLight_;

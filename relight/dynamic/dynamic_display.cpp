@@ -4,6 +4,7 @@
 // dynamic_relighting.cpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -161,8 +162,14 @@ std::optional<radiosity::ShadowSource> DynamicRelighting::shownSource(int light)
     if (light < 0 || static_cast<size_t>(light) >= lights.size()) return std::nullopt;
     for (const Preview& q : previews_)  // shown moved: where previewEmitter() put it
         if (q.light == light && q.emitter) return q.emitter->shadowSource();
-    const auto& emitter = lights[static_cast<size_t>(light)].emitter;
-    return emitter ? emitter->shadowSource() : std::nullopt;
+    const radiosity::Light& l = lights[static_cast<size_t>(light)];
+    if (l.emitter) return l.emitter->shadowSource();
+    if (l.polygons.size() != 1) return std::nullopt;
+    // A lamp of one face, as the quad lamp's model has it.
+    const radiosity::Polygon& face = solver_.scene().polygons[static_cast<size_t>(l.polygons[0])];
+    return radiosity::makeQuadLamp(l.name, {{face.v.begin(), face.v.begin() + face.vertexCount}},
+                                   l.polygons, Rgb{1, 1, 1})
+        ->shadowSource();
 }
 
 std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
@@ -171,12 +178,11 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
     if (objectPreview_ || !P.pixelReflectance.empty() || P.pixelDirect.empty() || light < 0 ||
         static_cast<size_t>(light) >= lights.size())
         return std::nullopt;
-    const auto& emitter = lights[static_cast<size_t>(light)].emitter;
-    const std::optional<radiosity::ShadowSource> source =
-        emitter ? emitter->shadowSource() : std::nullopt;
+    const std::optional<radiosity::ShadowSource> source = shownSource(light);
     if (!source) return std::nullopt;
     MovedLightFrame f;
-    f.source = *shownSource(light);
+    f.source = *source;
+    f.eye = r_.scene.camera.position();
     // The ratio display where the per-pixel display does not draw, as render() makes it.
     const auto t0 = Clock::now();
     completeVertexGather(&ratioPixelVertices());
@@ -192,8 +198,9 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
     f.receivers = quickReceivers(r_.items, solver_.scene());
     const auto& polygons = solver_.scene().polygons;
     for (size_t p = 0; p < polygons.size(); ++p) {
-        if (solver_.visibility().hidden(static_cast<int>(p))) continue;
         const radiosity::Polygon& poly = polygons[p];
+        // A lamp's own faces do not block it (where the solver holds them while it moves).
+        if (solver_.visibility().hidden(static_cast<int>(p)) || poly.light == light) continue;
         for (int k = 1; k + 1 < poly.vertexCount; ++k)  // a fan: the polygons are convex
             for (const int i : {0, k, k + 1})
                 for (int c = 0; c < 3; ++c)
@@ -210,7 +217,8 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
                 f.scale[3 * px + c] = 0.0f;
                 f.offset[3 * px + c] = img.rgb[3 * px + c];
             }
-    const VirtualOverlay o = overlay();
+    // The moved lamp's face is the GPU's to draw, where it is at each frame.
+    const VirtualOverlay o = overlay(/*movedFaces=*/false);
     for (int y = 0; y < o.height; ++y)
         for (int x = 0; x < o.width; ++x) {
             const float* a = &o.rgba[(static_cast<size_t>(y) * o.width + x) * 4];
@@ -234,7 +242,19 @@ void applyOverlay(Image& img, const VirtualOverlay& o) {
         }
 }
 
-VirtualOverlay DynamicRelighting::overlay() {
+std::vector<DynamicRelighting::MovedFace> DynamicRelighting::movedFaces() const {
+    std::vector<MovedFace> out;
+    for (const Preview& q : previews_) {
+        const radiosity::Light& l = solver_.scene().lights[static_cast<size_t>(q.light)];
+        if (l.emitter || l.polygons.size() != 1 || !q.emitter) continue;
+        const std::optional<radiosity::ShadowSource> s = q.emitter->shadowSource();
+        if (s && s->kind == radiosity::ShadowSource::Kind::face)
+            out.push_back({q.light, l.polygons[0], s->corners});
+    }
+    return out;
+}
+
+VirtualOverlay DynamicRelighting::overlay(bool drawMoved) {
     const auto t0 = Clock::now();
     // The item buffer again, in the projected box of the virtual parts only (the pixels of
     // an old position outside it are the ratio display's).
@@ -242,6 +262,16 @@ VirtualOverlay DynamicRelighting::overlay() {
     const auto& scene = solver_.scene();
     int x0 = camera.width, y0 = camera.height, x1 = -1, y1 = -1;
     growProjectedBox(camera, std::span(scene.polygons).subspan(realPolygons_), x0, y0, x1, y1);
+    // A lamp's face shown moved: the camera's rays pass it where the solver holds it (one
+    // such face: Visibility::intersect ignores one polygon), and meet it where it now is.
+    const std::vector<MovedFace> moved = movedFaces();
+    const int passed = moved.empty() ? -1 : moved.back().polygon;
+    if (drawMoved && !moved.empty()) {
+        radiosity::Polygon now;
+        now.vertexCount = static_cast<int>(std::min<size_t>(moved.back().corners.size(), 4));
+        std::copy_n(moved.back().corners.begin(), now.vertexCount, now.v.begin());
+        growProjectedBox(camera, std::span(&now, 1), x0, y0, x1, y1);
+    }
     // The pixels of the real objects taken out.
     const RemovedRegion& gone = removed_;
     if (!gone.empty()) {
@@ -277,7 +307,16 @@ VirtualOverlay DynamicRelighting::overlay() {
             for (int s = 0; s < k * k; ++s) {
                 const auto [u, v] = samples.at(x, y, s);
                 const Vec3 dir = camera.rayDirection(u, v);
-                const auto hit = vis.intersect(eye, dir);
+                const auto hit = vis.intersect(eye, dir, 0, 1e30, passed);
+                bool front = false;
+                const double tFace = drawMoved && passed >= 0
+                                         ? rayFace(eye, dir, moved.back().corners, &front)
+                                         : std::numeric_limits<double>::infinity();
+                if (tFace < (hit.polygon >= 0 ? hit.t : std::numeric_limits<double>::infinity())) {
+                    // Its back is black, as a virtual lamp's below.
+                    if (front) added += radiance_[static_cast<size_t>(moved.back().light)];
+                    continue;
+                }
                 if (hit.polygon < static_cast<int>(realPolygons_) && filled) {
                     const size_t i = g * static_cast<size_t>(k * k) + static_cast<size_t>(s);
                     const int p = gone.polygon[i];

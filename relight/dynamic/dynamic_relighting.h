@@ -106,11 +106,12 @@ struct GeometryCache {
     std::shared_ptr<const std::vector<float>> pooledByRadius;
 };
 
-/// The per-pixel display of a DynamicRelighting as a function of one sun's or point lamp's
-/// direct light alone (DynamicRelighting::movedLightFrame): for a display that measures that
-/// light itself at every frame while the light moves (the viewer's GPU frames,
-/// viewer/gpu_moved_light.h). With g the light's unit irradiance at each pixel's receiver
-/// (`receivers`: relight/dynamic/quick_light.h, quickReceivers), per pixel and channel
+/// The per-pixel display of a DynamicRelighting as a function of one sun's, point lamp's or
+/// one-faced quad lamp's direct light alone (DynamicRelighting::movedLightFrame): for a
+/// display that measures that light itself at every frame while the light moves (the
+/// viewer's GPU frames, viewer/gpu_moved_light.h). With g the light's unit irradiance at
+/// each pixel's receiver (`receivers`: relight/dynamic/quick_light.h, quickReceivers), per
+/// pixel and channel
 ///   image = scale * out(g) + offset     (out: pipeline/pixel_light.h, evalPixelLightTerms)
 /// `scale` is 0 where the per-pixel display does not draw (`offset` then holds the ratio
 /// display's value), the overlay's realShare in the virtual parts' box (`offset` its added
@@ -119,7 +120,11 @@ struct MovedLightFrame {
     PixelLightTerms terms;
     std::vector<float> receivers;      ///< 6 per pixel: point, normal (0: no receiver)
     std::vector<float> scale, offset;  ///< 3 per pixel
-    radiosity::ShadowSource source;    ///< the light as it stands (Emitter::shadowSource)
+    radiosity::ShadowSource source;    ///< the light as it stands (shownSource)
+    /// The camera's centre. A lamp's face (ShadowSource::Kind::face) is not in `offset`: the
+    /// display draws it, where the ray from here to a pixel's receiver meets it first (its
+    /// radiance L_m on its front, black on its back; relight/dynamic/quick_light.h, rayFace).
+    radiosity::Vec3 eye{0, 0, 0};
     /// What casts its shadows: the solver's polygons that its visibility holds (the virtual
     /// parts in, the objects taken out not), as triangles, 9 floats each (metres).
     std::vector<float> blockers;
@@ -170,10 +175,13 @@ class DynamicRelighting {
     /// light is gathered or measured again per change); returns false, changing nothing,
     /// otherwise.
     bool setRealRadiances(std::span<const Rgb> radiance);
-    /// A quick look at a sun or point lamp moved (a drag, a slider), for the frames while it
-    /// moves: light `light` (the solver's first light of a sun, point lamp or sky, real or
-    /// virtual, as this instance holds it) shown as `moved` has it in the per-pixel
-    /// displays' direct light, measured at every pixel through the light model
+    /// A quick look at a sun, point lamp or quad lamp moved (a drag, a slider), for the
+    /// frames while it moves: light `light` (the solver's first light of a sun, point lamp or
+    /// sky; or a lamp of faces, with `moved` a quad lamp, radiosity::makeQuadLamp, whose
+    /// polygons are the light's own, so that they do not block it; real or virtual, as this
+    /// instance holds it) shown as `moved` has it in the per-pixel displays' direct light
+    /// (a lamp's face drawn where it now is, overlay()), measured at every pixel through the
+    /// light model
     /// (radiosity::Emitter::unitIrradiance) with one shadow ray from one camera sample per
     /// pixel (quickPixelLight(), relight/dynamic/quick_light.h). The solver, its links, the
     /// vertices and the indirect light stay as they are (the light's indirect share is the
@@ -181,18 +189,21 @@ class DynamicRelighting {
     /// display and the virtual parts' overlay. Not `relight render`'s image of the edit: a
     /// new instance with the light moved is (the viewer's Session::settle). `moved` must
     /// have the light's components; its strengths are not read (the light's radiance
-    /// stays). Throws std::invalid_argument for a light that is not a sun, point lamp or
-    /// sky, or a component count that differs.
+    /// stays). A quad's soft shadow is then one ray's: 0 or 1 at each pixel of its penumbra.
+    /// Throws std::invalid_argument for a lamp of faces shown as another type than a quad,
+    /// or a component count that differs.
     void previewEmitter(int light, const radiosity::Emitter& moved);
     /// The image as it stands as a function of light `light`'s direct light alone
     /// (MovedLightFrame): render(DisplayMode::pixel) is scale * out(g) + offset with g the
     /// light's quick measurement (previewEmitter()'s, or the preparation's where it was not
     /// moved), to float rounding. nullopt where that form does not hold: a merged
     /// reflectance (several photos), an object dragged (previewLastObject), a light that is
-    /// not one point or direction (Emitter::shadowSource: a quad, a sky), no per-pixel light.
+    /// not one point, direction or face (Emitter::shadowSource: a lamp of several faces, a
+    /// sky), no per-pixel light. The light's own faces are not among the frame's blockers.
     std::optional<MovedLightFrame> movedLightFrame(int light);
-    /// Light `light` as one point or direction where it is shown (previewEmitter()'s place
-    /// while it moves); nullopt for a light without one (Emitter::shadowSource).
+    /// Light `light` as one point, direction or face where it is shown (previewEmitter()'s
+    /// place while it moves; a lamp of one face as radiosity::makeQuadLamp models it); nullopt
+    /// for a light without one (Emitter::shadowSource).
     std::optional<radiosity::ShadowSource> shownSource(int light) const;
     /// Whether a light is shown by previewEmitter() (the image is a quick one).
     bool previewing() const { return !previews_.empty() || objectPreview_ != nullptr; }
@@ -248,7 +259,10 @@ class DynamicRelighting {
     /// The display values per vertex for `mode` (relight/prepared.h): the light the virtual
     /// parts change counts as fresh light, weighed by the photo's confidence.
     VertexDisplay vertexDisplay(DisplayMode mode) const;
-    VirtualOverlay overlay();
+    /// `movedFaces`: the lamps' faces that previewEmitter() shows moved are drawn where
+    /// they now are (where they were, the ray passes them); false: drawn nowhere (the
+    /// viewer's GPU frames draw them, movedLightFrame).
+    VirtualOverlay overlay(bool movedFaces = true);
     /// Irradiance H per leaf vertex of the scene, with every change the edit makes.
     std::vector<Rgb> vertexIrradiance() const;
     /// Radiance of the real lights (scene order), then of the virtual lights.
@@ -375,6 +389,13 @@ class DynamicRelighting {
     std::unique_ptr<ObjectPreview> objectPreview_;
     /// The moved object over the image (previewLastObject): its pixels' share and radiance.
     VirtualOverlay previewOverlay() const;
+    /// A lamp of one face that previewEmitter() shows moved: its solver polygon, where it
+    /// was, and its corners now.
+    struct MovedFace {
+        int light = -1, polygon = -1;
+        std::vector<Vec3> corners;
+    };
+    std::vector<MovedFace> movedFaces() const;
     /// Throws std::logic_error while an object is shown moved (`what`: the edit refused).
     void noPreview(const char* what) const;
     /// previewLastObject()'s first call: the checks, the faces' indirect light, the object

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "radiosity/parallel.h"
 #include "radiosity/stopwatch.h"
@@ -162,12 +163,16 @@ std::span<const float> DynamicRelighting::pixelDirectExcept(int unmeasured) {
 void DynamicRelighting::previewEmitter(int light, const radiosity::Emitter& moved) {
     noPreview("previewEmitter");
     const auto& lights = solver_.scene().lights;
-    if (light < 0 || static_cast<size_t>(light) >= lights.size() ||
-        !lights[static_cast<size_t>(light)].emitter)
-        throw std::invalid_argument("previewEmitter: no sun, point lamp or sky at that light");
+    if (light < 0 || static_cast<size_t>(light) >= lights.size())
+        throw std::invalid_argument("previewEmitter: no light at that index");
+    const radiosity::Light& held = lights[static_cast<size_t>(light)];
+    // A light of faces (a quad lamp) is shown as a quad emitter of one component.
+    const int heldCount = held.emitter ? held.emitter->components() : 1;
+    if (!held.emitter && (held.polygons.empty() || std::string(moved.type()) != "quad"))
+        throw std::invalid_argument("previewEmitter: \"" + held.name +
+                                    "\" is a lamp of faces: it is shown moved as a quad");
     const int count = moved.components();
-    if (count != lights[static_cast<size_t>(light)].emitter->components() ||
-        static_cast<size_t>(light + count) > lights.size())
+    if (count != heldCount || static_cast<size_t>(light + count) > lights.size())
         throw std::invalid_argument("previewEmitter: \"" + moved.name() +
                                     "\" has another number of components");
     // Measured when the image is made (pixelDirect()): a display that measures the light

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "radiosity/defaults.h"
@@ -91,6 +92,25 @@ std::vector<float> quickReceivers(const ItemBuffer& items, const radiosity::Scen
         }
     });
     return out;
+}
+
+double rayFace(const radiosity::Vec3& o, const radiosity::Vec3& d,
+               std::span<const radiosity::Vec3> corners, bool* front) {
+    constexpr double kNever = std::numeric_limits<double>::infinity();
+    if (corners.size() < 3) return kNever;
+    const radiosity::Vec3 n = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
+    const double dn = glm::dot(n, d);
+    if (!(std::abs(dn) > 1e-300)) return kNever;  // guard: a ray along the face's plane
+    const double t = glm::dot(n, corners[0] - o) / dn;
+    if (!(t > 0)) return kNever;
+    const radiosity::Vec3 x = o + t * d;
+    for (size_t i = 0; i < corners.size(); ++i) {
+        const radiosity::Vec3& a = corners[i];
+        const radiosity::Vec3& b = corners[(i + 1) % corners.size()];
+        if (glm::dot(glm::cross(b - a, x - a), n) < 0) return kNever;
+    }
+    if (front) *front = dn < 0;
+    return t;
 }
 
 BoundingSphere boundingSphere(std::span<const radiosity::Polygon> polygons) {

@@ -42,6 +42,13 @@ std::vector<float> quickPixelLight(const ItemBuffer& items, const radiosity::Sce
 /// display that measures the light itself (the viewer's GPU frames) reads.
 std::vector<float> quickReceivers(const ItemBuffer& items, const radiosity::Scene& scene);
 
+/// Where the ray x = o + t d (t > 0) meets the planar convex face `corners` (3 or 4,
+/// counter-clockwise seen from its front): t, or +infinity where it passes beside it, or
+/// parallel to it. `front` gets whether the ray meets its front. For a lamp's face shown
+/// where it is moved (the quick frames' overlay; the viewer's GPU frames do the same).
+double rayFace(const radiosity::Vec3& o, const radiosity::Vec3& d,
+               std::span<const radiosity::Vec3> corners, bool* front = nullptr);
+
 /// A sphere that bounds a moved object (its polygons' corners), to tell the points whose
 /// light it may block.
 struct BoundingSphere {

@@ -5,9 +5,9 @@
 # over every bundled edit at the default preparation and compared with the truth) run in the
 # plain suite only. Each session here is saved and rendered again by `relight render` at the
 # same preparation: the screenshot is render's image within one 8-bit step, as in those scripts.
-#  - data/room, per pixel and in the ratio display: a lamp added, a box inserted and dragged,
-#    its specular term, a real lamp's slider, the table removed and brought back, the cabinet
-#    removed;
+#  - data/room, per pixel and in the ratio display: a lamp added and moved, a box inserted
+#    and dragged, its specular term, a real lamp's slider, the table removed and brought back,
+#    the cabinet removed;
 #  - data/courtyard, per pixel and in the ratio display: the sun turned by its sliders and by a
 #    drag, the sky turned, scaled and a coefficient set, a point lamp added and moved;
 #  - data/courtyard in the window itself: the sun turned, made exact in the background;
@@ -38,7 +38,7 @@ function(session scene name display)
   same_within_one_step("${WORK}/${name}_viewer.png" "${WORK}/${name}_render.png" "${name}")
 endfunction()
 
-set(room_actions --do light:200,20 --do box:90,200 --do drag:90,195:150,210
+set(room_actions --do light:200,20 --do move:V1:150,30 --do box:90,200 --do drag:90,195:150,210
     --do specular:box1:0.3,0.4,0.5:12 --do scale:A:0.4 --do remove:180,155 --do restore:table
     --do remove:118,140)
 session("${SCENE}" room_pixel pixel ${room_actions})
