@@ -45,6 +45,7 @@ void main() {
 // evalPixelLightTerms (relight/pipeline/pixel_light.cpp) per channel, then scale and offset.
 const char* kFrameFragment = R"(#version 330 core
 uniform sampler2D receiverPoint;
+uniform sampler2D surface;          // a face: the first point the pixel's ray meets
 uniform sampler2D receiverNormal;   // 0: no receiver (g = 0)
 uniform sampler2D rest;             // H_now with the light's direct light at 0
 uniform sampler2D rho;              // T / (max(H_photo, 0) + delta)
@@ -204,11 +205,10 @@ void main() {
         value = max(R * (max(now, 0.0) + delta), 0.0);
     }
     vec3 shown = s * value + o;
-    if (kind == 2) {  // the lamp's face, where it is: in front of the pixel's receiver
-        vec3 p = texelFetch(receiverPoint, xy, 0).rgb;
-        vec3 n = texelFetch(receiverNormal, xy, 0).rgb;
+    if (kind == 2) {  // the lamp's face, where it is: in front of what the pixel shows
         bool front;
-        if (dot(n, n) > 0.0 && rayFace(p - eye, front) < 1.0) shown = front ? radiance : vec3(0.0);
+        if (rayFace(texelFetch(surface, xy, 0).rgb - eye, front) < 1.0)
+            shown = front ? radiance : vec3(0.0);
     }
     color = vec4(gain * shown, 1.0);
 }
@@ -252,10 +252,10 @@ void setNearest(GLenum target) {
 }  // namespace
 
 size_t GpuMovedLight::bytesNeeded(size_t pixels) {
-    // Per pixel: point and normal, rest, rho, rhoPool, scale and offset as RGB32F, photoLight
+    // Per pixel: point, normal, surface, rest, rho, rhoPool, scale and offset as RGB32F, photoLight
     // as R32F, and the pooled reflectance's RGB32F layers (setFrame).
     const size_t radii = static_cast<size_t>(kMaxPoolRadius - kPoolRadius + 1);
-    const size_t perPixel = 7 * 12 + 4 + radii * 12;
+    const size_t perPixel = 8 * 12 + 4 + radii * 12;
     // A cube of distances and its depth (4 bytes each) per point lamp map and face point,
     // and the sun's square.
     const size_t cube = 6 * 8 * static_cast<size_t>(kCubeSide) * kCubeSide;
@@ -320,17 +320,18 @@ GpuMovedLight::GpuMovedLight(int width, int height) : width_(width), height_(hei
     attachDistanceTarget(sunFbo_, GL_TEXTURE_2D, sunTex_, sunDepth_);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glUseProgram(program_);
-    const char* units[] = {"receiverPoint", "receiverNormal", "rest",   "rho",    "rhoPool",
-                           "photoLight",    "scale",          "offset", "pooled", "cube",
-                           "sunMap",        "face0",          "face1",  "face2",  "face3"};
-    for (int u = 0; u < 15; ++u) glUniform1i(glGetUniformLocation(program_, units[u]), u);
+    const char* units[] = {"receiverPoint", "receiverNormal", "rest",   "rho",
+                           "rhoPool",       "photoLight",     "scale",  "offset",
+                           "pooled",        "cube",           "sunMap", "face0",
+                           "face1",         "face2",          "face3",  "surface"};
+    for (int u = 0; u < 16; ++u) glUniform1i(glGetUniformLocation(program_, units[u]), u);
     glUniform1i(glGetUniformLocation(program_, "height"), height_);
     glUseProgram(0);
 }
 
 GpuMovedLight::~GpuMovedLight() {
-    for (GLuint t : {pointTex_, normalTex_, restTex_, rhoTex_, rhoPoolTex_, photoLightTex_,
-                     scaleTex_, offsetTex_, pooledTex_, cubeTex_, sunTex_})
+    for (GLuint t : {surfaceTex_, pointTex_, normalTex_, restTex_, rhoTex_, rhoPoolTex_,
+                     photoLightTex_, scaleTex_, offsetTex_, pooledTex_, cubeTex_, sunTex_})
         if (t) glDeleteTextures(1, &t);
     glDeleteTextures(kFacePoints, faceTex_);
     for (int i = 0; i < kFacePoints; ++i) glDeleteFramebuffers(6, faceFbo_[i]);
@@ -356,6 +357,8 @@ void GpuMovedLight::setFrame(const MovedLightFrame& f) {
                         &scaleTex_, &offsetTex_})
         if (*tex) glDeleteTextures(1, tex);
     pointTex_ = rgbTexture(width_, height_, f.receivers, 6, 0);
+    if (surfaceTex_) glDeleteTextures(1, &surfaceTex_);
+    surfaceTex_ = rgbTexture(width_, height_, f.surface, 3, 0);  // zeros without a face
     normalTex_ = rgbTexture(width_, height_, f.receivers, 6, 3);
     restTex_ = rgbTexture(width_, height_, t.rest, 3, 0);
     rhoTex_ = rgbTexture(width_, height_, t.rho, 3, 0);
@@ -503,6 +506,7 @@ void GpuMovedLight::draw(const radiosity::ShadowSource& source, float gain) {
     gl::bindUnit(9, GL_TEXTURE_CUBE_MAP, cubeTex_);
     gl::bindUnit(10, GL_TEXTURE_2D, sunTex_);
     for (int i = 0; i < kFacePoints; ++i) gl::bindUnit(11 + i, GL_TEXTURE_CUBE_MAP, faceTex_[i]);
+    gl::bindUnit(15, GL_TEXTURE_2D, surfaceTex_);
     const auto uniform = [&](const char* name) { return glGetUniformLocation(program_, name); };
     const glm::vec3 at(source.at), centre(centre_);
     glUniform1i(uniform("kind"), static_cast<int>(source.kind));

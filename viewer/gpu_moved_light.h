@@ -23,8 +23,9 @@
 //                  blockers' bounding sphere, kSunSide texels a side;
 //   a quad lamp:   a cube map per point of ShadowSource::facePoints (the centres of its
 //                  2 x 2 cells), kFaceCubeSide texels a face: a penumbra in five steps.
-// A quad lamp's face is drawn too, where it is at each frame (MovedLightFrame::eye): its
-// radiance where the camera's ray to a pixel's receiver meets its front first.
+// A quad lamp's face is drawn too, where it is at each frame: its radiance where the
+// camera's ray through a pixel meets its front before what the pixel shows
+// (MovedLightFrame::eye, surface).
 // A receiver is lit when its point, moved 1.5 texels along its normal, is no farther from
 // the light than the map's nearest blocker plus two texels (acne and peter-panning both
 // within about two texels of the map).
@@ -60,7 +61,7 @@ class GpuMovedLight {
 
     /// For a photo of `width` x `height` pixels.
     GpuMovedLight(int width, int height);
-    /// The GPU memory a photo of `pixels` pixels needs (bytes): 148 a pixel for the
+    /// The GPU memory a photo of `pixels` pixels needs (bytes): 160 a pixel for the
     /// receivers, the terms and the pooled reflectance per radius, and the shadow maps.
     static size_t bytesNeeded(size_t pixels);
     /// How much of it the OpenGL driver says is free (bytes; GL_NVX_gpu_memory_info or
@@ -96,7 +97,8 @@ class GpuMovedLight {
     radiosity::Vec3 centre_{0, 0, 0};  ///< the blockers' bounding sphere
     double radius_ = 1;
     // Per pixel, at the photo's size: receiver point and normal; the terms.
-    GLuint pointTex_ = 0, normalTex_ = 0, restTex_ = 0, rhoTex_ = 0, rhoPoolTex_ = 0;
+    GLuint surfaceTex_ = 0, pointTex_ = 0, normalTex_ = 0, restTex_ = 0, rhoTex_ = 0,
+           rhoPoolTex_ = 0;
     GLuint photoLightTex_ = 0, scaleTex_ = 0, offsetTex_ = 0, pooledTex_ = 0;
     bool pooled_ = false;
     std::shared_ptr<const std::vector<float>> pooledData_;  ///< what pooledTex_ holds

@@ -172,6 +172,27 @@ std::optional<radiosity::ShadowSource> DynamicRelighting::shownSource(int light)
         ->shadowSource();
 }
 
+std::vector<float> DynamicRelighting::faceOccluders(int light) const {
+    // The overlay's first hits (overlay(): the virtual parts, the moved face passed where the
+    // solver holds it), one ray through each pixel's centre.
+    const Camera& camera = r_.scene.camera;
+    const Vec3 eye = camera.position();
+    const auto& polygons = solver_.scene().lights[static_cast<size_t>(light)].polygons;
+    const int passed = polygons.size() == 1 ? polygons[0] : -1;
+    const size_t width = static_cast<size_t>(camera.width);
+    std::vector<float> out(3 * width * static_cast<size_t>(camera.height));
+    parallelFor(static_cast<size_t>(camera.height), 1, [&](size_t y) {
+        for (size_t x = 0; x < width; ++x) {
+            const Vec3 dir = camera.rayDirection(static_cast<double>(x), static_cast<double>(y));
+            const auto hit = solver_.visibility().intersect(eye, dir, 0, 1e30, passed);
+            const Vec3 at = eye + (hit.polygon >= 0 ? hit.t : 1e6) * dir;
+            for (int c = 0; c < 3; ++c)
+                out[3 * (y * width + x) + static_cast<size_t>(c)] = static_cast<float>(at[c]);
+        }
+    });
+    return out;
+}
+
 std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
     const PreparedImage& P = r_.prepared;
     const auto& lights = solver_.scene().lights;
@@ -196,6 +217,7 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
         P.pixelReflectance, &P.photoPixels, cache_ ? cache_->pooledByRadius : nullptr);
     if (cache_) cache_->pooledByRadius = f.terms.pooled;
     f.receivers = quickReceivers(r_.items, solver_.scene());
+    if (f.source.kind == radiosity::ShadowSource::Kind::face) f.surface = faceOccluders(light);
     const auto& polygons = solver_.scene().polygons;
     for (size_t p = 0; p < polygons.size(); ++p) {
         const radiosity::Polygon& poly = polygons[p];

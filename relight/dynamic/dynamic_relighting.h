@@ -122,9 +122,13 @@ struct MovedLightFrame {
     std::vector<float> scale, offset;  ///< 3 per pixel
     radiosity::ShadowSource source;    ///< the light as it stands (shownSource)
     /// The camera's centre. A lamp's face (ShadowSource::Kind::face) is not in `offset`: the
-    /// display draws it, where the ray from here to a pixel's receiver meets it first (its
+    /// display draws it where the ray from here to the pixel's `surface` meets it first (its
     /// radiance L_m on its front, black on its back; relight/dynamic/quick_light.h, rayFace).
     radiosity::Vec3 eye{0, 0, 0};
+    /// A face: per pixel, 3 floats, the first point the camera's ray through the pixel's
+    /// centre meets in the solver's scene, the virtual parts in and the face where it was
+    /// passed (metres; 1e6 m out where it meets nothing). Empty for a point or direction.
+    std::vector<float> surface;
     /// What casts its shadows: the solver's polygons that its visibility holds (the virtual
     /// parts in, the objects taken out not), as triangles, 9 floats each (metres).
     std::vector<float> blockers;
@@ -396,6 +400,8 @@ class DynamicRelighting {
         std::vector<Vec3> corners;
     };
     std::vector<MovedFace> movedFaces() const;
+    /// MovedLightFrame::surface for light `light`.
+    std::vector<float> faceOccluders(int light) const;
     /// Throws std::logic_error while an object is shown moved (`what`: the edit refused).
     void noPreview(const char* what) const;
     /// previewLastObject()'s first call: the checks, the faces' indirect light, the object

@@ -253,9 +253,10 @@ Image fourPointFrame(const Relighting& r, const MovedLightFrame& f, int light) {
         if (f.terms.drawn[px]) evalPixelLightTerms(f.terms, px, static_cast<float>(g), out);
         for (size_t c = 0; c < 3; ++c)
             img.rgb[3 * px + c] = f.scale[3 * px + c] * out[c] + f.offset[3 * px + c];
-        // The face itself, where the camera's ray to the receiver meets it first.
+        // The face itself, where the camera's ray meets it before what the pixel shows.
         bool front = false;
-        if (glm::dot(n, n) > 0 && rayFace(f.eye, x - f.eye, face.corners, &front) < 1)
+        const Vec3 shows(f.surface[3 * px], f.surface[3 * px + 1], f.surface[3 * px + 2]);
+        if (rayFace(f.eye, shows - f.eye, face.corners, &front) < 1)
             for (size_t c = 0; c < 3; ++c)
                 img.rgb[3 * px + c] = front ? static_cast<float>(f.terms.radiance[c]) : 0.0f;
     }
@@ -347,7 +348,7 @@ TEST_F(ViewerGpu, AMovedPointLampsFramesOnTheGpuAreItsQuickFramesOnTheCpu) {
 }
 
 // A photo whose moved-light frames do not fit in the GPU's memory (here a limit of 1 MB
-// given to the renderer: 148 bytes a pixel and the shadow maps need 33 MB at 320 x 240):
+// given to the renderer: 160 bytes a pixel and the shadow maps need 40 MB at 320 x 240):
 // the frames are the CPU's quick ones, and the renderer says why.
 TEST_F(ViewerGpu, AMovedLightsFramesBeyondTheGpusMemoryAreTheCpus) {
     RoomDrag d("virtual_box");
