@@ -9,6 +9,8 @@
 // (viewer/egl_context.h), for a GPU with no X server its driver draws for; no xvfb-run.
 //
 // --scene courtyard (any scene with a sun): the sun drag alone (sunDrag below).
+// VF_DUMP=DIR in the environment: each "at rest" line also writes its two images there
+// (`<what>_quick.exr`, `<what>_exact.exr`), to see where they differ.
 // Prepares data/room (default RelightOptions), with --upscale K at K times the photo's
 // resolution (the camera scaled, the photo upscaled by pixel replication: the same scene,
 // K^2 times the pixels and about the same mesh (the refinement reads the photo's samples),
@@ -257,6 +259,10 @@ void printAtRest(Session& session, FrameRenderer& frame, const char* what) {
     const Image exact = session.relitPerPixel();
     double worst = 0, rel = 0;
     compare(quick, exact, worst, rel);
+    if (const char* dir = std::getenv("VF_DUMP")) {
+        writeImage(std::string(dir) + "/" + what + "_quick.exr", quick);
+        writeImage(std::string(dir) + "/" + what + "_exact.exr", exact);
+    }
     std::printf(
         "  the %s at rest: the exact image in %.1f ms (one frame); the last quick one%s against "
         "it: at most %.4f, rel_rmse %.5f (per-pixel display)\n",

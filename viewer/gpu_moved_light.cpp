@@ -74,6 +74,9 @@ uniform vec3 corner[4];             // the face, counter-clockwise seen from its
 uniform int cornerCount;
 uniform vec3 faceNormal;
 uniform vec3 eye;                   // the camera's centre (a face is drawn where it is)
+uniform mat3 worldFromCamera;       // R^T of the photo's camera
+uniform vec4 intrinsics;            // fx, fy, cx, cy
+uniform int samplesPerSide;         // the overlay's k x k samples of a pixel
 uniform vec3 radiance;              // L_m
 uniform vec3 delta;
 uniform int havePooled;
@@ -205,10 +208,24 @@ void main() {
         value = max(R * (max(now, 0.0) + delta), 0.0);
     }
     vec3 shown = s * value + o;
-    if (kind == 2) {  // the lamp's face, where it is: in front of what the pixel shows
-        bool front;
-        if (rayFace(texelFetch(surface, xy, 0).rgb - eye, front) < 1.0)
-            shown = front ? radiance : vec3(0.0);
+    if (kind == 2) {  // the lamp's face, where it is, in front of what the pixel shows
+        // relight/dynamic/quick_light.h, faceCoverage: the share of k x k camera samples.
+        float shows = length(texelFetch(surface, xy, 0).rgb - eye);
+        int k = samplesPerSide;
+        float all = 0.0, lit = 0.0;
+        for (int i = 0; i < 64; ++i) {
+            if (i >= k * k) break;
+            vec2 uv = vec2(xy) - 0.5 + (vec2(i % k, i / k) + 0.5) / float(k);
+            vec3 d = normalize(worldFromCamera *
+                               vec3((uv - intrinsics.zw) / intrinsics.xy, 1.0));
+            bool front;
+            if (rayFace(d, front) < shows) {
+                all += 1.0;
+                lit += front ? 1.0 : 0.0;
+            }
+        }
+        float n = float(k * k);
+        shown = shown * (1.0 - all / n) + radiance * (lit / n);
     }
     color = vec4(gain * shown, 1.0);
 }
@@ -383,10 +400,18 @@ void GpuMovedLight::setFrame(const MovedLightFrame& f) {
         pooledData_ = t.pooled;
     }
     for (int c = 0; c < 3; ++c) {
-        eye_[c] = static_cast<float>(f.eye[c]);
+        eye_[c] = static_cast<float>(f.camera.position()[c]);
         radiance_[c] = static_cast<float>(t.radiance[c]);
         delta_[c] = static_cast<float>(t.delta[c]);
     }
+    // The camera, column-major as GLSL reads a mat3 (glm's layout).
+    const glm::dmat3 worldFromCamera = glm::transpose(f.camera.cameraFromWorldR);
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row)
+            worldFromCamera_[3 * col + row] = static_cast<float>(worldFromCamera[col][row]);
+    const double intrinsics[4] = {f.camera.fx, f.camera.fy, f.camera.cx, f.camera.cy};
+    for (int i = 0; i < 4; ++i) intrinsics_[i] = static_cast<float>(intrinsics[i]);
+    samplesPerSide_ = std::clamp(f.samplesPerSide, 1, 8);
     // The blockers, and their bounding sphere (the sun's map covers it).
     glBindVertexArray(blockerVao_);
     glBindBuffer(GL_ARRAY_BUFFER, blockerBuf_);
@@ -493,6 +518,9 @@ void GpuMovedLight::setFaceUniforms(const radiosity::ShadowSource& source) {
     glUniform3fv(uniform("faceNormal"), 1, glm::value_ptr(normal));
     glUniform1f(uniform("faceTexel"), 1.5707963f / kFaceCubeSide);
     glUniform3fv(uniform("eye"), 1, eye_);
+    glUniformMatrix3fv(uniform("worldFromCamera"), 1, GL_FALSE, worldFromCamera_);
+    glUniform4fv(uniform("intrinsics"), 1, intrinsics_);
+    glUniform1i(uniform("samplesPerSide"), samplesPerSide_);
 }
 
 void GpuMovedLight::draw(const radiosity::ShadowSource& source, float gain) {

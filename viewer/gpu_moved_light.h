@@ -23,9 +23,10 @@
 //                  blockers' bounding sphere, kSunSide texels a side;
 //   a quad lamp:   a cube map per point of ShadowSource::facePoints (the centres of its
 //                  2 x 2 cells), kFaceCubeSide texels a face: a penumbra in five steps.
-// A quad lamp's face is drawn too, where it is at each frame: its radiance where the
-// camera's ray through a pixel meets its front before what the pixel shows
-// (MovedLightFrame::eye, surface).
+// A quad lamp's face is drawn too, where it is at each frame: over the share of each pixel's
+// k x k camera samples whose rays meet it before what the pixel's centre shows, its radiance
+// on its front (MovedLightFrame::camera, surface; relight/dynamic/quick_light.h,
+// faceCoverage).
 // A receiver is lit when its point, moved 1.5 texels along its normal, is no farther from
 // the light than the map's nearest blocker plus two texels (acne and peter-panning both
 // within about two texels of the map).
@@ -103,6 +104,8 @@ class GpuMovedLight {
     bool pooled_ = false;
     std::shared_ptr<const std::vector<float>> pooledData_;  ///< what pooledTex_ holds
     float radiance_[3] = {0, 0, 0}, delta_[3] = {0, 0, 0}, eye_[3] = {0, 0, 0};
+    float worldFromCamera_[9] = {}, intrinsics_[4] = {1, 1, 0, 0};
+    int samplesPerSide_ = 1;
     // Shadow maps: a cube of distances (point lamps), a square of distances (suns).
     GLuint cubeTex_ = 0, cubeDepth_ = 0, cubeFbo_[6] = {};
     GLuint sunTex_ = 0, sunDepth_ = 0, sunFbo_ = 0;

@@ -203,7 +203,8 @@ std::optional<MovedLightFrame> DynamicRelighting::movedLightFrame(int light) {
     if (!source) return std::nullopt;
     MovedLightFrame f;
     f.source = *source;
-    f.eye = r_.scene.camera.position();
+    f.camera = r_.scene.camera;
+    f.samplesPerSide = OverlaySamples(r_.items.spp).k;
     // The ratio display where the per-pixel display does not draw, as render() makes it.
     const auto t0 = Clock::now();
     completeVertexGather(&ratioPixelVertices());

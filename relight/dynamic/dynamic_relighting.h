@@ -121,10 +121,13 @@ struct MovedLightFrame {
     std::vector<float> receivers;      ///< 6 per pixel: point, normal (0: no receiver)
     std::vector<float> scale, offset;  ///< 3 per pixel
     radiosity::ShadowSource source;    ///< the light as it stands (shownSource)
-    /// The camera's centre. A lamp's face (ShadowSource::Kind::face) is not in `offset`: the
-    /// display draws it where the ray from here to the pixel's `surface` meets it first (its
-    /// radiance L_m on its front, black on its back; relight/dynamic/quick_light.h, rayFace).
-    radiosity::Vec3 eye{0, 0, 0};
+    /// The photo's camera and the overlay's samples per side of a pixel. A lamp's face
+    /// (ShadowSource::Kind::face) is not in `offset`: the display draws it over the share of
+    /// each pixel it covers in front of what the pixel's centre shows (`surface`), its
+    /// radiance L_m on its front, black on its back (relight/dynamic/quick_light.h,
+    /// faceCoverage).
+    Camera camera;
+    int samplesPerSide = 1;
     /// A face: per pixel, 3 floats, the first point the camera's ray through the pixel's
     /// centre meets in the solver's scene, the virtual parts in and the face where it was
     /// passed (metres; 1e6 m out where it meets nothing). Empty for a point or direction.

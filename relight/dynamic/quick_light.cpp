@@ -113,6 +113,22 @@ double rayFace(const radiosity::Vec3& o, const radiosity::Vec3& d,
     return t;
 }
 
+FaceCover faceCoverage(const Camera& camera, int k, int x, int y, double shows,
+                       std::span<const radiosity::Vec3> corners) {
+    FaceCover c;
+    const radiosity::Vec3 eye = camera.position();
+    const double n = static_cast<double>(k) * k;
+    for (int s = 0; s < k * k; ++s) {
+        const double u = x - 0.5 + ((s % k) + 0.5) / k, v = y - 0.5 + ((s / k) + 0.5) / k;
+        bool front = false;
+        if (rayFace(eye, camera.rayDirection(u, v), corners, &front) < shows) {
+            c.all += 1 / n;
+            c.front += front ? 1 / n : 0;
+        }
+    }
+    return c;
+}
+
 BoundingSphere boundingSphere(std::span<const radiosity::Polygon> polygons) {
     BoundingSphere s;
     radiosity::Vec3 lo(1e300), hi(-1e300);

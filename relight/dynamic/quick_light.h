@@ -24,6 +24,7 @@
 #include "radiosity/emitter.h"
 #include "radiosity/scene.h"
 #include "radiosity/visibility.h"
+#include "relight/pipeline/camera.h"
 #include "relight/pipeline/item_buffer.h"
 
 namespace relight {
@@ -48,6 +49,16 @@ std::vector<float> quickReceivers(const ItemBuffer& items, const radiosity::Scen
 /// where it is moved (the quick frames' overlay; the viewer's GPU frames do the same).
 double rayFace(const radiosity::Vec3& o, const radiosity::Vec3& d,
                std::span<const radiosity::Vec3> corners, bool* front = nullptr);
+
+/// How much of pixel (x, y) a lamp's face shown moved covers: the shares of its k x k camera
+/// samples (OverlaySamples' grid) whose rays meet the face `corners` nearer than `shows`
+/// metres (the distance to what the pixel's centre shows), and of those that meet its front.
+/// The viewer's GPU frames draw the face this way (viewer/gpu_moved_light.h).
+struct FaceCover {
+    double all = 0, front = 0;
+};
+FaceCover faceCoverage(const Camera& camera, int k, int x, int y, double shows,
+                       std::span<const radiosity::Vec3> corners);
 
 /// A sphere that bounds a moved object (its polygons' corners), to tell the points whose
 /// light it may block.

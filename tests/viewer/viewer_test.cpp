@@ -253,12 +253,16 @@ Image fourPointFrame(const Relighting& r, const MovedLightFrame& f, int light) {
         if (f.terms.drawn[px]) evalPixelLightTerms(f.terms, px, static_cast<float>(g), out);
         for (size_t c = 0; c < 3; ++c)
             img.rgb[3 * px + c] = f.scale[3 * px + c] * out[c] + f.offset[3 * px + c];
-        // The face itself, where the camera's ray meets it before what the pixel shows.
-        bool front = false;
+        // The face itself, over the share of the pixel it covers in front of what it shows.
         const Vec3 shows(f.surface[3 * px], f.surface[3 * px + 1], f.surface[3 * px + 2]);
-        if (rayFace(f.eye, shows - f.eye, face.corners, &front) < 1)
-            for (size_t c = 0; c < 3; ++c)
-                img.rgb[3 * px + c] = front ? static_cast<float>(f.terms.radiance[c]) : 0.0f;
+        const FaceCover cover = faceCoverage(
+            f.camera, f.samplesPerSide, static_cast<int>(px % static_cast<size_t>(img.width)),
+            static_cast<int>(px / static_cast<size_t>(img.width)),
+            glm::length(shows - f.camera.position()), face.corners);
+        for (size_t c = 0; c < 3; ++c)
+            img.rgb[3 * px + c] =
+                static_cast<float>(static_cast<double>(img.rgb[3 * px + c]) * (1 - cover.all) +
+                                   f.terms.radiance[c] * cover.front);
     }
     return img;
 }
