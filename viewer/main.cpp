@@ -66,6 +66,7 @@ struct Args {
     std::string windowShot;
     bool saveLamps = false;
     double exposure = 0, epsilon = RelightOptions{}.epsilon;
+    double timeBudget = RelightOptions{}.timeBudget;
     int spp = 16;
 };
 
@@ -386,6 +387,7 @@ int run(const Args& a) {
     RelightOptions o;
     o.budgetStart = start;
     o.epsilon = a.epsilon;
+    o.timeBudget = a.timeBudget;
     o.spp = a.spp;
     const DisplayMode mode = parseDisplayMode(a.display);
     o.pixelLight = drawsPerPixel(mode);
@@ -494,6 +496,12 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(cli::finiteNumber(cli::Sign::kPositive));
     app.add_option("--spp", a.spp, "camera samples per pixel")->check(CLI::Range(1, 1024));
+    // As relight's: a phase past its share takes a coarser fallback it announces on stderr.
+    app.add_option("--time-budget", a.timeBudget,
+                   "seconds the preparation may take from the start, split over its phases "
+                   "as relight render's --time-budget (0: no limit)")
+        ->capture_default_str()
+        ->check(cli::finiteNumber(cli::Sign::kNonNegative));
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

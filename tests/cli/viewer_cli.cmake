@@ -13,6 +13,8 @@
 #  - the window with its panel opens and draws;
 #  - clear messages and no output for a missing display, an OpenGL older than 3.3, a scene
 #    or edit that does not load, an edit whose display is not finite, a bad option or --do.
+# All at the coarse preparation (viewer_common.cmake's ${coarse}), the viewer's and render's
+# alike: what is checked is that both draw the same, at any preparation.
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=data/room -DWORK=... -P this
 # (and -DVIEWER_PRELOAD=... under the sanitizers: tests/CMakeLists.txt says why).
 include(${CMAKE_CURRENT_LIST_DIR}/viewer_common.cmake)
@@ -23,25 +25,28 @@ set(cache "${WORK}/prepared.bin")
 # both share the cache. The viewer's default is render's (per pixel), checked further down.
 set(as_viewer --display ratio --no-pixel-light)
 foreach(edit identity back_off left_off_right_double right_off_left_double colours)
-  relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/${edit}.json" -o "${WORK}/${edit}_render.png"
+  render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/${edit}.json"
+         -o "${WORK}/${edit}_render.png"
           --cache "${cache}" ${as_viewer})
-  viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/${edit}.json" --display ratio
+  viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/${edit}.json" --display ratio
          --screenshot "${WORK}/${edit}_viewer.png")
   expect("${o}" "wrote .*${edit}_viewer.png \\(320x240, float framebuffer" "screenshot ${edit}")
   same_within_one_step("${WORK}/${edit}_viewer.png" "${WORK}/${edit}_render.png" "edit ${edit}")
 endforeach()
 
 # Exposure is applied as render applies it (before the sRGB transfer function).
-relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/back_off.json" -o "${WORK}/exposed_render.png"
+render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json"
+       -o "${WORK}/exposed_render.png"
         --cache "${cache}" --exposure 1.5 ${as_viewer})
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --display ratio --exposure 1.5
+viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json" --display ratio --exposure 1.5
        --screenshot "${WORK}/exposed_viewer.png")
 same_within_one_step("${WORK}/exposed_viewer.png" "${WORK}/exposed_render.png" "exposure 1.5")
 
 # A session by clicks: a lamp on the ceiling, a box on the floor dragged 60 pixels along it.
 set(saved "${WORK}/saved/session.json")
 file(MAKE_DIRECTORY "${WORK}/saved")
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --display ratio --do light:200,20
+viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json" --display ratio
+       --do light:200,20
        --do box:90,200
        --do drag:90,195:150,210 --save-edit "${saved}" --screenshot "${WORK}/session_viewer.png")
 file(READ "${saved}" json)
@@ -50,7 +55,7 @@ expect("${json}" "\"file\": \"session.box.obj\"" "saved session")
 if(NOT EXISTS "${WORK}/saved/session.box.obj")
   message(FATAL_ERROR "the saved session's box OBJ is missing")
 endif()
-relight(o 0 render "${SCENE}" --edit "${saved}" -o "${WORK}/session_render.png" --cache "${cache}"
+render(o 0 "${SCENE}" ${coarse} --edit "${saved}" -o "${WORK}/session_render.png" --cache "${cache}"
         ${as_viewer})
 expect("${o}" "inserted object box1" "render of the saved session")
 same_within_one_step("${WORK}/session_viewer.png" "${WORK}/session_render.png" "saved session")
@@ -60,18 +65,18 @@ same_within_one_step("${WORK}/session_viewer.png" "${WORK}/session_render.png" "
 # added, a box inserted and dragged) whose saved edit render draws with its virtual parts per
 # pixel, a removal, and a removal brought back (the photo's display again).
 foreach(edit identity back_off left_off_right_double right_off_left_double colours)
-  relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/${edit}.json"
+  render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/${edit}.json"
           -o "${WORK}/pixel_${edit}_render.png" --cache "${WORK}/pixel.bin")
-  viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/${edit}.json"
+  viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/${edit}.json"
          --screenshot "${WORK}/pixel_${edit}_viewer.png")
   same_within_one_step("${WORK}/pixel_${edit}_viewer.png" "${WORK}/pixel_${edit}_render.png"
                        "per-pixel display (default), edit ${edit}")
 endforeach()
 file(MAKE_DIRECTORY "${WORK}/pixel_saved")
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/back_off.json" --do light:200,20
+viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json" --do light:200,20
        --do box:90,200 --do drag:90,195:150,210 --save-edit "${WORK}/pixel_saved/session.json"
        --screenshot "${WORK}/pixel_session_viewer.png")
-relight(o 0 render "${SCENE}" --edit "${WORK}/pixel_saved/session.json"
+render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/pixel_saved/session.json"
         -o "${WORK}/pixel_session_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_session_viewer.png" "${WORK}/pixel_session_render.png"
                      "per-pixel display, saved session")
@@ -79,37 +84,38 @@ same_within_one_step("${WORK}/pixel_session_viewer.png" "${WORK}/pixel_session_r
 # names it and renders to the screenshot, in the ratio display (the GPU's) and per pixel;
 # brought back from the panel, the photo's display again.
 file(MAKE_DIRECTORY "${WORK}/removal")
-viewer(o 0 "${SCENE}" --display ratio --do remove:180,155 --save-edit "${WORK}/removal/edit.json"
+viewer(o 0 "${SCENE}" ${coarse} --display ratio --do remove:180,155
+       --save-edit "${WORK}/removal/edit.json"
        --screenshot "${WORK}/removal_viewer.png")
 file(READ "${WORK}/removal/edit.json" json)
 expect("${json}" "\"remove_objects\": \\[[^]]*\"table\"" "saved removal")
-relight(o 0 render "${SCENE}" --edit "${WORK}/removal/edit.json" -o "${WORK}/removal_render.png"
+render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/removal/edit.json" -o "${WORK}/removal_render.png"
         --cache "${cache}" ${as_viewer})
 expect("${o}" "removed object table: [0-9]+ links cut, [0-9]+ pixels filled" "render of the removal")
 same_within_one_step("${WORK}/removal_viewer.png" "${WORK}/removal_render.png" "removal")
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/remove_table.json"
+viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/remove_table.json"
        --screenshot "${WORK}/pixel_removal_viewer.png")
-relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/remove_table.json"
+render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/remove_table.json"
         -o "${WORK}/pixel_removal_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_removal_viewer.png" "${WORK}/pixel_removal_render.png"
                      "per-pixel display, removal")
-viewer(o 0 "${SCENE}" --do remove:180,155 --do restore:table
+viewer(o 0 "${SCENE}" ${coarse} --do remove:180,155 --do restore:table
        --screenshot "${WORK}/pixel_restored.png")
 same_within_one_step("${WORK}/pixel_restored.png" "${WORK}/pixel_identity_render.png"
                      "per-pixel display, table brought back")
-viewer(o 0 "${SCENE}" --display ratio --do remove:180,155 --do restore:table
+viewer(o 0 "${SCENE}" ${coarse} --display ratio --do remove:180,155 --do restore:table
        --screenshot "${WORK}/restored.png")
 same_within_one_step("${WORK}/restored.png" "${WORK}/identity_render.png" "table brought back")
 # The cabinet against two walls (issue 34): its first frame in the viewer (per pixel) is
 # render's; removed by a click and brought back, the viewer's photo display bit for bit.
-viewer(o 0 "${SCENE}" --edit "${SCENE}/edits/remove_cabinet.json"
+viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/remove_cabinet.json"
        --screenshot "${WORK}/pixel_cabinet_viewer.png")
-relight(o 0 render "${SCENE}" --edit "${SCENE}/edits/remove_cabinet.json"
+render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/remove_cabinet.json"
         -o "${WORK}/pixel_cabinet_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_cabinet_viewer.png" "${WORK}/pixel_cabinet_render.png"
                      "per-pixel display, cabinet removed")
-viewer(o 0 "${SCENE}" --display ratio --screenshot "${WORK}/photo_viewer.png")
-viewer(o 0 "${SCENE}" --display ratio --do remove:118,140 --do restore:cabinet
+viewer(o 0 "${SCENE}" ${coarse} --display ratio --screenshot "${WORK}/photo_viewer.png")
+viewer(o 0 "${SCENE}" ${coarse} --display ratio --do remove:118,140 --do restore:cabinet
        --screenshot "${WORK}/cabinet_restored.png")
 execute_process(COMMAND "${IDIFF}" -fail 0 -failpercent 0 "${WORK}/cabinet_restored.png"
                 "${WORK}/photo_viewer.png" OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
@@ -139,13 +145,13 @@ if(NOT count EQUAL 6 OR NOT name STREQUAL "L1" OR NOT radiance STREQUAL "estimat
    OR NOT on STREQUAL "L2")
   message(FATAL_ERROR "saved lamps: ${count} lights, ${name}, ${radiance}, ${on}:\n${json}")
 endif()
-relight(o 0 render "${WORK}/lamps" --epsilon 1e-3 --spp 2 --no-cache -o "${WORK}/lamps_render.png")
+render(o 0 "${WORK}/lamps" --epsilon 1e-3 --spp 2 --no-cache -o "${WORK}/lamps_render.png")
 expect("${o}" "light \"L1\": [^\n]* from [0-9]+ photo pixels on its face" "render with the lamps")
 viewer(o 2 "${SCENE}" --display ratio --do lamp:160,20:0,1 --screenshot "${WORK}/never.png")
 expect("${o}" "--do lamp:160,20:0,1: the size must be positive" "a lamp of no size")
 
 # The window itself, panel included.
-viewer(o 0 "${SCENE}" --window-screenshot "${WORK}/window.png")
+viewer(o 0 "${SCENE}" ${coarse} --window-screenshot "${WORK}/window.png")
 expect("${o}" "wrote .*window.png \\([0-9]+x[0-9]+\\)" "window screenshot")
 
 # Failures: a message, a non-zero exit code, and an existing output left as it was.
@@ -184,6 +190,13 @@ expect("${o}" "^relight-viewer: error: --epsilon: must be a finite number > 0, g
 viewer(o 2 "${SCENE}" --exposure inf --screenshot "${WORK}/keep.png")
 expect("${o}" "^relight-viewer: error: --exposure: must be a finite number, got inf; see[^\n]*\n$"
        "infinite exposure")
+viewer(o 2 "${SCENE}" --time-budget -1 --screenshot "${WORK}/keep.png")
+expect("${o}" "^relight-viewer: error: --time-budget: must be a finite number >= 0, got -1; see"
+       "negative time budget")
+# The budget reaches the preparation: its phases past their share say so (the viewer's image
+# is then not render's, hence the others' --time-budget 0).
+viewer(o 0 "${SCENE}" --epsilon 1e-3 --spp 2 --time-budget 0.01 --screenshot "${WORK}/hurried.png")
+expect("${o}" "warning: [^\n]*its share of --time-budget" "a time budget of 0.01 s")
 viewer(o 0 --help)
 expect("${o}" "--screenshot" "--help")
 viewer(o 2 "${SCENE}" --do light:abc --screenshot "${WORK}/keep.png")

@@ -16,15 +16,48 @@ find_program(IDIFF idiff REQUIRED)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
-# Runs the viewer under xvfb-run (run_checked), with an X authority file of its own (-f).
+# The scripts compare the viewer's image with `relight render`'s pixel by pixel: each runs
+# its own preparation, so both run without a time budget (--time-budget 0). Within the
+# default 60 s, a phase past its share takes a coarser fallback: on a loaded machine under
+# the sanitizers' build one of the two may take it and the other not (the CI of 2026-11-30:
+# viewer.slider 85 s, one pixel two 8-bit steps apart), which says nothing of the paths
+# under test. tests/cli/solve_budget.cmake and bad_input.cmake test the budget itself.
+
+# A coarse preparation (BF threshold 1e-3, 2 camera samples per pixel) for the scripts that
+# check that the viewer draws what `relight render` draws, and that each control runs: the
+# same code paths as the default preparation's, at half the time (the room: 8.0 s -> 4.0 s a
+# viewer run per pixel, 4.4 s -> 1.9 s in the ratio display). The scripts that score an image
+# against the truth keep the default.
+set(coarse --epsilon 1e-3 --spp 2)
+
+# `args` gets ARGN with --time-budget 0 after it, unless ARGN gives a --time-budget (the
+# programs refuse one given twice).
+function(unhurried args)
+  set(a ${ARGN})
+  if(NOT "--time-budget" IN_LIST a)
+    list(APPEND a --time-budget 0)
+  endif()
+  set(${args} ${a} PARENT_SCOPE)
+endfunction()
+
+# `relight render` with the arguments after `expected_rc`, without a time budget.
+function(render out expected_rc)
+  unhurried(args ${ARGN})
+  relight(o ${expected_rc} render ${args})
+  set(${out} "${o}" PARENT_SCOPE)
+endfunction()
+
+# Runs the viewer under xvfb-run (run_checked), with an X authority file of its own (-f),
+# without a time budget.
 # xvfb-run still removes a temporary folder at its exit, which can race the X server's reset
 # on a loaded machine: it then exits with 5 ("problem while cleaning up temporary
 # directory") in place of the viewer's own code (seen in the CI of 2026-11-29, the viewer's
 # screenshot written). That exit says nothing of the viewer, so the run is made once more;
 # any other code, or a second such exit, is checked as it is.
 function(viewer out expected_rc)
+  unhurried(args ${ARGN})
   set(cmd "${XVFB_RUN}" -a -f "${WORK}/Xauthority" -s "-screen 0 1280x1024x24" ${viewer_cmd}
-      ${ARGN})
+      ${args})
   execute_process(COMMAND ${cmd} OUTPUT_VARIABLE o ERROR_VARIABLE e RESULT_VARIABLE rc)
   if(rc EQUAL 5 AND NOT expected_rc EQUAL 5 AND e MATCHES "xvfb-run: error: problem while cleaning up")
     message(STATUS "xvfb-run failed to clean up after the viewer (exit code 5): run again")

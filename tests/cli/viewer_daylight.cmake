@@ -21,7 +21,7 @@ file(READ "${saved}" json)
 expect("${json}" "\"direction\"" "saved sun")
 expect("${json}" "\"irradiance\"" "saved sun")
 expect_not("${json}" "\"radiance\"" "saved sun")
-relight(o 0 render "${SCENE}" --edit "${saved}" -o "${WORK}/sun_render.exr"
+render(o 0 "${SCENE}" --edit "${saved}" -o "${WORK}/sun_render.exr"
         --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/sun_viewer.exr" "${WORK}/sun_render.exr" "sun turned")
 # The issue's bound for light edits (the data's noise floor is 0.0064).
@@ -35,7 +35,7 @@ scores_within("${WORK}/sun_render.exr" sun_moved 0.03 "sun turned, saved and ren
 viewer(o 0 "${SCENE}" --display pixel --do sundrag:sun:100,120:60,100
        --save-edit "${WORK}/sundrag_pixel.json" --screenshot "${WORK}/sundrag_pixel_viewer.exr")
 expect("${o}" "quick image made exact" "the sun dragged per pixel: quick frames")
-relight(o 0 render "${SCENE}" --edit "${WORK}/sundrag_pixel.json"
+render(o 0 "${SCENE}" --edit "${WORK}/sundrag_pixel.json"
         -o "${WORK}/sundrag_pixel_render.exr" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/sundrag_pixel_viewer.exr" "${WORK}/sundrag_pixel_render.exr"
                      "sun dragged, per pixel")
@@ -45,7 +45,7 @@ viewer(o 0 "${SCENE}" --display pixel --do scale:sun:0 --do point:160,200
        --do movepoint:P1:120,190 --save-edit "${WORK}/point_pixel.json"
        --screenshot "${WORK}/point_pixel_viewer.exr")
 expect("${o}" "quick image made exact" "a point lamp moved per pixel: a quick frame")
-relight(o 0 render "${SCENE}" --edit "${WORK}/point_pixel.json"
+render(o 0 "${SCENE}" --edit "${WORK}/point_pixel.json"
         -o "${WORK}/point_pixel_render.exr" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/point_pixel_viewer.exr" "${WORK}/point_pixel_render.exr"
                      "point lamp moved, per pixel")
@@ -56,7 +56,7 @@ same_within_one_step("${WORK}/point_pixel_viewer.exr" "${WORK}/point_pixel_rende
 foreach(display ratio-map wen)
   viewer(o 0 "${SCENE}" --display ${display} --do sun:sun:-60,25 --do rotate:sky:0,0,1:120
          --save-edit "${WORK}/${display}.json" --screenshot "${WORK}/${display}_viewer.exr")
-  relight(o 0 render "${SCENE}" --edit "${WORK}/${display}.json" --display ${display}
+  render(o 0 "${SCENE}" --edit "${WORK}/${display}.json" --display ${display}
           -o "${WORK}/${display}_render.exr" --cache "${WORK}/pixel.bin")
   same_within_one_step("${WORK}/${display}_viewer.exr" "${WORK}/${display}_render.exr"
                        "${display}: sun and sky turned")
@@ -69,7 +69,7 @@ set(cache "${WORK}/ratio.bin")
 function(session name)
   viewer(o 0 "${SCENE}" --display ratio ${ARGN} --save-edit "${WORK}/${name}.json"
          --screenshot "${WORK}/${name}_viewer.png")
-  relight(o 0 render "${SCENE}" --edit "${WORK}/${name}.json" -o "${WORK}/${name}_render.png"
+  render(o 0 "${SCENE}" --edit "${WORK}/${name}.json" -o "${WORK}/${name}_render.png"
           --cache "${cache}" ${as_viewer})
   same_within_one_step("${WORK}/${name}_viewer.png" "${WORK}/${name}_render.png" "${name}")
 endfunction()

@@ -21,7 +21,6 @@ include(${CMAKE_CURRENT_LIST_DIR}/viewer_common.cmake)
 if(NOT DEFINED COURTYARD)
   message(FATAL_ERROR "define COURTYARD")
 endif()
-set(coarse --epsilon 1e-3 --spp 2)
 
 # One session: the viewer with the actions in ARGN, saved and rendered again in `display`.
 function(session scene name display)
@@ -33,7 +32,7 @@ function(session scene name display)
   if(display STREQUAL "ratio")
     list(APPEND render_display --no-pixel-light)
   endif()
-  relight(o 0 render "${scene}" ${coarse} ${render_display} --edit "${saved}" --no-cache
+  render(o 0 "${scene}" ${coarse} ${render_display} --edit "${saved}" --no-cache
           -o "${WORK}/${name}_render.png")
   same_within_one_step("${WORK}/${name}_viewer.png" "${WORK}/${name}_render.png" "${name}")
 endfunction()
@@ -86,5 +85,5 @@ copy_room("${WORK}/lamps")
 viewer(o 0 "${WORK}/lamps" ${coarse} --display ratio --do lamp:160,20:0.3,0.2 --save-lamps
        --screenshot "${WORK}/lamps.png")
 expect("${o}" "added 1 lamp[s]? to [^\n]*lamps/scene.json" "lamp saved")
-relight(o 0 render "${WORK}/lamps" ${coarse} --no-cache -o "${WORK}/lamps_render.png")
+render(o 0 "${WORK}/lamps" ${coarse} --no-cache -o "${WORK}/lamps_render.png")
 message(STATUS "viewer smoke: all controls ran")

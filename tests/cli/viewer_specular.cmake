@@ -7,6 +7,7 @@
 #    is saved in the session's edit, which renders to the screenshot within the same step;
 #    and it shows: without it the box is not the same image;
 #  - a bad --do (ks < 0, shininess <= 0, an object that is not there) is refused, exit 2.
+# The viewer and render both at the coarse preparation (viewer_common.cmake's ${coarse}).
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=data/room -DWORK=... -P this
 include(${CMAKE_CURRENT_LIST_DIR}/viewer_common.cmake)
 set(edit "${SCENE}/edits/virtual_box_specular.json")
@@ -17,9 +18,9 @@ foreach(display pixel ratio)
   if(display STREQUAL "ratio")
     set(extra --no-pixel-light)  # prepared as the viewer prepares its ratio display
   endif()
-  relight(o 0 render "${SCENE}" --edit "${edit}" -o "${WORK}/bundled_render_${display}.exr"
+  render(o 0 "${SCENE}" ${coarse} --edit "${edit}" -o "${WORK}/bundled_render_${display}.exr"
           --display ${display} --cache "${WORK}/${display}.bin" ${extra})
-  viewer(o 0 "${SCENE}" --edit "${edit}" --display ${display}
+  viewer(o 0 "${SCENE}" ${coarse} --edit "${edit}" --display ${display}
          --screenshot "${WORK}/bundled_viewer_${display}.exr")
   same_within("${WORK}/bundled_viewer_${display}.exr" "${WORK}/bundled_render_${display}.exr"
               0.004 "the specular box (${display} display): the viewer against render")
@@ -32,18 +33,18 @@ string(REPLACE "../objects/box.obj" "${SCENE}/objects/box.obj" json "${json}")
 file(WRITE "${WORK}/matte.json" "${json}")
 set(saved "${WORK}/saved/panel.json")
 file(MAKE_DIRECTORY "${WORK}/saved")
-viewer(o 0 "${SCENE}" --edit "${WORK}/matte.json" --do specular:box:0.3,0.4,0.5:12
+viewer(o 0 "${SCENE}" ${coarse} --edit "${WORK}/matte.json" --do specular:box:0.3,0.4,0.5:12
        --save-edit "${saved}" --screenshot "${WORK}/panel_viewer.exr")
 file(READ "${saved}" json)
 expect("${json}" "\"specular\": {[^}]*\"ks\": \\[[^]]*0\\.3,[^]]*0\\.4,[^]]*0\\.5[^]]*\\]"
        "the panel's ks saved in the session's edit")
 expect("${json}" "\"shininess\": 12" "the panel's shininess saved in the session's edit")
-relight(o 0 render "${SCENE}" --edit "${saved}" -o "${WORK}/panel_render.exr"
+render(o 0 "${SCENE}" ${coarse} --edit "${saved}" -o "${WORK}/panel_render.exr"
         --cache "${WORK}/pixel.bin")
 same_within("${WORK}/panel_viewer.exr" "${WORK}/panel_render.exr" 0.004
             "the term set from the panel: the viewer against render of the saved edit")
 # The term shows: the matte box's frame differs from it by more than a step somewhere.
-viewer(o 0 "${SCENE}" --edit "${WORK}/matte.json" --screenshot "${WORK}/matte_viewer.exr")
+viewer(o 0 "${SCENE}" ${coarse} --edit "${WORK}/matte.json" --screenshot "${WORK}/matte_viewer.exr")
 execute_process(COMMAND "${IDIFF}" -fail 0.004 -failpercent 0 "${WORK}/matte_viewer.exr"
                         "${WORK}/panel_viewer.exr" OUTPUT_QUIET ERROR_QUIET RESULT_VARIABLE rc)
 if(rc EQUAL 0)
