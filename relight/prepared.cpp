@@ -228,7 +228,7 @@ std::vector<std::string> phaseBudgetLines(int budgetReached, double seconds) {
     };
     std::vector<std::string> out;
     if (budgetReached & PreparedImage::kBudgetOverrun)
-        out.push_back(
+        out.emplace_back(
             "the preparation ended past its budget: the work that no fallback removes "
             "(the hierarchy, the lamps' links to every face, the responses) grows with "
             "the mesh; a larger --time-budget, or fewer faces, ends within it");

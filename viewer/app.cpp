@@ -606,6 +606,11 @@ void App::statsOverlay(const PhotoRect& r) {
     if (session_.exactPending()) ImGui::TextWrapped("%s", session_.stage().c_str());
     if (session_.exactPending() && frame_.drewOnGpu()) ImGui::TextWrapped("drawn on the GPU");
     if (!frame_.gpuNote().empty()) ImGui::TextWrapped("%s", frame_.gpuNote().c_str());
+    // A preparation cut short is coarser than render's at the same options: said here too.
+    if (p.budgetReached)
+        ImGui::TextWrapped(
+            "the preparation reached its budget (--time-budget, links or memory): the terminal "
+            "lists the coarser fallbacks it took");
     ImGui::End();
 }
 

@@ -8,7 +8,7 @@
 using namespace radiosity;
 
 TEST(Convergence, CornellErrorDecreasesWithEpsilon) {
-    const relight::SceneFile sf = relight::loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    const relight::SceneFile sf = relight::loadScene(RELIGHT_DATA_DIR "/cornell");
     ReferenceOptions ro;
     ro.maxArea = 0.004;  // ~1000 elements: 1 M pairs, about a second on one core
     ReferenceSolver ref(sf.scene, ro);
@@ -40,7 +40,7 @@ TEST(Convergence, CornellSurfacesHoldTheReferencesLightAtTheDefaultEpsilon) {
     // error (HierarchicalSolver::groupRowScales), it is 0.978 (bench/surface_levels). 3 %:
     // above the reference's own discretisation (the ceiling's ratio moves by at most 0.23 %
     // between 0.004, 0.002 and 0.001 m^2 elements: bench/RESULTS.md), below the shortfall.
-    const relight::SceneFile sf = relight::loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    const relight::SceneFile sf = relight::loadScene(RELIGHT_DATA_DIR "/cornell");
     ReferenceOptions ro;
     ro.maxArea = 0.004;
     ReferenceSolver ref(sf.scene, ro);

@@ -26,7 +26,7 @@ TEST(Reflectance, RecoversKnownReflectancesFromASyntheticPhoto) {
     // material), rendered by the engine itself (no noise), is the photo; the estimate starts
     // from grey 0.5 everywhere. The ceiling is lit only by bounced light, where the undamped
     // fixed point rho <- pi L / H(rho) never settles.
-    SceneFile sf = loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    SceneFile sf = loadScene(RELIGHT_DATA_DIR "/cornell");
     radiosity::Scene truthScene = sf.scene;
     for (auto& poly : truthScene.polygons) {
         if (poly.light >= 0) continue;
@@ -159,7 +159,7 @@ TEST(Reflectance, ASetUpThatCannotEndInTimeIsGivenUpAndChangesNothing) {
     // every polygon keeps the scene's reflectance and the solver its radiosities, exactly
     // (nothing ran), and the report says so. A deadline far off changes nothing either way:
     // the estimate is the one without a deadline, exactly (the same arithmetic).
-    SceneFile sf = loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    SceneFile sf = loadScene(RELIGHT_DATA_DIR "/cornell");
     radiosity::SolverOptions o;
     radiosity::HierarchicalSolver solver(sf.scene, o);
     solver.solve();
@@ -203,7 +203,7 @@ namespace {
 /// does not match in one round; estimate() runs estimatePolygonReflectance from a fresh
 /// solve with the given options and returns the report and every polygon's reflectance.
 struct DarkCornell {
-    SceneFile sf = loadScene(std::string(RELIGHT_DATA_DIR) + "/cornell");
+    SceneFile sf = loadScene(RELIGHT_DATA_DIR "/cornell");
     radiosity::SolverOptions o;
     ItemBuffer items;
     Image photo;

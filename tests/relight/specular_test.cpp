@@ -219,7 +219,7 @@ TEST(Specular, TheRelitImageAddsTheLobeAtTheMirrorPixelAndOffIt) {
 TEST(Specular, TheEditKeyIsCheckedAndWrittenBack) {
     const SceneFile& sf = test::coarseRoom().scene;
     test::TempDir dir;
-    const std::string box = std::string(RELIGHT_DATA_DIR) + "/room/objects/box.obj";
+    const std::string box = RELIGHT_DATA_DIR "/room/objects/box.obj";
     auto editWith = [&](const std::string& specular) {
         return R"({"format": "relight-edit/1", "add_objects": [{"name": "box", "file": ")" + box +
                R"(", "reflectance": [0.5, 0.5, 0.5], "transform": [[1,0,0,1.25],[0,1,0,1.95],)"
