@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
     if (!out.empty()) fs::create_directories(out);
     const SceneFile sf = loadScene(dir);
     RelightOptions o;  // relight render's defaults (relight/cli/commands.h)
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
     o.pixelLight = true;
     o.narrowSources = narrow;
     o.progress = [](const std::string& m) { std::fprintf(stderr, "  %s\n", m.c_str()); };

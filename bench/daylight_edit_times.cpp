@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
     std::printf("command: ./build/bench/daylight_edit_times %s --repeats %d\n", dir.c_str(),
                 repeats);
     RelightOptions o;
-    o.pixelLight = true;  // relight render's default display
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
+    o.pixelLight = true;                                // relight render's default display
     auto t0 = Clock::now();
     auto r = prepareRelighting(loadScene(dir), o);
     const double prepare = secondsSince(t0);

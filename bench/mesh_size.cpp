@@ -97,6 +97,7 @@ int runOne(const std::string& data, int cut, double jitter, double epsilon) {
     cutScene(sf, cut, jitter);
     const size_t triangles = sf.scene.polygons.size();
     RelightOptions o;
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
     o.epsilon = epsilon;
     const auto t0 = Clock::now();
     const auto r = prepareRelighting(std::move(sf), o);

@@ -61,6 +61,7 @@ std::vector<radiosity::Polygon> placeBox(const std::vector<radiosity::Polygon>& 
 int main(int argc, char** argv) {
     std::string data;
     RelightOptions o;
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
     o.epsilon = 5e-5;
     o.pixelLight = true;  // for the per-pixel display's frames below
     if (!bench::parseDataAndEpsilon(argc, argv, data, o.epsilon)) return 2;

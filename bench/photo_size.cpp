@@ -100,6 +100,7 @@ double maxRssMiB() {
 int runOne(const std::string& dir, int edits, double epsilon) {
     tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
     RelightOptions o;
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
     o.epsilon = epsilon;
     o.pixelLight = true;  // relight's default: both displays can be timed
     auto t0 = Clock::now();

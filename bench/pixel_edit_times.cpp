@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
     std::printf("command: %s %s --edits %d\n", argv[0], dir.c_str(), n);
     tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
     RelightOptions o;
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
     o.pixelLight = true;
     const auto r = prepareRelighting(loadScene(dir), o);
     const PreparedImage& P = r->prepared;

@@ -51,6 +51,7 @@ SceneFile withLampsMoved(SceneFile sf, double delta) {
 int main(int argc, char** argv) {
     std::string data;
     RelightOptions o;
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
     if (!bench::parseDataAndEpsilon(argc, argv, data, o.epsilon)) return 2;
     try {
         const std::string dir = data + "/room";

@@ -38,6 +38,7 @@ using radiosity::secondsSince;
 int main(int argc, char** argv) {
     std::string data;
     RelightOptions o;
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
     if (!bench::parseDataAndEpsilon(argc, argv, data, o.epsilon)) return 2;
     try {
         const std::string dir = data + "/room";

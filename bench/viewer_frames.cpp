@@ -431,6 +431,7 @@ int run(const Args& a) {
                       ("relight_viewer_frames_" + std::to_string(getpid())));
     if (a.upscale > 1) upscaleScene(sf, a.upscale, tmp.path);
     RelightOptions o;
+    o.timeBudget = RelightOptions::kCommandTimeBudget;  // as the commands' default
     o.pixelLight = true;  // the viewer's default display, per pixel, needs it
     const auto t0 = Clock::now();
     o.progress = [&](const std::string& m) {

@@ -87,10 +87,16 @@ struct RelightOptions {
     /// the PARTIAL links' V instead of casting rays (kVertexGatherShare); the per-pixel
     /// display's indirect gather casts fewer rays per vertex (kPixelGatherShare, at least
     /// 4 x 4; only with pixelGatherCut); real-shadow removal is skipped when the time left cannot
-    /// hold it (kShadowRemovalShare: D is then the photo's lighting, the 1997 method). The default
-    /// suits a 2-core laptop: the bundled scenes prepare in a few seconds, far inside it; a
-    /// 10^5-10^6-triangle room ends its refinement within half a minute.
-    double timeBudget = 60;
+    /// hold it (kShadowRemovalShare: D is then the photo's lighting, the 1997 method).
+    /// None by default: a caller that wants a bound asks for one, as the commands do
+    /// (kCommandTimeBudget). Without one, what a preparation gives does not depend on the
+    /// machine's speed or load: two preparations of a scene compared in one test, or in
+    /// two processes, cannot differ because one of them took a fallback.
+    double timeBudget = 0;
+    /// `relight`'s and `relight-viewer`'s --time-budget default. It suits a 2-core laptop:
+    /// the bundled scenes prepare in a few seconds, far inside it; a 10^5-10^6-triangle room
+    /// ends its refinement within half a minute.
+    static constexpr double kCommandTimeBudget = 60;
     /// Where timeBudget is counted from: a command sets its own start, so that loading the
     /// scene (parsing a large OBJ, the contact cut, the search for buried faces: 7 s of a
     /// 1.6 M-face model) is part of the budget, as it is part of what the user waits for.

@@ -66,7 +66,7 @@ struct Args {
     std::string windowShot;
     bool saveLamps = false;
     double exposure = 0, epsilon = RelightOptions{}.epsilon;
-    double timeBudget = RelightOptions{}.timeBudget;
+    double timeBudget = RelightOptions::kCommandTimeBudget;
     int spp = 16;
 };
 

@@ -66,7 +66,7 @@ struct PrepareOptionArgs {
     bool narrowSources = RelightOptions{}.narrowSources;
     size_t maxLinks = 0;
     double maxMemoryMB = 0;
-    double timeBudget = RelightOptions{}.timeBudget;  ///< seconds (0: none)
+    double timeBudget = RelightOptions::kCommandTimeBudget;  ///< seconds (0: none)
     int spp = 16;
     bool shadowRefinement = true;
     bool shadowRemoval = true;

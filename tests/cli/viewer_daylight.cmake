@@ -8,6 +8,8 @@
 #  - the sun and the sky turned in the ratio-map and wen displays: as render draws them;
 #  - an edit of every kind opened and saved again renders to the same image;
 #  - a control given a light that lacks it is refused, naming it.
+# The first check scores against the truth, at the default preparation; the others check
+# that the viewer draws what render draws, at the coarse one (viewer_common.cmake).
 # Run as cmake -DVIEWER=... -DRELIGHT=... -DXVFB_RUN=... -DSCENE=<data/courtyard> -DWORK=...
 include(${CMAKE_CURRENT_LIST_DIR}/viewer_common.cmake)
 
@@ -32,21 +34,21 @@ scores_within("${WORK}/sun_render.exr" sun_moved 0.03 "sun turned, saved and ren
 # pixel) a quick frame (Session::setQuickMoves: the sun's direct light per pixel from one
 # ray), the drag at rest the exact image (Session::settle), which the saved session renders
 # to within one 8-bit step.
-viewer(o 0 "${SCENE}" --display pixel --do sundrag:sun:100,120:60,100
+viewer(o 0 "${SCENE}" ${coarse} --display pixel --do sundrag:sun:100,120:60,100
        --save-edit "${WORK}/sundrag_pixel.json" --screenshot "${WORK}/sundrag_pixel_viewer.exr")
 expect("${o}" "quick image made exact" "the sun dragged per pixel: quick frames")
-render(o 0 "${SCENE}" --edit "${WORK}/sundrag_pixel.json"
-        -o "${WORK}/sundrag_pixel_render.exr" --cache "${WORK}/pixel.bin")
+render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/sundrag_pixel.json"
+        -o "${WORK}/sundrag_pixel_render.exr" --cache "${WORK}/coarse_pixel.bin")
 same_within_one_step("${WORK}/sundrag_pixel_viewer.exr" "${WORK}/sundrag_pixel_render.exr"
                      "sun dragged, per pixel")
 # A point lamp moved in the per-pixel display: the same quick path (the light model's
 # Emitter::unitIrradiance at its new position), settled as render draws the saved edit.
-viewer(o 0 "${SCENE}" --display pixel --do scale:sun:0 --do point:160,200
+viewer(o 0 "${SCENE}" ${coarse} --display pixel --do scale:sun:0 --do point:160,200
        --do movepoint:P1:120,190 --save-edit "${WORK}/point_pixel.json"
        --screenshot "${WORK}/point_pixel_viewer.exr")
 expect("${o}" "quick image made exact" "a point lamp moved per pixel: a quick frame")
-render(o 0 "${SCENE}" --edit "${WORK}/point_pixel.json"
-        -o "${WORK}/point_pixel_render.exr" --cache "${WORK}/pixel.bin")
+render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/point_pixel.json"
+        -o "${WORK}/point_pixel_render.exr" --cache "${WORK}/coarse_pixel.bin")
 same_within_one_step("${WORK}/point_pixel_viewer.exr" "${WORK}/point_pixel_render.exr"
                      "point lamp moved, per pixel")
 
@@ -54,10 +56,10 @@ same_within_one_step("${WORK}/point_pixel_viewer.exr" "${WORK}/point_pixel_rende
 # sky unoccluded, Wen et al. 2003) from the viewer's --display: the sun turned (a virtual sun,
 # DynamicRelighting) and the sky turned, saved, rendered in the same display: one 8-bit step.
 foreach(display ratio-map wen)
-  viewer(o 0 "${SCENE}" --display ${display} --do sun:sun:-60,25 --do rotate:sky:0,0,1:120
+  viewer(o 0 "${SCENE}" ${coarse} --display ${display} --do sun:sun:-60,25 --do rotate:sky:0,0,1:120
          --save-edit "${WORK}/${display}.json" --screenshot "${WORK}/${display}_viewer.exr")
-  render(o 0 "${SCENE}" --edit "${WORK}/${display}.json" --display ${display}
-          -o "${WORK}/${display}_render.exr" --cache "${WORK}/pixel.bin")
+  render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/${display}.json" --display ${display}
+          -o "${WORK}/${display}_render.exr" --cache "${WORK}/coarse_pixel.bin")
   same_within_one_step("${WORK}/${display}_viewer.exr" "${WORK}/${display}_render.exr"
                        "${display}: sun and sky turned")
 endforeach()
@@ -67,9 +69,9 @@ endforeach()
 set(as_viewer --display ratio --no-pixel-light)
 set(cache "${WORK}/ratio.bin")
 function(session name)
-  viewer(o 0 "${SCENE}" --display ratio ${ARGN} --save-edit "${WORK}/${name}.json"
+  viewer(o 0 "${SCENE}" ${coarse} --display ratio ${ARGN} --save-edit "${WORK}/${name}.json"
          --screenshot "${WORK}/${name}_viewer.png")
-  render(o 0 "${SCENE}" --edit "${WORK}/${name}.json" -o "${WORK}/${name}_render.png"
+  render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/${name}.json" -o "${WORK}/${name}_render.png"
           --cache "${cache}" ${as_viewer})
   same_within_one_step("${WORK}/${name}_viewer.png" "${WORK}/${name}_render.png" "${name}")
 endfunction()
