@@ -26,8 +26,7 @@ set(cache "${WORK}/prepared.bin")
 set(as_viewer --display ratio --no-pixel-light)
 foreach(edit identity back_off left_off_right_double right_off_left_double colours)
   render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/${edit}.json"
-         -o "${WORK}/${edit}_render.png"
-          --cache "${cache}" ${as_viewer})
+         -o "${WORK}/${edit}_render.png" --cache "${cache}" ${as_viewer})
   viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/${edit}.json" --display ratio
          --screenshot "${WORK}/${edit}_viewer.png")
   expect("${o}" "wrote .*${edit}_viewer.png \\(320x240, float framebuffer" "screenshot ${edit}")
@@ -36,27 +35,25 @@ endforeach()
 
 # Exposure is applied as render applies it (before the sRGB transfer function).
 render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json"
-       -o "${WORK}/exposed_render.png"
-        --cache "${cache}" --exposure 1.5 ${as_viewer})
-viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json" --display ratio --exposure 1.5
-       --screenshot "${WORK}/exposed_viewer.png")
+       -o "${WORK}/exposed_render.png" --cache "${cache}" --exposure 1.5 ${as_viewer})
+viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json" --display ratio
+       --exposure 1.5 --screenshot "${WORK}/exposed_viewer.png")
 same_within_one_step("${WORK}/exposed_viewer.png" "${WORK}/exposed_render.png" "exposure 1.5")
 
 # A session by clicks: a lamp on the ceiling, a box on the floor dragged 60 pixels along it.
 set(saved "${WORK}/saved/session.json")
 file(MAKE_DIRECTORY "${WORK}/saved")
 viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json" --display ratio
-       --do light:200,20
-       --do box:90,200
-       --do drag:90,195:150,210 --save-edit "${saved}" --screenshot "${WORK}/session_viewer.png")
+       --do light:200,20 --do box:90,200 --do drag:90,195:150,210 --save-edit "${saved}"
+       --screenshot "${WORK}/session_viewer.png")
 file(READ "${saved}" json)
 expect("${json}" "\"add_lights\"" "saved session")
 expect("${json}" "\"file\": \"session.box.obj\"" "saved session")
 if(NOT EXISTS "${WORK}/saved/session.box.obj")
   message(FATAL_ERROR "the saved session's box OBJ is missing")
 endif()
-render(o 0 "${SCENE}" ${coarse} --edit "${saved}" -o "${WORK}/session_render.png" --cache "${cache}"
-        ${as_viewer})
+render(o 0 "${SCENE}" ${coarse} --edit "${saved}" -o "${WORK}/session_render.png"
+       --cache "${cache}" ${as_viewer})
 expect("${o}" "inserted object box1" "render of the saved session")
 same_within_one_step("${WORK}/session_viewer.png" "${WORK}/session_render.png" "saved session")
 
@@ -66,7 +63,7 @@ same_within_one_step("${WORK}/session_viewer.png" "${WORK}/session_render.png" "
 # pixel, a removal, and a removal brought back (the photo's display again).
 foreach(edit identity back_off left_off_right_double right_off_left_double colours)
   render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/${edit}.json"
-          -o "${WORK}/pixel_${edit}_render.png" --cache "${WORK}/pixel.bin")
+         -o "${WORK}/pixel_${edit}_render.png" --cache "${WORK}/pixel.bin")
   viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/${edit}.json"
          --screenshot "${WORK}/pixel_${edit}_viewer.png")
   same_within_one_step("${WORK}/pixel_${edit}_viewer.png" "${WORK}/pixel_${edit}_render.png"
@@ -77,7 +74,7 @@ viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/back_off.json" --do light
        --do box:90,200 --do drag:90,195:150,210 --save-edit "${WORK}/pixel_saved/session.json"
        --screenshot "${WORK}/pixel_session_viewer.png")
 render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/pixel_saved/session.json"
-        -o "${WORK}/pixel_session_render.png" --cache "${WORK}/pixel.bin")
+       -o "${WORK}/pixel_session_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_session_viewer.png" "${WORK}/pixel_session_render.png"
                      "per-pixel display, saved session")
 # Real-object removal (Loscos et al. 1999, §5.3) by a click on the table: the saved edit
@@ -85,18 +82,17 @@ same_within_one_step("${WORK}/pixel_session_viewer.png" "${WORK}/pixel_session_r
 # brought back from the panel, the photo's display again.
 file(MAKE_DIRECTORY "${WORK}/removal")
 viewer(o 0 "${SCENE}" ${coarse} --display ratio --do remove:180,155
-       --save-edit "${WORK}/removal/edit.json"
-       --screenshot "${WORK}/removal_viewer.png")
+       --save-edit "${WORK}/removal/edit.json" --screenshot "${WORK}/removal_viewer.png")
 file(READ "${WORK}/removal/edit.json" json)
 expect("${json}" "\"remove_objects\": \\[[^]]*\"table\"" "saved removal")
-render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/removal/edit.json" -o "${WORK}/removal_render.png"
-        --cache "${cache}" ${as_viewer})
+render(o 0 "${SCENE}" ${coarse} --edit "${WORK}/removal/edit.json"
+       -o "${WORK}/removal_render.png" --cache "${cache}" ${as_viewer})
 expect("${o}" "removed object table: [0-9]+ links cut, [0-9]+ pixels filled" "render of the removal")
 same_within_one_step("${WORK}/removal_viewer.png" "${WORK}/removal_render.png" "removal")
 viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/remove_table.json"
        --screenshot "${WORK}/pixel_removal_viewer.png")
 render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/remove_table.json"
-        -o "${WORK}/pixel_removal_render.png" --cache "${WORK}/pixel.bin")
+       -o "${WORK}/pixel_removal_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_removal_viewer.png" "${WORK}/pixel_removal_render.png"
                      "per-pixel display, removal")
 viewer(o 0 "${SCENE}" ${coarse} --do remove:180,155 --do restore:table
@@ -111,7 +107,7 @@ same_within_one_step("${WORK}/restored.png" "${WORK}/identity_render.png" "table
 viewer(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/remove_cabinet.json"
        --screenshot "${WORK}/pixel_cabinet_viewer.png")
 render(o 0 "${SCENE}" ${coarse} --edit "${SCENE}/edits/remove_cabinet.json"
-        -o "${WORK}/pixel_cabinet_render.png" --cache "${WORK}/pixel.bin")
+       -o "${WORK}/pixel_cabinet_render.png" --cache "${WORK}/pixel.bin")
 same_within_one_step("${WORK}/pixel_cabinet_viewer.png" "${WORK}/pixel_cabinet_render.png"
                      "per-pixel display, cabinet removed")
 viewer(o 0 "${SCENE}" ${coarse} --display ratio --screenshot "${WORK}/photo_viewer.png")
@@ -133,7 +129,7 @@ expect("${o}" "--display" "a display that does not exist")
 # scene.json as the format's quad lights, their radiance estimated from the photo; the
 # scene then renders with them.
 copy_room("${WORK}/lamps")
-viewer(o 0 "${WORK}/lamps" --display ratio --epsilon 1e-3 --spp 2 --do lamp:160,20:0.3,0.2 --do lamp:60,120
+viewer(o 0 "${WORK}/lamps" ${coarse} --display ratio --do lamp:160,20:0.3,0.2 --do lamp:60,120
        --save-lamps --screenshot "${WORK}/lamps.png")
 expect("${o}" "added 2 lamps to [^\n]*lamps/scene.json" "lamps saved")
 file(READ "${WORK}/lamps/scene.json" json)
@@ -145,7 +141,7 @@ if(NOT count EQUAL 6 OR NOT name STREQUAL "L1" OR NOT radiance STREQUAL "estimat
    OR NOT on STREQUAL "L2")
   message(FATAL_ERROR "saved lamps: ${count} lights, ${name}, ${radiance}, ${on}:\n${json}")
 endif()
-render(o 0 "${WORK}/lamps" --epsilon 1e-3 --spp 2 --no-cache -o "${WORK}/lamps_render.png")
+render(o 0 "${WORK}/lamps" ${coarse} --no-cache -o "${WORK}/lamps_render.png")
 expect("${o}" "light \"L1\": [^\n]* from [0-9]+ photo pixels on its face" "render with the lamps")
 viewer(o 2 "${SCENE}" --display ratio --do lamp:160,20:0,1 --screenshot "${WORK}/never.png")
 expect("${o}" "--do lamp:160,20:0,1: the size must be positive" "a lamp of no size")
