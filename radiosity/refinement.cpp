@@ -187,6 +187,8 @@ void HierarchicalSolver::evaluateVisibility(const std::vector<size_t>& pending) 
     });
     if (pending.size() >= kLinksTimed)  // the time budget's estimate of what a link costs
         secondsPerLink_ = secondsSince(t0) / static_cast<double>(pending.size());
+    // After a whole batch: the counts, and so the decision, do not depend on the threads.
+    stopShaftTestsThatDoNotPay();
 }
 
 size_t HierarchicalSolver::refineAll() {

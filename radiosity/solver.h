@@ -156,6 +156,12 @@ struct SolverOptions {
     /// preparation (bench/RESULTS.md, 2026-11-28, fourteenth session); it lowers a shaded
     /// lamp's leak only (8.4 -> 6.2 %).
     bool narrowClusterSources = false;
+    /// Shaft tests (Haines & Wallace 1991) go on in solve() while they pay: once a solve has
+    /// made at least kShaftSample tests (checked after each batch of visibility evaluations
+    /// and each round) and fewer than this fraction of its shafts were empty, they stop for
+    /// the rest of that solve, and rays alone decide (the same verdicts: an empty shaft's
+    /// rays all pass). 0: every shaft is tested.
+    double shaftPayoff = 0.01;
     /// With setCameraSeen: the lowest share of the emitted power that the threshold
     /// follows (seenPowerShare()); 1: the plain criterion on all of it.
     double seenPowerFloor = 0.01;
@@ -466,6 +472,8 @@ class HierarchicalSolver {
     const Visibility& visibility() const { return *vis_; }
     const SolverOptions& options() const { return options_; }
     SolverStats stats() const;
+    /// Rounds of fewer shaft tests than this decide nothing about them (shaftTestsPay).
+    static constexpr uint64_t kShaftSample = 10000;
     double minArea() const { return minArea_; }
     /// A solve() now would refine no link: its time budget was reached, or
     /// SolverOptions::refineUntil has passed (refineSeconds, which each solve() counts
@@ -517,6 +525,15 @@ class HierarchicalSolver {
     static constexpr double kSeenChange = 0.01;
     /// A refinement round that refines at most this fraction of the links ends the rounds.
     static constexpr double kSettled = 1e-3;
+    /// Whether the shaft tests of a round (`tests` of them, `empty` found empty) paid, by
+    /// SolverOptions::shaftPayoff.
+    bool shaftTestsPay(uint64_t tests, uint64_t empty) const;
+    /// In solve()'s rounds, after a batch of visibility evaluations and after each round:
+    /// turns the shaft tests off for the rest of the solve once those it made did not pay
+    /// (shaftTestsPay), and says so.
+    void stopShaftTestsThatDoNotPay();
+    /// The shaft counters (tests, empty) when solve() began its rounds.
+    std::array<uint64_t, 2> shaftsBeforeSolve_{};
     /// A new shadow is followed for a light that gives at least this share of a leaf's
     /// unoccluded direct light (as the texture-based refinement's minShare,
     /// relight/pipeline/shadow_refinement.h).

@@ -146,7 +146,7 @@ bool TransferEvaluator::shaftIsEmpty(int r, int s) const {
 
 void TransferEvaluator::visibility(Link& link, bool thorough, bool narrow) const {
     const int r = link.receiver, s = link.source;
-    if (options_.useShafts && shaftIsEmpty(r, s)) {
+    if (options_.useShafts && shaftTests_ && shaftIsEmpty(r, s)) {
         counters.shaftEmpty.fetch_add(1, std::memory_order_relaxed);
         setShaftEmpty(link);
         return;

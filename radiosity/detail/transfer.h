@@ -123,6 +123,11 @@ class TransferEvaluator {
     void visibility(Link& link, bool thorough = false, bool narrow = false) const;
     /// True when the shaft between r and s holds no polygon other than theirs.
     bool shaftIsEmpty(int r, int s) const;
+    /// Whether visibility() tests a link's shaft before its rays (with options().useShafts;
+    /// on until turned off). HierarchicalSolver::solve turns the tests off for the rest of
+    /// a solve when a round found almost no shaft empty. Not while visibility() runs.
+    void setShaftTests(bool on) { shaftTests_ = on; }
+    bool shaftTests() const { return shaftTests_; }
 
     const TransferOptions& options() const { return options_; }
     mutable TransferCounters counters;
@@ -137,6 +142,7 @@ class TransferEvaluator {
     const Hierarchy& h_;
     const Visibility& vis_;
     TransferOptions options_;
+    bool shaftTests_ = true;
 };
 
 }  // namespace radiosity

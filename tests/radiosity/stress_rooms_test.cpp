@@ -373,3 +373,47 @@ TEST(StressRoomSolve, QuadsHundredMetresRotated) {
 TEST(StressRoomSolve, JitteredTrianglesHundredMetres) {
     checkSolve(solveCase(105, 20, true, 2, 0.002, false));
 }
+
+// Shaft tests turned off during a solve (SolverOptions::shaftPayoff) save their walks and
+// change nothing: where a shaft is empty, every ray between the two ends passes as well,
+// so the rays' verdict is the shaft's (VISIBLE, V = 1) and the refinement, the links and
+// the solution are the same. A payoff of 1 turns them off once the solve has made
+// kShaftSample tests, whatever they found; 0 never does.
+TEST(StressRoomSolve, ShaftTestsTurnedOffChangeNoLinkAndNoRadiosity) {
+    StressRoomOptions o = solveCase(106, 1, true, 2, 0.002, false);
+    o.shelves = {2, 2};
+    o.booksPerBoard = {10, 10};
+    const StressRoom room = makeStressRoom(o);
+    struct Run {
+        std::vector<Rgb> B;
+        size_t links = 0;
+        uint64_t shaftTests = 0, rays = 0;
+        bool saidOff = false;
+    };
+    const auto run = [&](double payoff) {
+        SolverOptions so;
+        so.shaftPayoff = payoff;
+        Run r;
+        so.progress = [&r](const std::string& m) {
+            r.saidOff |= m.find("shaft tests off") != std::string::npos;
+        };
+        HierarchicalSolver solver(room.scene, so);
+        solver.solve();
+        for (const Node& n : solver.hierarchy().nodes) r.B.push_back(n.B);
+        r.links = solver.links().size();
+        r.shaftTests = solver.stats().shaftTests;
+        r.rays = solver.stats().rays;
+        return r;
+    };
+    const Run always = run(0), off = run(1);
+    ASSERT_GE(always.shaftTests, HierarchicalSolver::kShaftSample) << "too few tests to decide";
+    EXPECT_FALSE(always.saidOff);
+    EXPECT_TRUE(off.saidOff);
+    EXPECT_LT(off.shaftTests, always.shaftTests);  // the later batches tested none
+    EXPECT_GE(off.rays, always.rays);              // their empty shafts' links cast rays
+    ASSERT_EQ(off.links, always.links);
+    ASSERT_EQ(off.B.size(), always.B.size());
+    for (size_t i = 0; i < off.B.size(); ++i) {
+        ASSERT_EQ(off.B[i], always.B[i]) << "node " << i;
+    }
+}
