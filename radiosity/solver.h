@@ -472,7 +472,7 @@ class HierarchicalSolver {
     const Visibility& visibility() const { return *vis_; }
     const SolverOptions& options() const { return options_; }
     SolverStats stats() const;
-    /// Rounds of fewer shaft tests than this decide nothing about them (shaftTestsPay).
+    /// Fewer shaft tests than this in a solve decide nothing about them (shaftTestsPay).
     static constexpr uint64_t kShaftSample = 10000;
     double minArea() const { return minArea_; }
     /// A solve() now would refine no link: its time budget was reached, or
@@ -525,7 +525,7 @@ class HierarchicalSolver {
     static constexpr double kSeenChange = 0.01;
     /// A refinement round that refines at most this fraction of the links ends the rounds.
     static constexpr double kSettled = 1e-3;
-    /// Whether the shaft tests of a round (`tests` of them, `empty` found empty) paid, by
+    /// Whether a solve's shaft tests so far (`tests` of them, `empty` found empty) paid, by
     /// SolverOptions::shaftPayoff.
     bool shaftTestsPay(uint64_t tests, uint64_t empty) const;
     /// In solve()'s rounds, after a batch of visibility evaluations and after each round:

@@ -125,7 +125,7 @@ class TransferEvaluator {
     bool shaftIsEmpty(int r, int s) const;
     /// Whether visibility() tests a link's shaft before its rays (with options().useShafts;
     /// on until turned off). HierarchicalSolver::solve turns the tests off for the rest of
-    /// a solve when a round found almost no shaft empty. Not while visibility() runs.
+    /// a solve once they found almost no shaft empty. Not while visibility() runs.
     void setShaftTests(bool on) { shaftTests_ = on; }
     bool shaftTests() const { return shaftTests_; }
 
