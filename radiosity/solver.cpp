@@ -540,9 +540,9 @@ bool HierarchicalSolver::shaftTestsPay(uint64_t tests, uint64_t empty) const {
     // Shaft tests (Haines & Wallace 1991). An empty shaft makes a link VISIBLE without rays,
     // and its children too; a shaft that holds anything costs its walk down the hierarchy
     // and then the rays all the same. In an open or simple room a fifth of the shafts are
-    // empty (the bundled scenes: 9-26 %, a few thousand tests). In a furnished hall almost
-    // none is: 625 of 7.9 M on a 393 k-face stair hall, where the walks were a quarter of the
-    // refinement's time (bench/RESULTS.md, 2026-11-30, twenty-fifth session). Few tests
+    // empty (the bundled scenes: 4-26 %, at most a few tens of thousands of tests). In a furnished
+    // hall almost none is: 625 of 7.9 M on a 393 k-face stair hall, where the walks were a quarter
+    // of the refinement's time (bench/RESULTS.md, 2026-11-30, twenty-fifth session). Few tests
     // decide nothing.
     return tests < kShaftSample ||
            static_cast<double>(empty) >= options_.shaftPayoff * static_cast<double>(tests);

@@ -410,7 +410,9 @@ TEST(StressRoomSolve, ShaftTestsTurnedOffChangeNoLinkAndNoRadiosity) {
     EXPECT_FALSE(always.saidOff);
     EXPECT_TRUE(off.saidOff);
     EXPECT_LT(off.shaftTests, always.shaftTests);  // the later batches tested none
-    EXPECT_GE(off.rays, always.rays);              // their empty shafts' links cast rays
+    // Shafts after the stop were empty too, and their links cast rays: without them the
+    // comparison below would hold trivially.
+    EXPECT_GT(off.rays, always.rays);
     ASSERT_EQ(off.links, always.links);
     ASSERT_EQ(off.B.size(), always.B.size());
     for (size_t i = 0; i < off.B.size(); ++i) {
